@@ -1,0 +1,82 @@
+// Backends turn legal IR into a program for one machine. ProgramWriter holds what every
+// family shares (program frame, header, spindle, coolant, stops, comments, feeds); the mill
+// and lathe backends add motion and tool changes, the structure tables cannot express.
+#pragma once
+
+#include <memory>
+
+#include "backends/emitter.h"
+#include "backends/machine.h"
+#include "ir/diagnostics.h"
+#include "ir/ir.h"
+
+namespace clpc {
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual void begin(const ir::ProgramInfo& info) = 0;
+  virtual void operation(const ir::Operation& op) = 0;
+  virtual void end() = 0;
+};
+
+std::unique_ptr<Backend> make_backend(const Machine& m, OutputFile& out, Diagnostics& d);
+
+class ProgramWriter : public Backend {
+ public:
+  ProgramWriter(const Machine& m, OutputFile& out, Diagnostics& d);
+  void begin(const ir::ProgramInfo& info) override;
+  void operation(const ir::Operation& op) override;
+  void end() override;
+
+ protected:
+  // Family-specific hooks.
+  virtual void write_move(const ir::Move& m, SourceLoc loc) = 0;
+  virtual void write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) = 0;
+  virtual void write_tool_change(const ir::ToolChange& t, SourceLoc loc) = 0;
+  virtual void write_spindle(const ir::Spindle& s, SourceLoc loc);
+  virtual void write_feed_mode(ir::FeedMode mode);
+  virtual void start_program() {}
+  virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
+
+  void visit(const ir::Operation& op, const ir::Instr& in);
+  void write_coolant(const ir::Coolant& c, SourceLoc loc);
+  void write_dwell(const ir::Dwell& d, SourceLoc loc);
+  void write_cutter_comp(const ir::CutterComp& c, SourceLoc loc);
+  void blocks(const std::vector<CodeTemplate>& list, SourceLoc loc);
+  void after_template(const CodeTemplate& t);
+  // For a cutting block: the feed-mode code when it changed (before the motion code) and
+  // the F word when the feed changed (after the coordinates).
+  void feed_mode_code();
+  bool feed_word(SourceLoc loc);
+  std::string tool_comment(const ir::ToolInfo& t) const;
+  std::string length_text(double program_units) const;
+
+  const Machine& m_;
+  Emitter e_;
+  Diagnostics& d_;
+  const ir::ProgramInfo* info_ = nullptr;
+  double k_ = 1;  // program units -> output units
+
+  int tool_ = -1;
+  int length_offset_ = 0;
+  bool need_length_offset_ = false;
+  bool need_work_offset_ = true;
+  int work_offset_ = 0;  // 0 = the machine's default register
+  enum class Motion : uint8_t { None, Rapid, Linear, Cw, Ccw } motion_ = Motion::None;
+  enum class Plane : uint8_t { None, XY, ZX, YZ } plane_ = Plane::None;
+  ir::FeedMode feed_mode_ = ir::FeedMode::PerMinute;  // as programmed
+  ir::FeedMode written_feed_mode_ = ir::FeedMode::PerMinute;  // as the control has it
+  bool feed_mode_known_ = false;
+  double feed_ = 0;  // program units
+  bool feed_known_ = false;
+  bool feed_written_ = false;
+  ir::SpindleDir spindle_ = ir::SpindleDir::Off;
+  ir::CoolantKind coolant_ = ir::CoolantKind::Off;
+  ir::CutterComp comp_pending_;
+  bool comp_pending_set_ = false;
+  bool position_known_ = false;
+  ir::Vec3 pos_ = ir::Vec3::Zero();  // last programmed tool tip, program units
+};
+
+}  // namespace clpc

@@ -1,0 +1,189 @@
+#include "backends/emitter.h"
+
+#include "ir/params.h"
+
+namespace clpc {
+
+Emitter::Emitter(const Machine& m, OutputFile& out, Diagnostics& d) : m_(m), out_(out), d_(d) {
+  next_n_ = m.sequence.start;
+  block_.reserve(256);
+}
+
+void Emitter::begin(SourceLoc loc) {
+  loc_ = loc;
+  block_.clear();
+  comment_.clear();
+  words_ = 0;
+}
+
+void Emitter::add_word_text(std::string_view w) {
+  if (words_ > 0) block_.append(m_.separator);
+  block_.append(w);
+  ++words_;
+}
+
+void Emitter::text(std::string_view w) { add_word_text(w); }
+
+void Emitter::add_quantized(char letter, int64_t q) {
+  if (words_ > 0) block_.append(m_.separator);
+  block_.push_back(letter);
+  append_quantized(q, m_.format(letter), block_);
+  ++words_;
+}
+
+bool Emitter::word(char letter, double value) {
+  int64_t q;
+  if (!quantize(value, m_.format(letter), q)) {
+    d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(value));
+    return false;
+  }
+  add_quantized(letter, q);
+  last_q_[letter - 'A'] = q;
+  known_[letter - 'A'] = true;
+  return true;
+}
+
+bool Emitter::modal_word(char letter, double value) {
+  int64_t q;
+  if (!quantize(value, m_.format(letter), q)) {
+    d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(value));
+    return false;
+  }
+  size_t i = size_t(letter - 'A');
+  if (m_.modal.coordinates && known_[i] && last_q_[i] == q) return false;
+  add_quantized(letter, q);
+  last_q_[i] = q;
+  known_[i] = true;
+  return true;
+}
+
+bool Emitter::last(char letter, double& value) const {
+  size_t i = size_t(letter - 'A');
+  if (!known_[i]) return false;
+  value = dequantize(last_q_[i], m_.format(letter));
+  return true;
+}
+
+void Emitter::set_last(char letter, double value) {
+  int64_t q;
+  size_t i = size_t(letter - 'A');
+  if (quantize(value, m_.format(letter), q)) {
+    last_q_[i] = q;
+    known_[i] = true;
+  } else {
+    known_[i] = false;
+  }
+}
+
+double Emitter::as_written(char letter, double value) const {
+  int64_t q;
+  if (!quantize(value, m_.format(letter), q)) return value;
+  return dequantize(q, m_.format(letter));
+}
+
+void Emitter::forget_all() {
+  for (bool& k : known_) k = false;
+}
+
+void Emitter::code(const CodeTemplate& t, const TemplateVars& v) {
+  for (const CodeTemplate::Word& w : t.words) {
+    std::string word;
+    char letter = 0;
+    for (const CodeTemplate::Piece& p : w) {
+      if (p.var < 0) {
+        word += p.literal;
+        continue;
+      }
+      double x = (v.set >> unsigned(p.var)) & 1u ? v.value[size_t(p.var)] : 0.0;
+      if (p.width > 0) {
+        append_int(std::llround(x), p.width, word);
+        continue;
+      }
+      if (!word.empty()) letter = word[0];
+      if (letter >= 'a' && letter <= 'z') letter = char(letter - 32);
+      if (letter >= 'A' && letter <= 'Z') {
+        int64_t q;
+        if (!quantize(x, m_.format(letter), q)) {
+          d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(x));
+          continue;
+        }
+        append_quantized(q, m_.format(letter), word);
+      } else {
+        word += num_text(x);
+      }
+    }
+    add_word_text(word);
+  }
+}
+
+void Emitter::trailing_comment(std::string_view c) {
+  if (!m_.comments.enabled) return;
+  std::string t = clean_comment(c);
+  if (!t.empty()) comment_ = m_.comments.open + t + m_.comments.close;
+}
+
+void Emitter::end(bool tool_change) {
+  if (words_ == 0) return;
+  const SequenceSettings& s = m_.sequence;
+  if (s.enabled && (!s.tool_change_only || tool_change)) {
+    std::string n = "N";
+    append_int(next_n_, 0, n);
+    out_.write(n);
+    out_.write(m_.separator.empty() ? std::string_view() : std::string_view(m_.separator));
+    next_n_ += s.step;
+    if (next_n_ > s.max) next_n_ = s.wrap_to > 0 ? s.wrap_to : s.start;
+  }
+  out_.write(block_);
+  if (!comment_.empty()) {
+    out_.write(m_.separator.empty() ? std::string_view() : std::string_view(" "));
+    out_.write(comment_);
+  }
+  out_.write(m_.block_end);
+  out_.write("\n");
+  ++blocks_;
+  words_ = 0;
+  block_.clear();
+  comment_.clear();
+}
+
+std::string Emitter::clean_comment(std::string_view text) const {
+  const CommentSettings& c = m_.comments;
+  std::string out;
+  out.reserve(text.size());
+  for (unsigned char ch : text) {
+    bool bad = ch < 0x20 || ch >= 0x7f || c.open.find(char(ch)) != std::string::npos ||
+               c.close.find(char(ch)) != std::string::npos;
+    if (bad) {
+      out += c.replacement;
+      continue;
+    }
+    out.push_back(c.upper_case && ch >= 'a' && ch <= 'z' ? char(ch - 32) : char(ch));
+  }
+  // Collapse the runs of spaces cleaning may leave, and trim.
+  std::string tidy;
+  for (char ch : out) {
+    if (ch == ' ' && (tidy.empty() || tidy.back() == ' ')) continue;
+    tidy.push_back(ch);
+  }
+  while (!tidy.empty() && tidy.back() == ' ') tidy.pop_back();
+  size_t room = c.max_length > 0 ? size_t(c.max_length) : std::string::npos;
+  if (tidy.size() > room) tidy.resize(room);
+  return tidy;
+}
+
+void Emitter::comment(std::string_view text) {
+  if (!m_.comments.enabled) return;
+  std::string t = clean_comment(text);
+  if (t.empty()) return;
+  out_.write(m_.comments.open);
+  out_.write(t);
+  out_.write(m_.comments.close);
+  out_.write("\n");
+}
+
+void Emitter::line(std::string_view text) {
+  out_.write(text);
+  out_.write("\n");
+}
+
+}  // namespace clpc

@@ -1,0 +1,70 @@
+// The one table-driven emitter both backends share: it formats words per the machine's
+// address formats, drops modal words whose rounded value has not changed, numbers blocks,
+// cleans comments and writes the text into the output buffer. It knows nothing of motion or
+// tools: backends decide which words a block holds.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "backends/code_template.h"
+#include "backends/format.h"
+#include "backends/machine.h"
+#include "backends/output.h"
+#include "ir/diagnostics.h"
+
+namespace clpc {
+
+class Emitter {
+ public:
+  Emitter(const Machine& m, OutputFile& out, Diagnostics& d);
+
+  // A block: begin, add words, end. Words keep the order they are added in.
+  void begin(SourceLoc loc);
+  void code(const CodeTemplate& t, const TemplateVars& v = {});
+  // Writes `letter` with `value` always; returns false if the value is out of range.
+  bool word(char letter, double value);
+  // Writes `letter` only when its rounded value differs from the last one written (or the
+  // machine does not suppress coordinates). Returns true if written.
+  bool modal_word(char letter, double value);
+  void text(std::string_view w);
+  void trailing_comment(std::string_view c);
+  // Ends the block; an empty block writes nothing. tool_change marks blocks that get a
+  // sequence number when the machine numbers only tool changes.
+  void end(bool tool_change = false);
+  bool block_empty() const { return words_ == 0; }
+
+  // The value a control holds for `letter` after the blocks written so far.
+  bool last(char letter, double& value) const;
+  void set_last(char letter, double value);  // e.g. after a move the emitter did not write
+  void forget(char letter) { known_[size_t(letter - 'A')] = false; }
+  void forget_all();
+  // Rounds as the control would: the value it will take for `value` at this address.
+  double as_written(char letter, double value) const;
+
+  void comment(std::string_view text);  // a comment line (nothing if comments are off)
+  void line(std::string_view text);     // a line as it is, no sequence number
+  std::string clean_comment(std::string_view text) const;
+
+  long block_count() const { return blocks_; }
+  const Machine& machine() const { return m_; }
+
+ private:
+  void add_word_text(std::string_view w);
+  void add_quantized(char letter, int64_t q);
+
+  const Machine& m_;
+  OutputFile& out_;
+  Diagnostics& d_;
+  SourceLoc loc_;
+  std::string block_;
+  std::string comment_;
+  int words_ = 0;
+  long next_n_;
+  long blocks_ = 0;
+  int64_t last_q_[26] = {};
+  bool known_[26] = {};
+};
+
+}  // namespace clpc

@@ -1,0 +1,160 @@
+#include "backends/lathe.h"
+
+#include <cmath>
+
+#include "backends/mill.h"
+#include "ir/params.h"
+
+namespace clpc {
+
+LatheBackend::LatheBackend(const Machine& m, OutputFile& out, Diagnostics& d) : ProgramWriter(m, out, d) {}
+
+std::unique_ptr<Backend> make_backend(const Machine& m, OutputFile& out, Diagnostics& d) {
+  if (m.is_lathe()) return std::make_unique<LatheBackend>(m, out, d);
+  return std::make_unique<MillBackend>(m, out, d);
+}
+
+void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
+  if (t.tool == tool_) return;
+  if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
+  const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
+  int offset = t.length_offset > 0 ? t.length_offset : t.tool;
+  e_.begin(loc);
+  e_.code(m_.codes.tool_change, TemplateVars().with(Var::Tool, t.tool).with(Var::Offset, offset));
+  if (info) e_.trailing_comment(tool_comment(*info));
+  e_.end(true);
+  after_template(m_.codes.tool_change);
+  tool_ = t.tool;
+  motion_ = Motion::None;
+  e_.forget_all();
+  feed_written_ = false;
+}
+
+void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
+  if (s.dir == ir::SpindleDir::Off) {
+    e_.begin(loc);
+    e_.code(m_.codes.spindle_off);
+    e_.end();
+    spindle_ = ir::SpindleDir::Off;
+    return;
+  }
+  const CodeTemplate& dir = s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw;
+  if (s.mode == ir::SpindleMode::SurfaceSpeed) {
+    double clamp = m_.lathe.max_rpm > 0 ? m_.lathe.max_rpm : s.max_rpm;
+    if (clamp <= 0) {
+      d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
+      return;
+    }
+    e_.begin(loc);
+    e_.code(m_.codes.spindle_clamp, TemplateVars().with(Var::Max, clamp));
+    e_.end();
+    after_template(m_.codes.spindle_clamp);
+    // m/min for metric output, ft/min for inch output.
+    double speed = m_.units == ir::Units::Inch ? s.speed / 0.3048 : s.speed;
+    e_.begin(loc);
+    e_.code(m_.codes.spindle_css_mode);
+    e_.word('S', speed);
+    e_.code(dir);
+    e_.end();
+  } else {
+    e_.begin(loc);
+    e_.code(m_.codes.spindle_rpm_mode);
+    e_.word('S', s.speed);
+    e_.code(dir);
+    e_.end();
+  }
+  spindle_ = s.dir;
+}
+
+void LatheBackend::motion_code(Motion mo) {
+  if (m_.modal.motion && motion_ == mo) return;
+  const Codes& c = m_.codes;
+  e_.code(mo == Motion::Rapid ? c.rapid : mo == Motion::Linear ? c.linear : mo == Motion::Cw ? c.arc_cw : c.arc_ccw);
+  motion_ = mo;
+}
+
+bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
+  if (std::abs(p.y()) <= 1e-6) return true;
+  d_.error(loc, "lathe motion must lie in the XZ plane (Y = 0), found Y = " + num_text(p.y()));
+  return false;
+}
+
+bool LatheBackend::changed(char letter, double value) const {
+  double last;
+  return !m_.modal.coordinates || !e_.last(letter, last) || e_.as_written(letter, value) != last;
+}
+
+void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
+  if (mv.kind == ir::MoveKind::From) {
+    pos_ = mv.point;
+    return;
+  }
+  if (!in_plane(mv.point, loc)) return;
+  const ir::Vec3 o = mv.point * k_;
+  const bool rapid = mv.kind == ir::MoveKind::Rapid;
+  if (!changed('X', o.x()) && !changed('Z', o.z())) {
+    pos_ = mv.point;
+    return;
+  }
+  e_.begin(loc);
+  if (!rapid) feed_mode_code();
+  motion_code(rapid ? Motion::Rapid : Motion::Linear);
+  e_.modal_word('X', o.x());
+  e_.modal_word('Z', o.z());
+  if (!rapid) feed_word(loc);
+  e_.end();
+  pos_ = mv.point;
+  position_known_ = true;
+}
+
+void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
+  if (a.dir == ir::ArcDir::Unknown) {
+    d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
+    return;
+  }
+  if (std::abs(a.axis.y()) < 1 - 1e-9) {
+    d_.error(loc, "lathe arcs must turn about the Y axis (lie in the XZ plane)");
+    return;
+  }
+  if (!in_plane(a.end, loc) || !in_plane(a.center, loc)) return;
+  if (!position_known_) {
+    d_.error(loc, "arc with no programmed start position before it");
+    return;
+  }
+  // G02/G03 are seen from +Y unless the machine says otherwise.
+  bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.y() > 0);
+  if (m_.lathe.arcs_from_minus_y) ccw = !ccw;
+  ir::Vec3 s_out = pos_ * k_;
+  double last;
+  if (e_.last('X', last)) s_out.x() = last;
+  if (e_.last('Z', last)) s_out.z() = last;
+  ir::Vec3 e_raw = a.end * k_, c_raw = a.center * k_;
+  double ex = e_.as_written('X', e_raw.x()), ez = e_.as_written('Z', e_raw.z());
+  double cx = c_raw.x(), cz = c_raw.z();
+  double dx = ex - s_out.x(), dz = ez - s_out.z(), len = std::hypot(dx, dz);
+  if (len > 1e-12) {
+    double mx = (s_out.x() + ex) / 2, mz = (s_out.z() + ez) / 2;
+    double nx = -dz / len, nz = dx / len;
+    double t = (cx - mx) * nx + (cz - mz) * nz;
+    cx = mx + t * nx;
+    cz = mz + t * nz;
+  }
+  e_.begin(loc);
+  feed_mode_code();
+  motion_code(ccw ? Motion::Ccw : Motion::Cw);
+  e_.modal_word('X', e_raw.x());
+  e_.modal_word('Z', e_raw.z());
+  if (m_.arcs.center == ArcCenter::Radius) {
+    double r = std::hypot(cx - s_out.x(), cz - s_out.z());
+    e_.word('R', a.sweep > 180 ? -r : r);
+  } else {
+    e_.word('I', cx - s_out.x());
+    e_.word('K', cz - s_out.z());
+  }
+  feed_word(loc);
+  e_.end();
+  pos_ = a.end;
+  (void)op;
+}
+
+}  // namespace clpc

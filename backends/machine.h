@@ -1,0 +1,157 @@
+// A machine description, as read from TOML (machines.toml, --machines FILE). Everything a
+// control differs in lives here; docs/machines.md documents every key and its default.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "backends/code_template.h"
+#include "ir/ir.h"
+
+namespace clpc {
+
+enum class Family : uint8_t { Mill, Lathe };
+
+// How one address letter's value is written.
+struct AddressFormat {
+  enum class Point : uint8_t { Always, Never, IfFraction };
+  int decimals = 4;             // digits after the point (or implied, with Point::Never)
+  Point point = Point::Always;  // Never: the value in least-input units, no point (X12500)
+  bool leading_zero = true;     // 0.5 rather than .5
+  bool trailing_zeros = false;  // 1.5000 rather than 1.5
+  int digits = 0;               // zero-pad the integer part to this many digits (T01, O01234)
+  double scale = 1.0;           // e.g. 2 for a lathe's diameter X
+  bool plus = false;            // write + on positive values
+};
+
+struct SequenceSettings {
+  bool enabled = true;
+  long start = 10;
+  long step = 10;
+  long max = 99999;
+  long wrap_to = 0;             // after max, continue from this (0 = from start)
+  bool tool_change_only = false;
+};
+
+struct CommentSettings {
+  bool enabled = true;
+  std::string open = "(";
+  std::string close = ")";
+  int max_length = 0;           // 0 = no limit
+  bool upper_case = true;
+  std::string replacement = " ";  // for characters the control cannot take
+};
+
+enum class ArcCenter : uint8_t { Incremental, Absolute, Radius };
+
+struct ArcSettings {
+  bool xy = true, zx = true, yz = true;  // planes the control can do (G17, G18, G19)
+  bool helical = true;
+  double max_sweep = 360;       // degrees per block
+  double helix_max_sweep = 360; // degrees per helical block
+  double min_radius = 0;        // output units; 0 = none
+  double max_radius = 0;        // output units; 0 = none
+  ArcCenter center = ArcCenter::Incremental;
+  double tolerance = 0.0005;    // output units: chord error allowed when linearising
+};
+
+struct ModalSettings {
+  bool motion = true;       // drop G00/G01/G02/G03 when unchanged
+  bool coordinates = true;  // drop unchanged axis words
+  bool feed = true;         // drop an unchanged F
+};
+
+struct LatheSettings {
+  // G02/G03 are defined as seen from +Y (ISO, Fanuc: right for front and rear tool posts
+  // alike, since X is written positive either way). True for a control that views them from
+  // -Y: G02 and G03 swap. See docs/machines.md, [lathe].
+  bool arcs_from_minus_y = false;
+  double max_rpm = 0;       // G50 S clamp written with constant surface speed (0 = the CL's MAXRPM)
+};
+
+struct RotaryAxis {
+  std::string name;          // B, C, A
+  ir::Vec3 axis = ir::Vec3::UnitZ();  // direction in machine coordinates (sign = positive rotation)
+  bool table = true;         // on the table side (true) or the head side
+  double min = -360, max = 360;
+  bool cyclic = false;       // continuous: any angle, wound as the machine says
+  ir::Vec3 center = ir::Vec3::Zero();  // a point on the axis, machine coordinates, output units
+};
+
+struct LinearLimits {
+  double min[3] = {0, 0, 0};
+  double max[3] = {0, 0, 0};
+  bool set = false;
+};
+
+struct KinematicsSettings {
+  std::vector<RotaryAxis> rotaries;  // in chain order from the machine base
+  std::string tcp;                   // "" = none; else the code template name (tcp_on)
+  LinearLimits travel;               // X Y Z travel in machine coordinates (output units)
+};
+
+enum class OffsetTable : uint8_t { None, G10, G65Macro };
+
+struct OffsetSettings {
+  int standard_first = 54, standard_last = 59;  // G54..G59
+  int extended_count = 0;                       // G154 P1..Pn / G54.1 P1..Pn
+  int default_index = 1;                        // register used without SET: 1 = G54
+  OffsetTable table = OffsetTable::None;
+};
+
+// Every code the backends write, as templates (backends/code_template.h).
+struct Codes {
+  CodeTemplate units_inch, units_mm;
+  CodeTemplate rapid, linear, arc_cw, arc_ccw;
+  CodeTemplate plane_xy, plane_zx, plane_yz;
+  CodeTemplate absolute, incremental;
+  CodeTemplate feed_per_minute, feed_per_rev, inverse_time;
+  CodeTemplate tool_change, tool_preselect;
+  CodeTemplate length_offset, length_cancel;
+  CodeTemplate spindle_cw, spindle_ccw, spindle_off;
+  CodeTemplate spindle_rpm_mode, spindle_css_mode, spindle_clamp;
+  CodeTemplate coolant_flood, coolant_mist, coolant_thru, coolant_air, coolant_tap, coolant_off;
+  CodeTemplate dwell;
+  CodeTemplate optional_stop, stop;
+  CodeTemplate comp_left, comp_right, comp_off;
+  CodeTemplate work_offset, work_offset_extended;
+  CodeTemplate safe_retract;
+};
+
+struct Machine {
+  std::string name;
+  std::string description;
+  std::string source;           // file the description came from
+  Family family = Family::Mill;
+  ir::Units units = ir::Units::Mm;
+  std::string extension = ".nc";
+  std::vector<std::string> pipeline;
+
+  long program_number = 0;      // 0 = no program number line
+  std::vector<std::string> program_start;   // lines before the program number ("%")
+  std::vector<std::string> program_end;     // lines after the last block ("%")
+  bool header = true;                       // part, machine, units and tool table comments
+  std::vector<CodeTemplate> safe_start;     // blocks after the header
+  std::vector<CodeTemplate> finish;         // blocks at the end of the program
+
+  SequenceSettings sequence;
+  CommentSettings comments;
+  std::string separator = " ";
+  std::string block_end;                    // e.g. ";" (a line end always follows)
+  std::array<AddressFormat, 26> formats{};
+  ArcSettings arcs;
+  ModalSettings modal;
+  LatheSettings lathe;
+  KinematicsSettings kinematics;
+  OffsetSettings offsets;
+  Codes codes;
+  double rapid_rate = 0;        // output units per minute; for cycle-time estimates (0 = unknown)
+  double max_feed = 0;          // output units per minute; caps feeds (0 = none)
+
+  const AddressFormat& format(char letter) const { return formats[size_t(letter - 'A')]; }
+  bool is_lathe() const { return family == Family::Lathe; }
+};
+
+}  // namespace clpc

@@ -1,0 +1,152 @@
+// clpc explain: the resolved machine description as TOML, every key with its value.
+#include <sstream>
+
+#include "backends/machine_loader.h"
+#include "ir/params.h"
+
+namespace clpc {
+
+namespace {
+
+std::string quote(std::string_view s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o.push_back('\\');
+    o.push_back(c);
+  }
+  return o + "\"";
+}
+
+std::string list(const std::vector<std::string>& v) {
+  std::string o = "[";
+  for (size_t i = 0; i < v.size(); ++i) o += (i ? ", " : "") + quote(v[i]);
+  return o + "]";
+}
+
+std::string list(const std::vector<CodeTemplate>& v) {
+  std::vector<std::string> s;
+  for (const auto& t : v) s.push_back(t.text);
+  return list(s);
+}
+
+const char* b(bool x) { return x ? "true" : "false"; }
+
+}  // namespace
+
+std::string explain_machine(const Machine& m) {
+  std::ostringstream o;
+  o << "# " << m.name << " as clpc resolves it (defaults and inherited values filled in)\n";
+  o << "# from " << m.source << "\n";
+  o << "[" << m.name << "]\n";
+  o << "description = " << quote(m.description) << "\n";
+  o << "family = " << quote(m.is_lathe() ? "lathe" : "mill") << "\n";
+  o << "units = " << quote(m.units == ir::Units::Inch ? "inch" : "mm") << "\n";
+  o << "extension = " << quote(m.extension) << "\n";
+  o << "pipeline = " << list(m.pipeline) << "\n";
+  o << "rapid_rate = " << num_text(m.rapid_rate) << "\n";
+  o << "max_feed = " << num_text(m.max_feed) << "\n";
+
+  o << "\n[" << m.name << ".program]\n";
+  o << "number = " << m.program_number << "\n";
+  o << "start = " << list(m.program_start) << "\n";
+  o << "end = " << list(m.program_end) << "\n";
+  o << "header = " << b(m.header) << "\n";
+  o << "safe_start = " << list(m.safe_start) << "\n";
+  o << "finish = " << list(m.finish) << "\n";
+
+  const SequenceSettings& s = m.sequence;
+  o << "\n[" << m.name << ".sequence]\n";
+  o << "enabled = " << b(s.enabled) << "\nstart = " << s.start << "\nstep = " << s.step << "\nmax = " << s.max
+    << "\nwrap_to = " << s.wrap_to << "\ntool_change_only = " << b(s.tool_change_only) << "\n";
+
+  const CommentSettings& c = m.comments;
+  o << "\n[" << m.name << ".comments]\n";
+  o << "enabled = " << b(c.enabled) << "\nopen = " << quote(c.open) << "\nclose = " << quote(c.close)
+    << "\nmax_length = " << c.max_length << "\nupper_case = " << b(c.upper_case) << "\nreplacement = " << quote(c.replacement)
+    << "\n";
+
+  o << "\n[" << m.name << ".words]\n";
+  o << "separator = " << quote(m.separator) << "\nblock_end = " << quote(m.block_end) << "\n";
+
+  o << "\n[" << m.name << ".format]\n";
+  static const char* points[] = {"always", "never", "if-fraction"};
+  for (char l = 'A'; l <= 'Z'; ++l) {
+    const AddressFormat& f = m.format(l);
+    o << l << " = { decimals = " << f.decimals << ", point = " << quote(points[int(f.point)])
+      << ", leading_zero = " << b(f.leading_zero) << ", trailing_zeros = " << b(f.trailing_zeros)
+      << ", digits = " << f.digits << ", scale = " << num_text(f.scale) << ", plus = " << b(f.plus) << " }\n";
+  }
+
+  const ArcSettings& a = m.arcs;
+  std::vector<std::string> planes;
+  if (a.xy) planes.push_back("XY");
+  if (a.zx) planes.push_back("ZX");
+  if (a.yz) planes.push_back("YZ");
+  static const char* centers[] = {"incremental", "absolute", "radius"};
+  o << "\n[" << m.name << ".arcs]\n";
+  o << "planes = " << list(planes) << "\nhelical = " << b(a.helical) << "\nmax_sweep = " << num_text(a.max_sweep)
+    << "\nhelix_max_sweep = " << num_text(a.helix_max_sweep) << "\nmin_radius = " << num_text(a.min_radius)
+    << "\nmax_radius = " << num_text(a.max_radius) << "\ncenter = " << quote(centers[int(a.center)])
+    << "\ntolerance = " << num_text(a.tolerance) << "\n";
+
+  o << "\n[" << m.name << ".modal]\n";
+  o << "motion = " << b(m.modal.motion) << "\ncoordinates = " << b(m.modal.coordinates) << "\nfeed = " << b(m.modal.feed)
+    << "\n";
+
+  if (m.is_lathe()) {
+    o << "\n[" << m.name << ".lathe]\n";
+    o << "arcs_seen_from = " << quote(m.lathe.arcs_from_minus_y ? "-Y" : "+Y") << "\nmax_rpm = " << num_text(m.lathe.max_rpm)
+      << "\n";
+  }
+
+  static const char* tables[] = {"none", "g10", "g65-macro"};
+  o << "\n[" << m.name << ".offsets]\n";
+  o << "extended = " << m.offsets.extended_count << "\ndefault = " << m.offsets.default_index
+    << "\ntable = " << quote(tables[int(m.offsets.table)]) << "\n";
+
+  const Codes& k = m.codes;
+  o << "\n[" << m.name << ".codes]\n";
+  auto code = [&](const char* n, const CodeTemplate& t) { o << n << " = " << quote(t.text) << "\n"; };
+  code("units_inch", k.units_inch);
+  code("units_mm", k.units_mm);
+  code("rapid", k.rapid);
+  code("linear", k.linear);
+  code("arc_cw", k.arc_cw);
+  code("arc_ccw", k.arc_ccw);
+  code("plane_xy", k.plane_xy);
+  code("plane_zx", k.plane_zx);
+  code("plane_yz", k.plane_yz);
+  code("absolute", k.absolute);
+  code("incremental", k.incremental);
+  code("feed_per_minute", k.feed_per_minute);
+  code("feed_per_rev", k.feed_per_rev);
+  code("inverse_time", k.inverse_time);
+  code("tool_change", k.tool_change);
+  code("tool_preselect", k.tool_preselect);
+  code("length_offset", k.length_offset);
+  code("length_cancel", k.length_cancel);
+  code("spindle_cw", k.spindle_cw);
+  code("spindle_ccw", k.spindle_ccw);
+  code("spindle_off", k.spindle_off);
+  code("spindle_rpm_mode", k.spindle_rpm_mode);
+  code("spindle_css_mode", k.spindle_css_mode);
+  code("spindle_clamp", k.spindle_clamp);
+  code("coolant_flood", k.coolant_flood);
+  code("coolant_mist", k.coolant_mist);
+  code("coolant_thru", k.coolant_thru);
+  code("coolant_air", k.coolant_air);
+  code("coolant_tap", k.coolant_tap);
+  code("coolant_off", k.coolant_off);
+  code("dwell", k.dwell);
+  code("optional_stop", k.optional_stop);
+  code("stop", k.stop);
+  code("comp_left", k.comp_left);
+  code("comp_right", k.comp_right);
+  code("comp_off", k.comp_off);
+  code("work_offset", k.work_offset);
+  code("work_offset_extended", k.work_offset_extended);
+  code("safe_retract", k.safe_retract);
+  return o.str();
+}
+
+}  // namespace clpc

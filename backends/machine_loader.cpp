@@ -1,0 +1,686 @@
+#include "backends/machine_loader.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "ir/params.h"
+
+namespace clpc {
+
+struct MachineRegistry::Source {
+  std::string path;
+  std::string text;
+  toml::table table;
+};
+
+namespace {
+
+constexpr const char* kBuiltinName = "machines.toml (built-in)";
+
+std::string line_of(std::string_view text, uint32_t line) {
+  size_t at = 0;
+  for (uint32_t l = 1; l < line && at != std::string_view::npos; ++l) {
+    at = text.find('\n', at);
+    if (at != std::string_view::npos) ++at;
+  }
+  if (at == std::string_view::npos || at > text.size()) return {};
+  size_t end = text.find('\n', at);
+  std::string s(text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at));
+  if (!s.empty() && s.back() == '\r') s.pop_back();
+  return s;
+}
+
+struct Ctx {
+  Diagnostics& d;
+  const std::vector<std::unique_ptr<MachineRegistry::Source>>* sources;
+  bool ok = true;
+
+  void error(const toml::source_region& at, const std::string& msg) {
+    ok = false;
+    std::string file = at.path ? *at.path : std::string("<machine>");
+    std::string text;
+    if (sources)
+      for (const auto& s : *sources)
+        if (s->path == file) text = line_of(s->text, at.begin.line);
+    d.report_in(Severity::Error, file, SourceLoc{at.begin.line, at.begin.column}, msg, text);
+  }
+};
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "true or false";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+  }
+}
+
+// Reads one TOML table with validation; keys never read are reported by finish().
+class Reader {
+ public:
+  Reader(Ctx& c, const toml::table& t, std::string path) : c_(c), t_(t), path_(std::move(path)) {}
+
+  const std::string& path() const { return path_; }
+  const toml::table& table() const { return t_; }
+  bool has(std::string_view k) const { return t_.contains(k); }
+
+  const toml::node* node(std::string_view k) {
+    used_.insert(std::string(k));
+    return t_.get(k);
+  }
+  void error(const toml::node& n, std::string_view key, const std::string& msg) {
+    c_.error(n.source(), key_path(key) + ": " + msg);
+  }
+  void missing(std::string_view key, const std::string& what) {
+    c_.error(t_.source(), path_ + ": missing required key '" + std::string(key) + "' (" + what + ")");
+  }
+  std::string key_path(std::string_view key) const { return path_.empty() ? std::string(key) : path_ + "." + std::string(key); }
+
+  void boolean(std::string_view k, bool& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (auto v = n->value<bool>(); v && n->is_boolean()) out = *v;
+    else error(*n, k, "expected true or false, found " + type_name(*n));
+  }
+  template <class Int>
+  void integer(std::string_view k, Int& out, long long lo, long long hi) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_integer()) {
+      error(*n, k, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " + type_name(*n));
+      return;
+    }
+    long long v = *n->value<int64_t>();
+    if (v < lo || v > hi) {
+      error(*n, k, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " + std::to_string(v));
+      return;
+    }
+    out = Int(v);
+  }
+  // A number in [lo, hi]; open_lo excludes lo.
+  void number(std::string_view k, double& out, double lo, double hi, bool open_lo = false) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_number()) {
+      error(*n, k, "expected a number, found " + type_name(*n));
+      return;
+    }
+    double v = *n->value<double>();
+    bool bad = open_lo ? !(v > lo) : !(v >= lo);
+    if (bad || !(v <= hi)) {
+      std::string range = (open_lo ? "greater than " : "at least ") + num_text(lo);
+      if (hi < 1e300) range += " and at most " + num_text(hi);
+      error(*n, k, "expected a number " + range + ", found " + num_text(v));
+      return;
+    }
+    out = v;
+  }
+  void string(std::string_view k, std::string& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_string()) {
+      error(*n, k, "expected a string, found " + type_name(*n));
+      return;
+    }
+    out = **n->as_string();
+  }
+  // One of `options`; returns the index or -1.
+  int choice(std::string_view k, std::initializer_list<const char*> options) {
+    const toml::node* n = node(k);
+    if (!n) return -1;
+    std::string all;
+    for (const char* o : options) all += (all.empty() ? "\"" : ", \"") + std::string(o) + "\"";
+    if (!n->is_string()) {
+      error(*n, k, "expected one of " + all + ", found " + type_name(*n));
+      return -1;
+    }
+    const std::string& v = **n->as_string();
+    int i = 0;
+    for (const char* o : options) {
+      if (v == o) return i;
+      ++i;
+    }
+    error(*n, k, "expected one of " + all + ", found \"" + v + "\"");
+    return -1;
+  }
+  bool strings(std::string_view k, std::vector<std::string>& out) {
+    const toml::node* n = node(k);
+    if (!n) return false;
+    const toml::array* a = n->as_array();
+    if (!a) {
+      error(*n, k, "expected an array of strings, found " + type_name(*n));
+      return false;
+    }
+    std::vector<std::string> v;
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) {
+        error(e, k, "expected an array of strings; this element is " + type_name(e));
+        return false;
+      }
+      v.push_back(**e.as_string());
+    }
+    out = std::move(v);
+    return true;
+  }
+  bool vec3(std::string_view k, ir::Vec3& out) {
+    const toml::node* n = node(k);
+    if (!n) return false;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3 || !(*a)[0].is_number() || !(*a)[1].is_number() || !(*a)[2].is_number()) {
+      error(*n, k, "expected an array of three numbers [x, y, z]");
+      return false;
+    }
+    out = {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
+    return true;
+  }
+  std::optional<Reader> sub(std::string_view k) {
+    const toml::node* n = node(k);
+    if (!n) return std::nullopt;
+    if (!n->is_table()) {
+      error(*n, k, "expected a table, found " + type_name(*n));
+      return std::nullopt;
+    }
+    return Reader(c_, *n->as_table(), key_path(k));
+  }
+  // Reports every key that was not read.
+  void finish() {
+    for (auto&& [key, n] : t_) {
+      if (used_.count(std::string(key.str()))) continue;
+      c_.error(key.source(), "unknown key '" + std::string(key.str()) + "' in " + (path_.empty() ? "the machine" : path_));
+    }
+  }
+
+ private:
+  Ctx& c_;
+  const toml::table& t_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+void read_template(Reader& r, std::string_view key, CodeTemplate& out, uint32_t allowed) {
+  const toml::node* n = r.node(key);
+  if (!n) return;
+  if (!n->is_string()) {
+    r.error(*n, key, "expected a code template string, found " + type_name(*n));
+    return;
+  }
+  CodeTemplate t;
+  std::string err;
+  if (!parse_template(**n->as_string(), t, err)) {
+    r.error(*n, key, "bad code template: " + err);
+    return;
+  }
+  uint32_t extra = t.vars_used() & ~allowed;
+  if (extra) {
+    std::string names, ok;
+    for (int v = 0; v < int(Var::Count); ++v) {
+      if (extra >> v & 1) names += (names.empty() ? "{" : ", {") + std::string(var_name(Var(v))) + "}";
+      if (allowed >> v & 1) ok += (ok.empty() ? "{" : ", {") + std::string(var_name(Var(v))) + "}";
+    }
+    r.error(*n, key, "placeholder " + names + " cannot be used here" + (ok.empty() ? " (this code takes none)" : " (allowed: " + ok + ")"));
+    return;
+  }
+  out = std::move(t);
+}
+
+bool read_templates(Reader& r, std::string_view key, std::vector<CodeTemplate>& out) {
+  const toml::node* n = r.node(key);
+  if (!n) return false;
+  const toml::array* a = n->as_array();
+  if (!a) {
+    r.error(*n, key, "expected an array of code templates, found " + type_name(*n));
+    return false;
+  }
+  std::vector<CodeTemplate> v;
+  for (const toml::node& e : *a) {
+    if (!e.is_string()) {
+      r.error(e, key, "expected an array of strings; this element is " + type_name(e));
+      return false;
+    }
+    CodeTemplate t;
+    std::string err;
+    if (!parse_template(**e.as_string(), t, err) || t.vars_used() != 0) {
+      r.error(e, key, err.empty() ? "placeholders cannot be used here" : "bad code template: " + err);
+      return false;
+    }
+    v.push_back(std::move(t));
+  }
+  out = std::move(v);
+  return true;
+}
+
+CodeTemplate tpl(std::string_view s) {
+  CodeTemplate t;
+  std::string err;
+  parse_template(s, t, err);
+  return t;
+}
+
+constexpr uint32_t bit(Var v) { return 1u << unsigned(v); }
+
+// Defaults: a generic Fanuc-style control of the given family and output units.
+void set_defaults(Machine& m) {
+  const bool inch = m.units == ir::Units::Inch;
+  for (char c = 'A'; c <= 'Z'; ++c) {
+    AddressFormat f;
+    switch (c) {
+      case 'X': case 'Y': case 'Z': case 'I': case 'J': case 'K': case 'R': case 'U': case 'V': case 'W': case 'Q': case 'E':
+        f.decimals = inch ? 4 : 3;
+        break;
+      case 'A': case 'B': case 'C':
+        f.decimals = 3;
+        break;
+      case 'F':
+        f.decimals = inch ? 2 : 1;
+        break;
+      default:  // G M N O P S T H D L: whole numbers
+        f.decimals = 0;
+        f.point = AddressFormat::Point::Never;
+        break;
+    }
+    m.formats[size_t(c - 'A')] = f;
+  }
+  if (m.is_lathe()) m.formats['X' - 'A'].scale = 2;  // diameter
+  Codes& k = m.codes;
+  k.units_inch = tpl("G20");
+  k.units_mm = tpl("G21");
+  k.rapid = tpl("G00");
+  k.linear = tpl("G01");
+  k.arc_cw = tpl("G02");
+  k.arc_ccw = tpl("G03");
+  k.plane_xy = tpl("G17");
+  k.plane_zx = tpl("G18");
+  k.plane_yz = tpl("G19");
+  k.absolute = tpl("G90");
+  k.incremental = tpl("G91");
+  k.spindle_cw = tpl("M03");
+  k.spindle_ccw = tpl("M04");
+  k.spindle_off = tpl("M05");
+  k.spindle_rpm_mode = tpl("G97");
+  k.spindle_css_mode = tpl("G96");
+  k.spindle_clamp = tpl("G50 S{max}");
+  k.coolant_flood = tpl("M08");
+  k.coolant_mist = tpl("M07");
+  k.coolant_off = tpl("M09");
+  k.dwell = tpl("G04 P{milliseconds}");
+  k.optional_stop = tpl("M01");
+  k.stop = tpl("M00");
+  k.comp_left = tpl("G41 D{register}");
+  k.comp_right = tpl("G42 D{register}");
+  k.comp_off = tpl("G40");
+  if (m.is_lathe()) {
+    k.feed_per_minute = tpl("G98");
+    k.feed_per_rev = tpl("G99");
+    k.tool_change = tpl("T{tool:2}{offset:2}");
+    k.safe_retract = tpl("G28 U0. W0.");
+    m.safe_start = {tpl("G00 G18 G40 G80 G99")};
+    m.finish = {tpl("M05"), tpl("M09"), tpl("G28 U0. W0."), tpl("M30")};
+    m.pipeline = {"arc-direction", "arc-legalise"};
+    m.arcs.xy = m.arcs.yz = false;
+    m.arcs.helical = false;
+  } else {
+    k.feed_per_minute = tpl("G94");
+    k.feed_per_rev = tpl("G95");
+    k.inverse_time = tpl("G93");
+    k.tool_change = tpl("T{tool} M06");
+    k.tool_preselect = tpl("T{tool}");
+    k.length_offset = tpl("G43 H{offset}");
+    k.length_cancel = tpl("G49");
+    k.work_offset = tpl("G{number}");
+    k.work_offset_extended = tpl("G54.1 P{number}");
+    k.safe_retract = tpl("G91 G28 Z0.");
+    m.safe_start = {tpl("G00 G17 G40 G49 G80 G90")};
+    m.finish = {tpl("M05"), tpl("M09"), tpl("G91 G28 Z0."), tpl("G90"), tpl("M30")};
+    m.pipeline = {"arc-direction", "helix", "arc-legalise"};
+  }
+  m.program_start = {"%"};
+  m.program_end = {"%"};
+  m.arcs.tolerance = inch ? 0.0002 : 0.005;
+}
+
+void read_format(Reader r, AddressFormat& f) {
+  r.integer("decimals", f.decimals, 0, 9);
+  int p = r.choice("point", {"always", "never", "if-fraction"});
+  if (p >= 0) f.point = AddressFormat::Point(p);
+  r.boolean("leading_zero", f.leading_zero);
+  r.boolean("trailing_zeros", f.trailing_zeros);
+  r.integer("digits", f.digits, 0, 12);
+  if (const toml::node* n = r.table().get("scale"); n && n->is_number() && *n->value<double>() == 0)
+    r.error(*n, "scale", "expected a non-zero number, found 0");
+  else
+    r.number("scale", f.scale, -1e6, 1e6);
+  r.boolean("plus", f.plus);
+  r.finish();
+}
+
+Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, const std::vector<std::string>& known_passes,
+                      const std::string& source) {
+  Machine m;
+  m.name = name;
+  m.source = source;
+  Reader r(c, t, name);
+  r.node("inherits");  // used while flattening
+  int fam = r.choice("family", {"mill", "lathe"});
+  if (!r.has("family")) r.missing("family", "\"mill\" or \"lathe\"");
+  if (fam >= 0) m.family = Family(fam);
+  int u = r.choice("units", {"mm", "inch"});
+  if (u >= 0) m.units = ir::Units(u);
+  set_defaults(m);
+  r.string("description", m.description);
+  if (const toml::node* n = r.table().get("extension"); n && n->is_string() && (**n->as_string()).empty())
+    r.error(*n, "extension", "expected a file extension such as \".nc\", found \"\"");
+  else
+    r.string("extension", m.extension);
+  if (!m.extension.empty() && m.extension[0] != '.') m.extension = "." + m.extension;
+  std::vector<std::string> pipeline;
+  if (r.strings("pipeline", pipeline)) {
+    const toml::node* n = t.get("pipeline");
+    for (size_t i = 0; i < pipeline.size(); ++i) {
+      if (std::find(known_passes.begin(), known_passes.end(), pipeline[i]) == known_passes.end()) {
+        std::string all;
+        for (const auto& k : known_passes) all += (all.empty() ? "" : ", ") + k;
+        r.error((*n->as_array())[i], "pipeline", "unknown pass '" + pipeline[i] + "' (passes: " + all + ")");
+      }
+    }
+    m.pipeline = pipeline;
+  }
+  r.number("rapid_rate", m.rapid_rate, 0, 1e9);
+  r.number("max_feed", m.max_feed, 0, 1e9);
+
+  if (auto p = r.sub("program")) {
+    p->integer("number", m.program_number, 0, 99999999);
+    p->strings("start", m.program_start);
+    p->strings("end", m.program_end);
+    p->boolean("header", m.header);
+    read_templates(*p, "safe_start", m.safe_start);
+    read_templates(*p, "finish", m.finish);
+    p->finish();
+  }
+  if (auto s = r.sub("sequence")) {
+    SequenceSettings& q = m.sequence;
+    s->boolean("enabled", q.enabled);
+    s->integer("start", q.start, 0, 999999999);
+    s->integer("step", q.step, 1, 100000);
+    s->integer("max", q.max, 1, 999999999);
+    s->integer("wrap_to", q.wrap_to, 0, 999999999);
+    s->boolean("tool_change_only", q.tool_change_only);
+    if (q.max < q.start) {
+      if (const toml::node* n = s->table().get("max")) s->error(*n, "max", "must not be less than start (" + std::to_string(q.start) + ")");
+      else if (const toml::node* n2 = s->table().get("start")) s->error(*n2, "start", "must not be more than max (" + std::to_string(q.max) + ")");
+    }
+    s->finish();
+  }
+  if (auto s = r.sub("comments")) {
+    CommentSettings& q = m.comments;
+    s->boolean("enabled", q.enabled);
+    s->string("open", q.open);
+    s->string("close", q.close);
+    s->integer("max_length", q.max_length, 0, 100000);
+    s->boolean("upper_case", q.upper_case);
+    s->string("replacement", q.replacement);
+    s->finish();
+  }
+  if (auto s = r.sub("words")) {
+    s->string("separator", m.separator);
+    s->string("block_end", m.block_end);
+    s->finish();
+  }
+  if (auto s = r.sub("format")) {
+    for (auto&& [key, n] : s->table()) {
+      std::string k(key.str());
+      if (k.size() != 1 || k[0] < 'A' || k[0] > 'Z') {
+        c.error(key.source(), s->key_path(k) + ": expected an address letter A-Z");
+        s->node(k);
+        continue;
+      }
+      if (auto f = s->sub(k)) read_format(*f, m.formats[size_t(k[0] - 'A')]);
+    }
+    s->finish();
+  }
+  if (auto s = r.sub("arcs")) {
+    ArcSettings& a = m.arcs;
+    std::vector<std::string> planes;
+    if (s->strings("planes", planes)) {
+      a.xy = a.zx = a.yz = false;
+      const toml::node* n = s->table().get("planes");
+      for (size_t i = 0; i < planes.size(); ++i) {
+        if (planes[i] == "XY") a.xy = true;
+        else if (planes[i] == "ZX") a.zx = true;
+        else if (planes[i] == "YZ") a.yz = true;
+        else s->error((*n->as_array())[i], "planes", "expected \"XY\", \"ZX\" or \"YZ\", found \"" + planes[i] + "\"");
+      }
+    }
+    s->boolean("helical", a.helical);
+    s->number("max_sweep", a.max_sweep, 0, 360, true);
+    s->number("helix_max_sweep", a.helix_max_sweep, 0, 360, true);
+    s->number("min_radius", a.min_radius, 0, 1e9);
+    s->number("max_radius", a.max_radius, 0, 1e9);
+    if (a.max_radius > 0 && a.max_radius < a.min_radius)
+      s->error(*s->table().get("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
+    int ctr = s->choice("center", {"incremental", "absolute", "radius"});
+    if (ctr >= 0) a.center = ArcCenter(ctr);
+    s->number("tolerance", a.tolerance, 0, 1e6, true);
+    s->finish();
+  }
+  if (auto s = r.sub("modal")) {
+    s->boolean("motion", m.modal.motion);
+    s->boolean("coordinates", m.modal.coordinates);
+    s->boolean("feed", m.modal.feed);
+    s->finish();
+  }
+  if (auto s = r.sub("lathe")) {
+    int v = s->choice("arcs_seen_from", {"+Y", "-Y"});
+    if (v >= 0) m.lathe.arcs_from_minus_y = v == 1;
+    s->number("max_rpm", m.lathe.max_rpm, 0, 1e6);
+    s->finish();
+  }
+  if (auto s = r.sub("offsets")) {
+    OffsetSettings& o = m.offsets;
+    s->integer("extended", o.extended_count, 0, 300);
+    s->integer("default", o.default_index, 1, 306);
+    int tb = s->choice("table", {"none", "g10", "g65-macro"});
+    if (tb >= 0) o.table = OffsetTable(tb);
+    s->finish();
+  }
+  if (auto s = r.sub("codes")) {
+    Codes& k = m.codes;
+    const uint32_t none = 0;
+    struct Key {
+      const char* name;
+      CodeTemplate* t;
+      uint32_t vars;
+    };
+    const Key keys[] = {
+        {"units_inch", &k.units_inch, none}, {"units_mm", &k.units_mm, none},
+        {"rapid", &k.rapid, none}, {"linear", &k.linear, none},
+        {"arc_cw", &k.arc_cw, none}, {"arc_ccw", &k.arc_ccw, none},
+        {"plane_xy", &k.plane_xy, none}, {"plane_zx", &k.plane_zx, none}, {"plane_yz", &k.plane_yz, none},
+        {"absolute", &k.absolute, none}, {"incremental", &k.incremental, none},
+        {"feed_per_minute", &k.feed_per_minute, none}, {"feed_per_rev", &k.feed_per_rev, none},
+        {"inverse_time", &k.inverse_time, none},
+        {"tool_change", &k.tool_change, bit(Var::Tool) | bit(Var::Offset)},
+        {"tool_preselect", &k.tool_preselect, bit(Var::Tool)},
+        {"length_offset", &k.length_offset, bit(Var::Offset) | bit(Var::Tool)},
+        {"length_cancel", &k.length_cancel, none},
+        {"spindle_cw", &k.spindle_cw, none}, {"spindle_ccw", &k.spindle_ccw, none},
+        {"spindle_off", &k.spindle_off, none},
+        {"spindle_rpm_mode", &k.spindle_rpm_mode, none}, {"spindle_css_mode", &k.spindle_css_mode, none},
+        {"spindle_clamp", &k.spindle_clamp, bit(Var::Max)},
+        {"coolant_flood", &k.coolant_flood, none}, {"coolant_mist", &k.coolant_mist, none},
+        {"coolant_thru", &k.coolant_thru, none}, {"coolant_air", &k.coolant_air, none},
+        {"coolant_tap", &k.coolant_tap, none}, {"coolant_off", &k.coolant_off, none},
+        {"dwell", &k.dwell, bit(Var::Seconds) | bit(Var::Milliseconds)},
+        {"optional_stop", &k.optional_stop, none}, {"stop", &k.stop, none},
+        {"comp_left", &k.comp_left, bit(Var::Register)}, {"comp_right", &k.comp_right, bit(Var::Register)},
+        {"comp_off", &k.comp_off, none},
+        {"work_offset", &k.work_offset, bit(Var::Number)},
+        {"work_offset_extended", &k.work_offset_extended, bit(Var::Number)},
+        {"safe_retract", &k.safe_retract, none},
+    };
+    for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
+    s->finish();
+  }
+  r.finish();
+  return m;
+}
+
+void merge_into(toml::table& base, const toml::table& over) {
+  for (auto&& [key, n] : over) {
+    toml::node* existing = base.get(key.str());
+    if (existing && existing->is_table() && n.is_table()) {
+      merge_into(*existing->as_table(), *n.as_table());
+      continue;
+    }
+    n.visit([&](auto&& v) { base.insert_or_assign(key, v); });
+  }
+}
+
+}  // namespace
+
+Machine default_machine(Family family, ir::Units units) {
+  Machine m;
+  m.name = family == Family::Lathe ? "generic-lathe" : "generic-mill";
+  m.family = family;
+  m.units = units;
+  set_defaults(m);
+  return m;
+}
+
+MachineRegistry::MachineRegistry(std::vector<std::string> known_passes) : known_passes_(std::move(known_passes)) {}
+MachineRegistry::~MachineRegistry() = default;
+
+bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
+  try {
+    src->table = toml::parse(src->text, src->path);
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source();
+    d.report_in(Severity::Error, src->path, SourceLoc{at.begin.line, at.begin.column},
+                "invalid TOML: " + std::string(e.description()), line_of(src->text, at.begin.line));
+    return false;
+  }
+  bool ok = true;
+  for (auto&& [key, n] : src->table) {
+    if (!n.is_table()) {
+      Ctx c{d, &sources_};
+      sources_.push_back(std::move(src));
+      c.error(key.source(), "'" + std::string(key.str()) + "' is not a machine table ([name] with its keys)");
+      return false;
+    }
+  }
+  const Source* s = src.get();
+  sources_.push_back(std::move(src));
+  for (auto&& [key, n] : s->table) {
+    machines_[std::string(key.str())] = Entry{s, n.as_table()};
+    if (names) names->push_back(std::string(key.str()));
+  }
+  return ok;
+}
+
+bool MachineRegistry::load_builtin(Diagnostics& d) {
+  auto s = std::make_unique<Source>();
+  s->path = kBuiltinName;
+  s->text = std::string(builtin_machines_toml());
+  return add_source(std::move(s), d, nullptr);
+}
+
+bool MachineRegistry::load_text(const std::string& name, std::string text, Diagnostics& d) {
+  auto s = std::make_unique<Source>();
+  s->path = name;
+  s->text = std::move(text);
+  return add_source(std::move(s), d, nullptr);
+}
+
+bool MachineRegistry::load_file(const std::string& path, Diagnostics& d) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    d.report_in(Severity::Error, path, {}, "cannot read machine description");
+    return false;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_text(path, ss.str(), d);
+}
+
+bool MachineRegistry::flatten(const std::string& name, toml::table& out, std::vector<std::string>& chain, Diagnostics& d) {
+  auto it = machines_.find(name);
+  if (it == machines_.end()) return false;
+  Ctx c{d, &sources_};
+  const toml::table& t = *it->second.table;
+  chain.push_back(name);
+  if (const toml::node* inh = t.get("inherits")) {
+    if (!inh->is_string()) {
+      c.error(inh->source(), name + ".inherits: expected the name of another machine, found " + type_name(*inh));
+      return false;
+    }
+    std::string parent = **inh->as_string();
+    if (std::find(chain.begin(), chain.end(), parent) != chain.end()) {
+      std::string cycle;
+      for (const auto& n : chain) cycle += n + " -> ";
+      c.error(inh->source(), name + ".inherits: inheritance cycle: " + cycle + parent);
+      return false;
+    }
+    if (!machines_.count(parent)) {
+      c.error(inh->source(), name + ".inherits: no machine named '" + parent + "'");
+      return false;
+    }
+    if (!flatten(parent, out, chain, d)) return false;
+  }
+  merge_into(out, t);
+  return true;
+}
+
+std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d) {
+  std::string name = name_or_path;
+  bool is_path = name.find('/') != std::string::npos || (name.size() > 5 && name.substr(name.size() - 5) == ".toml");
+  if (is_path) {
+    std::vector<std::string> names;
+    std::ifstream in(name, std::ios::binary);
+    if (!in) {
+      d.report_in(Severity::Error, name, {}, "cannot read machine description");
+      return std::nullopt;
+    }
+    std::stringstream ss;
+    ss << in.rdbuf();
+    auto s = std::make_unique<Source>();
+    s->path = name;
+    s->text = ss.str();
+    if (!add_source(std::move(s), d, &names)) return std::nullopt;
+    if (names.size() != 1) {
+      d.report_in(Severity::Error, name, {}, "-t with a file needs exactly one machine in it; it has " + std::to_string(names.size()));
+      return std::nullopt;
+    }
+    name = names[0];
+  }
+  auto it = machines_.find(name);
+  if (it == machines_.end()) {
+    std::string all;
+    for (const auto& [n, e] : machines_) all += (all.empty() ? "" : ", ") + n;
+    d.report_in(Severity::Error, "clpc", {}, "no machine named '" + name + "' (known: " + all + "; see 'clpc machines')");
+    return std::nullopt;
+  }
+  toml::table flat;
+  std::vector<std::string> chain;
+  if (!flatten(name, flat, chain, d)) return std::nullopt;
+  Ctx c{d, &sources_};
+  Machine m = build_machine(c, name, flat, known_passes_, it->second.source->path);
+  if (!c.ok) return std::nullopt;
+  return m;
+}
+
+std::vector<std::pair<std::string, std::string>> MachineRegistry::list() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [n, e] : machines_) {
+    std::string desc;
+    if (const toml::node* dn = e.table->get("description"); dn && dn->is_string()) desc = **dn->as_string();
+    out.emplace_back(n, desc);
+  }
+  return out;
+}
+
+}  // namespace clpc

@@ -1,0 +1,221 @@
+// The mill backend: tool changes with length offsets, work offsets, rapid/feed moves and
+// arcs in G17/G18/G19 for a machine whose spindle is along Z.
+#include "backends/mill.h"
+
+#include <cmath>
+
+#include "ir/params.h"
+
+namespace clpc {
+
+namespace {
+constexpr double kAxisTol = 1e-6;
+}
+
+MillBackend::MillBackend(const Machine& m, OutputFile& out, Diagnostics& d) : ProgramWriter(m, out, d) {}
+
+void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
+  if (t.tool == tool_) return;  // already in the spindle
+  if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
+  const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
+  e_.begin(loc);
+  length_offset_ = t.length_offset > 0 ? t.length_offset : t.tool;
+  e_.code(m_.codes.tool_change, TemplateVars().with(Var::Tool, t.tool).with(Var::Offset, length_offset_));
+  if (info) e_.trailing_comment(tool_comment(*info));
+  e_.end(true);
+  after_template(m_.codes.tool_change);
+  tool_ = t.tool;
+  need_length_offset_ = !m_.codes.length_offset.empty();
+  need_work_offset_ = true;
+  motion_ = Motion::None;
+  e_.forget_all();
+  feed_written_ = false;
+  spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
+}
+
+void MillBackend::work_offset_code() {
+  if (!need_work_offset_) return;
+  int index = work_offset_ > 0 ? work_offset_ : m_.offsets.default_index;
+  int standard = m_.offsets.standard_last - m_.offsets.standard_first + 1;
+  if (index <= standard)
+    e_.code(m_.codes.work_offset, TemplateVars().with(Var::Number, m_.offsets.standard_first + index - 1));
+  else
+    e_.code(m_.codes.work_offset_extended, TemplateVars().with(Var::Number, index - standard));
+  need_work_offset_ = false;
+}
+
+void MillBackend::motion_code(Motion mo) {
+  if (m_.modal.motion && motion_ == mo) return;
+  const Codes& c = m_.codes;
+  e_.code(mo == Motion::Rapid ? c.rapid : mo == Motion::Linear ? c.linear : mo == Motion::Cw ? c.arc_cw : c.arc_ccw);
+  motion_ = mo;
+}
+
+void MillBackend::comp_code() {
+  if (!comp_pending_set_) return;
+  const ir::CutterComp& c = comp_pending_;
+  if (c.side == ir::CompSide::Off) {
+    e_.code(m_.codes.comp_off);
+  } else {
+    int reg = c.reg > 0 ? c.reg : tool_;
+    e_.code(c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right,
+            TemplateVars().with(Var::Register, reg));
+  }
+  comp_pending_set_ = false;
+}
+
+bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
+  if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;
+  d_.error(loc, "tool axis (" + num_text(axis.x()) + ", " + num_text(axis.y()) + ", " + num_text(axis.z()) +
+                    ") is not the spindle axis, and machine '" + m_.name + "' has no rotary axes to tilt it");
+  return false;
+}
+
+bool MillBackend::changed(char letter, double value) const {
+  double last;
+  return !m_.modal.coordinates || !e_.last(letter, last) || e_.as_written(letter, value) != last;
+}
+
+void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
+  if (mv.kind == ir::MoveKind::From) {
+    pos_ = mv.point;
+    return;
+  }
+  if (!check_axis(mv.axis, loc)) return;
+  const ir::Vec3 o = mv.point * k_;
+  const bool rapid = mv.kind == ir::MoveKind::Rapid;
+  if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
+    d_.warning(loc, "cutting move with the spindle stopped", "spindle stopped");
+
+  if (need_length_offset_ && rapid) {
+    // Position in X Y with the work offset, then bring Z down with the length offset.
+    e_.begin(loc);
+    work_offset_code();
+    motion_code(Motion::Rapid);
+    e_.modal_word('X', o.x());
+    e_.modal_word('Y', o.y());
+    e_.end();
+    e_.begin(loc);
+    e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+    e_.word('Z', o.z());
+    e_.end();
+    need_length_offset_ = false;
+    pos_ = mv.point;
+    position_known_ = true;
+    return;
+  }
+
+  bool any = changed('X', o.x()) || changed('Y', o.y()) || changed('Z', o.z());
+  if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_) {
+    pos_ = mv.point;
+    return;  // the control is there already
+  }
+  e_.begin(loc);
+  work_offset_code();
+  comp_code();
+  if (need_length_offset_) {
+    e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+    need_length_offset_ = false;
+  }
+  if (!rapid) feed_mode_code();
+  motion_code(rapid ? Motion::Rapid : Motion::Linear);
+  e_.modal_word('X', o.x());
+  e_.modal_word('Y', o.y());
+  e_.modal_word('Z', o.z());
+  if (!rapid) feed_word(loc);
+  e_.end();
+  pos_ = mv.point;
+  position_known_ = true;
+}
+
+void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
+  if (!check_axis(a.tool_axis, loc)) return;
+  if (a.dir == ir::ArcDir::Unknown) {
+    d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
+    return;
+  }
+  if (a.extra_turns > 0) {
+    d_.error(loc, "internal: multi-turn arc reached the backend (is 'helix' in the machine's pipeline?)");
+    return;
+  }
+  if (!position_known_) {
+    d_.error(loc, "arc with no programmed start position before it");
+    return;
+  }
+  // Plane from the arc axis: G17 (axis Z), G18 (axis Y), G19 (axis X).
+  struct P {
+    Plane plane;
+    int u, v, w;  // in-plane axes (u, v) and the linear axis w, as indices 0..2
+    char cu, cv;  // centre letters
+  };
+  static const char kAxisLetter[] = {'X', 'Y', 'Z'};
+  P p;
+  ir::Vec3 normal;
+  if (std::abs(a.axis.z()) > 1 - 1e-9) p = {Plane::XY, 0, 1, 2, 'I', 'J'}, normal = ir::Vec3::UnitZ();
+  else if (std::abs(a.axis.y()) > 1 - 1e-9) p = {Plane::ZX, 2, 0, 1, 'K', 'I'}, normal = ir::Vec3::UnitY();
+  else if (std::abs(a.axis.x()) > 1 - 1e-9) p = {Plane::YZ, 1, 2, 0, 'J', 'K'}, normal = ir::Vec3::UnitX();
+  else {
+    d_.error(loc, "internal: arc outside the XY, ZX and YZ planes reached the backend (is 'arc-legalise' in the pipeline?)");
+    return;
+  }
+  bool ok_plane = p.plane == Plane::XY ? m_.arcs.xy : p.plane == Plane::ZX ? m_.arcs.zx : m_.arcs.yz;
+  if (!ok_plane) {
+    d_.error(loc, "internal: machine '" + m_.name + "' has no arcs in this plane (is 'arc-legalise' in the pipeline?)");
+    return;
+  }
+  const bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.dot(normal) > 0);
+
+  // The control's start point is what it was given: the rounded last position.
+  ir::Vec3 s_out = pos_ * k_;
+  for (int i = 0; i < 3; ++i) {
+    double last;
+    if (e_.last(kAxisLetter[i], last)) s_out[i] = last;
+  }
+  ir::Vec3 e_raw = a.end * k_, c_raw = a.center * k_;
+  ir::Vec3 e_out = e_raw;
+  for (int i = 0; i < 3; ++i) e_out[i] = e_.as_written(kAxisLetter[i], e_raw[i]);
+  // Centre on the perpendicular bisector of the rounded chord, nearest the true centre, so
+  // the start and end radii the control computes agree.
+  double su = s_out[p.u], sv = s_out[p.v], eu = e_out[p.u], ev = e_out[p.v];
+  double cu = c_raw[p.u], cv = c_raw[p.v];
+  double du = eu - su, dv = ev - sv, len = std::hypot(du, dv);
+  if (len > 1e-12) {
+    double mu = (su + eu) / 2, mv = (sv + ev) / 2;
+    double nu = -dv / len, nv = du / len;
+    double t = (cu - mu) * nu + (cv - mv) * nv;
+    cu = mu + t * nu;
+    cv = mv + t * nv;
+  }
+
+  e_.begin(loc);
+  work_offset_code();
+  if (plane_ != p.plane) {
+    e_.code(p.plane == Plane::XY ? m_.codes.plane_xy : p.plane == Plane::ZX ? m_.codes.plane_zx : m_.codes.plane_yz);
+    plane_ = p.plane;
+  }
+  feed_mode_code();
+  motion_code(ccw ? Motion::Ccw : Motion::Cw);
+  e_.modal_word('X', e_raw.x());
+  e_.modal_word('Y', e_raw.y());
+  e_.modal_word('Z', e_raw.z());
+  if (m_.arcs.center == ArcCenter::Radius) {
+    double r = std::hypot(cu - su, cv - sv);
+    if (len < 1e-12) {
+      d_.error(loc, "internal: full circle in R format (is 'arc-legalise' in the pipeline?)");
+      return;
+    }
+    e_.word('R', a.sweep > 180 ? -r : r);
+  } else if (m_.arcs.center == ArcCenter::Absolute) {
+    e_.word(p.cu, cu);
+    e_.word(p.cv, cv);
+  } else {
+    e_.word(p.cu, cu - su);
+    e_.word(p.cv, cv - sv);
+  }
+  feed_word(loc);
+  e_.end();
+  pos_ = a.end;
+  (void)op;
+}
+
+}  // namespace clpc

@@ -1,0 +1,23 @@
+#pragma once
+
+#include "backends/backend.h"
+
+namespace clpc {
+
+class MillBackend : public ProgramWriter {
+ public:
+  MillBackend(const Machine& m, OutputFile& out, Diagnostics& d);
+
+ protected:
+  void write_move(const ir::Move& m, SourceLoc loc) override;
+  void write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) override;
+  void write_tool_change(const ir::ToolChange& t, SourceLoc loc) override;
+
+  void work_offset_code();
+  void motion_code(Motion mo);
+  void comp_code();
+  bool check_axis(const ir::Vec3& axis, SourceLoc loc);
+  bool changed(char letter, double value) const;
+};
+
+}  // namespace clpc

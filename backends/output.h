@@ -1,0 +1,47 @@
+// Where a program is written: a temporary file beside the target, renamed into place only
+// when the compile succeeded. A failed or interrupted run never leaves a half-written program
+// and never clobbers an older one. Output to "-" goes through an anonymous temporary file
+// too, and is copied to standard output only on success.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace clpc {
+
+class OutputFile {
+ public:
+  OutputFile() = default;
+  ~OutputFile();  // discards unless committed
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  // Creates the temporary file for `path` ("-" = standard output). Also removes temporary
+  // files that earlier clpc runs, now dead, left beside `path`.
+  bool open(const std::string& path, std::string& error);
+  void write(std::string_view s) {
+    if (buf_.size() + s.size() > kBuffer) flush();
+    buf_.append(s);
+  }
+  // Renames the temporary file into place (or copies it to standard output).
+  bool commit(std::string& error);
+  void discard();
+  const std::string& temp_path() const { return temp_; }
+
+  static constexpr size_t kBuffer = 1 << 20;
+
+ private:
+  void flush();
+  std::string path_, temp_;
+  int fd_ = -1;
+  bool to_stdout_ = false;
+  bool failed_ = false;
+  int errno_ = 0;
+  std::string buf_;
+};
+
+// Removes, on SIGINT/SIGTERM/SIGHUP, every temporary output still open, then dies of the
+// signal. Installed once by the command line.
+void install_output_cleanup_handlers();
+
+}  // namespace clpc

@@ -1,0 +1,243 @@
+// What every backend shares: the program frame, header, spindle, coolant, dwell, stops,
+// comments and feeds.
+#include "backends/backend.h"
+
+#include "backends/format.h"
+#include "ir/params.h"
+
+namespace clpc {
+
+ProgramWriter::ProgramWriter(const Machine& m, OutputFile& out, Diagnostics& d) : m_(m), e_(m, out, d), d_(d) {}
+
+std::string ProgramWriter::length_text(double program_units) const {
+  AddressFormat f;
+  f.decimals = m_.units == ir::Units::Inch ? 4 : 3;
+  std::string s;
+  int64_t q;
+  if (quantize(program_units * k_, f, q)) append_quantized(q, f, s);
+  return s;
+}
+
+std::string ProgramWriter::tool_comment(const ir::ToolInfo& t) const {
+  std::string c = "T" + std::to_string(t.number) + " D=" + length_text(t.diameter) + " CR=" + length_text(t.corner_radius);
+  if (!t.name.empty()) c += " - " + t.name;
+  else if (!t.kind.empty()) c += " - " + t.kind;
+  return c;
+}
+
+void ProgramWriter::begin(const ir::ProgramInfo& info) {
+  info_ = &info;
+  k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m_.units);
+  for (const std::string& l : m_.program_start) e_.line(l);
+  if (m_.program_number > 0) {
+    std::string o = "O";
+    int64_t q;
+    quantize(double(m_.program_number), m_.format('O'), q);
+    append_quantized(q, m_.format('O'), o);
+    if (m_.comments.enabled && !info.part_name.empty()) {
+      std::string c = e_.clean_comment(info.part_name);
+      if (!c.empty()) o += " " + m_.comments.open + c + m_.comments.close;
+    }
+    e_.line(o);
+  } else if (!info.part_name.empty()) {
+    e_.comment(info.part_name);
+  }
+  if (m_.header) {
+    e_.comment("MACHINE: " + m_.name + (m_.description.empty() ? "" : " - " + m_.description));
+    if (!info.source_name.empty()) {
+      std::string base = info.source_name;
+      if (size_t s = base.rfind('/'); s != std::string::npos) base = base.substr(s + 1);
+      e_.comment("SOURCE: " + base);
+    }
+    e_.comment(std::string("UNITS: ") + (m_.units == ir::Units::Inch ? "INCH" : "MM"));
+    for (const ir::ToolInfo& t : info.tools) e_.comment(tool_comment(t));
+  }
+  e_.begin({});
+  e_.code(m_.units == ir::Units::Inch ? m_.codes.units_inch : m_.codes.units_mm);
+  e_.end();
+  blocks(m_.safe_start, {});
+  start_program();
+}
+
+void ProgramWriter::end() {
+  // The finish sequence, less a spindle or coolant stop the program has already made.
+  for (const CodeTemplate& t : m_.finish) {
+    if (spindle_ == ir::SpindleDir::Off && t.text == m_.codes.spindle_off.text) continue;
+    if (coolant_ == ir::CoolantKind::Off && t.text == m_.codes.coolant_off.text) continue;
+    blocks({t}, {});
+  }
+  for (const std::string& l : m_.program_end) e_.line(l);
+}
+
+void ProgramWriter::blocks(const std::vector<CodeTemplate>& list, SourceLoc loc) {
+  for (const CodeTemplate& t : list) {
+    e_.begin(loc);
+    e_.code(t);
+    e_.end();
+    after_template(t);
+  }
+}
+
+// A template may change modal state clpc does not model word by word (a G-code, a move in
+// machine coordinates): after one, every modal word is written again.
+void ProgramWriter::after_template(const CodeTemplate& t) {
+  if (t.empty()) return;
+  if (t.has_g_code()) {
+    motion_ = Motion::None;
+    plane_ = Plane::None;
+    feed_mode_known_ = false;
+    e_.forget_all();
+    feed_written_ = false;
+  }
+}
+
+void ProgramWriter::operation(const ir::Operation& op) {
+  if (!op.continued && !op.name.empty()) e_.comment(op.name);
+  for (const ir::Instr& in : op.body) visit(op, in);
+}
+
+void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
+  const SourceLoc loc = in.loc;
+  std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, ir::Move>) {
+          write_move(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::Arc>) {
+          write_arc(op, x, loc);
+        } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
+          write_tool_change(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::ToolPreselect>) {
+          e_.begin(loc);
+          e_.code(m_.codes.tool_preselect, TemplateVars().with(Var::Tool, x.tool));
+          e_.end();
+        } else if constexpr (std::is_same_v<T, ir::Spindle>) {
+          write_spindle(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::Feed>) {
+          if (x.mode != feed_mode_ || !feed_known_ || x.value != feed_) feed_written_ = false;
+          feed_mode_ = x.mode;
+          feed_ = x.value;
+          feed_known_ = true;
+        } else if constexpr (std::is_same_v<T, ir::Coolant>) {
+          write_coolant(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
+          write_cutter_comp(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::Dwell>) {
+          write_dwell(x, loc);
+        } else if constexpr (std::is_same_v<T, ir::Stop>) {
+          e_.begin(loc);
+          e_.code(x.kind == ir::StopKind::Optional ? m_.codes.optional_stop : m_.codes.stop);
+          e_.end();
+        } else if constexpr (std::is_same_v<T, ir::Comment>) {
+          e_.comment(op.str(x.text));
+        } else if constexpr (std::is_same_v<T, ir::Insert>) {
+          e_.line(op.str(x.text));
+          // The inserted line may do anything: write every modal word again after it.
+          motion_ = Motion::None;
+          e_.forget_all();
+          feed_written_ = false;
+        } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
+          e_.comment("CL: " + std::string(op.str(x.text)));
+        } else if constexpr (std::is_same_v<T, ir::SelectOffset>) {
+          if (x.reg != work_offset_) need_work_offset_ = true;
+          work_offset_ = x.reg;
+        } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
+          // Frames are for the passes (offset table, kinematics); nothing to write here.
+        } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {
+          write_rotary_index(x, loc);
+        }
+      },
+      in.op);
+}
+
+void ProgramWriter::write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc) {
+  d_.error(loc, std::string("ROTATE: machine '") + m_.name + "' has no " + r.axis + " axis to index");
+}
+
+void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
+  e_.begin(loc);
+  if (s.dir == ir::SpindleDir::Off) {
+    e_.code(m_.codes.spindle_off);
+    spindle_ = ir::SpindleDir::Off;
+    e_.end();
+    return;
+  }
+  if (s.mode == ir::SpindleMode::SurfaceSpeed) {
+    d_.error(loc, "machine '" + m_.name + "' is a mill: constant surface speed (SPINDL/SFM, SMM) needs a lathe");
+    return;
+  }
+  e_.word('S', s.speed);
+  e_.code(s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
+  spindle_ = s.dir;
+  e_.end();
+}
+
+void ProgramWriter::write_feed_mode(ir::FeedMode mode) {
+  const CodeTemplate& t = mode == ir::FeedMode::PerMinute ? m_.codes.feed_per_minute
+                          : mode == ir::FeedMode::PerRev  ? m_.codes.feed_per_rev
+                                                          : m_.codes.inverse_time;
+  e_.code(t);
+}
+
+void ProgramWriter::feed_mode_code() {
+  if (feed_mode_known_ && written_feed_mode_ == feed_mode_) return;
+  write_feed_mode(feed_mode_);
+  written_feed_mode_ = feed_mode_;
+  feed_mode_known_ = true;
+  feed_written_ = false;
+}
+
+bool ProgramWriter::feed_word(SourceLoc loc) {
+  if (!feed_known_) {
+    d_.error(loc, "cutting move with no feed rate: no FEDRAT before it");
+    feed_known_ = true;  // once
+    feed_ = 0;
+    return false;
+  }
+  double f = feed_mode_ == ir::FeedMode::InverseTime ? feed_ : feed_ * k_;
+  if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerMinute && f > m_.max_feed) f = m_.max_feed;
+  if (!m_.modal.feed || !feed_written_ || feed_mode_ == ir::FeedMode::InverseTime) {
+    e_.word('F', f);
+    feed_written_ = true;
+  }
+  return true;
+}
+
+void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
+  const Codes& k = m_.codes;
+  const CodeTemplate* t = nullptr;
+  switch (c.kind) {
+    case ir::CoolantKind::Off: t = &k.coolant_off; break;
+    case ir::CoolantKind::On: case ir::CoolantKind::Flood: t = &k.coolant_flood; break;
+    case ir::CoolantKind::Mist: t = &k.coolant_mist; break;
+    case ir::CoolantKind::Thru: t = &k.coolant_thru; break;
+    case ir::CoolantKind::Air: t = &k.coolant_air; break;
+    case ir::CoolantKind::Tap: t = &k.coolant_tap; break;
+  }
+  if (t->empty()) {
+    d_.warning(loc, "machine '" + m_.name + "' has no code for this coolant; flood coolant used", "coolant kind");
+    t = &k.coolant_flood;
+  }
+  e_.begin(loc);
+  e_.code(*t);
+  e_.end();
+  coolant_ = c.kind;
+}
+
+void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
+  double seconds = d.value;
+  if (d.revolutions) {
+    d_.error(loc, "DELAY/REV: dwell in revolutions is not supported; give seconds");
+    return;
+  }
+  e_.begin(loc);
+  e_.code(m_.codes.dwell, TemplateVars().with(Var::Seconds, seconds).with(Var::Milliseconds, seconds * 1000));
+  e_.end();
+}
+
+void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
+  comp_pending_ = c;
+  comp_pending_set_ = true;
+}
+
+}  // namespace clpc

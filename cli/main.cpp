@@ -1,0 +1,149 @@
+// clpc: the command line.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "backends/machine_loader.h"
+#include "backends/output.h"
+#include "cli/driver.h"
+#include "passes/pass.h"
+
+using namespace clpc;
+
+namespace {
+
+// Exit codes: 0 success, 1 input or machine errors, 2 usage errors.
+constexpr int kOk = 0, kFailed = 1, kUsage = 2;
+
+bool load_machines(MachineRegistry& reg, const std::vector<std::string>& files, Diagnostics& d) {
+  bool ok = reg.load_builtin(d);
+  for (const std::string& f : files) ok = reg.load_file(f, d) && ok;
+  return ok;
+}
+
+std::optional<ir::Units> parse_units(const std::string& s) {
+  if (s == "mm") return ir::Units::Mm;
+  if (s == "inch") return ir::Units::Inch;
+  return std::nullopt;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  install_output_cleanup_handlers();
+  CLI::App app{"clpc - a CNC postprocessor built as a compiler: CL data (APT/CLSF) in, G-code out"};
+  app.set_version_flag("--version", std::string("clpc ") + CLPC_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough();
+
+  std::vector<std::string> inputs, machine_files;
+  std::string machine_name, output, emit = "gcode", print_after, input_units;
+  bool werror = false, verify_ir = false;
+
+  auto add_machine_files = [&](CLI::App* c) {
+    c->add_option("--machines", machine_files, "Machine descriptions (TOML) adding to or replacing the built-in ones")
+        ->check(CLI::ExistingFile);
+  };
+  auto add_input_options = [&](CLI::App* c) {
+    c->add_option("--input-units", input_units, "Units of the CL data when it has no UNITS record")
+        ->check(CLI::IsMember({"mm", "inch"}));
+    c->add_flag("--Werror", werror, "Treat warnings as errors");
+  };
+
+  CLI::App* compile = app.add_subcommand("compile", "Compile CL files into G-code for one machine");
+  compile->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
+  compile->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  compile->add_option("-o,--output", output, "Output file ('-' = standard output); default: INPUT with the machine's extension");
+  compile->add_option("--emit", emit, "What to write")->check(CLI::IsMember({"gcode", "ir"}));
+  compile->add_option("--print-after", print_after, "Print the IR after this pass ('lower', a pass name or 'all') to stderr");
+  compile->add_flag("--verify-ir", verify_ir, "Check the IR's invariants after every pass");
+  add_machine_files(compile);
+  add_input_options(compile);
+
+  CLI::App* check = app.add_subcommand("check", "Report problems in CL files without writing anything");
+  check->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
+  check->add_option("-t,--target", machine_name, "Also check against this machine");
+  add_machine_files(check);
+  add_input_options(check);
+
+  CLI::App* machines = app.add_subcommand("machines", "List the machines clpc knows");
+  add_machine_files(machines);
+
+  CLI::App* explain = app.add_subcommand("explain", "Print a machine's resolved description (TOML)");
+  explain->add_option("MACHINE", machine_name, "Machine name, or a TOML file with one machine")->required();
+  add_machine_files(explain);
+
+  CLI::App* passes = app.add_subcommand("passes", "List the passes a pipeline may use, with their contracts");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? kOk : kUsage;
+  }
+
+  Diagnostics diags(&std::cerr);
+  MachineRegistry reg(pass_names());
+
+  if (*passes) {
+    for (const PassInfo& p : all_passes())
+      std::cout << p.name << "\n  " << p.summary << "\n  contract: " << p.contract << "\n";
+    return kOk;
+  }
+  if (*machines) {
+    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    for (const auto& [name, desc] : reg.list()) std::cout << name << "\t" << desc << "\n";
+    return kOk;
+  }
+  if (*explain) {
+    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    auto m = reg.resolve(machine_name, diags);
+    if (!m) return kFailed;
+    std::cout << explain_machine(*m);
+    return kOk;
+  }
+
+  CompileOptions opt;
+  opt.werror = werror;
+  opt.verify_ir = verify_ir;
+  opt.print_after = print_after;
+  opt.input_units = parse_units(input_units);
+  if (!print_after.empty() && print_after != "lower" && print_after != "all" && !find_pass(print_after)) {
+    std::cerr << "clpc: error: --print-after: no pass named '" << print_after << "' (see 'clpc passes')\n";
+    return kUsage;
+  }
+
+  std::optional<Machine> machine;
+  if (!machine_name.empty()) {
+    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    machine = reg.resolve(machine_name, diags);
+    if (!machine) return kFailed;
+  }
+
+  if (*check) {
+    opt.emit = Emit::Nothing;
+    bool ok = true;
+    for (const std::string& in : inputs) {
+      Machine m = machine ? *machine : default_machine(Family::Mill, ir::Units::Mm);
+      if (!machine) m.pipeline = {"arc-direction"};
+      CompileResult r = compile_file(in, "-", m, opt, std::cerr);
+      ok = ok && r.ok;
+    }
+    return ok ? kOk : kFailed;
+  }
+
+  // compile
+  opt.emit = emit == "ir" ? Emit::Ir : Emit::Gcode;
+  if (!output.empty() && inputs.size() > 1 && output != "-") {
+    std::cerr << "clpc: error: -o names one output but " << inputs.size() << " inputs were given\n";
+    return kUsage;
+  }
+  bool ok = true;
+  for (const std::string& in : inputs) {
+    std::string out = !output.empty() ? output : opt.emit == Emit::Ir ? "-" : default_output(in, *machine);
+    CompileResult r = compile_file(in, out, *machine, opt, std::cerr);
+    ok = ok && r.ok;
+  }
+  return ok ? kOk : kFailed;
+}

@@ -1,0 +1,84 @@
+// The CL lexer (generated from cl_lexer.re by re2c). It reads the file through a fixed
+// window (no whole-file copy), tracks line and column, folds "$" continuations away and
+// copies the text of words into a per-record arena so the parser can hold them.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "grammar/cl_parser.hpp"
+#include "ir/diagnostics.h"
+#include "ir/source.h"
+
+namespace clpc::grammar {
+
+class Lexer {
+ public:
+  // `diags` may be null (pre-scan: the compile pass reports). When `wanted` is non-null,
+  // records whose major word it marks false are skipped without being tokenised.
+  Lexer(SourceFile& src, Diagnostics* diags, const bool* wanted);
+
+  Parser::symbol_type lex();
+
+  // True while the current record was written inside "$$->": its problems are warnings.
+  bool in_data_comment() const { return data_comment_; }
+  Diagnostics* diagnostics() const { return diags_; }
+  void report(SourceLoc loc, const std::string& msg);
+
+  static constexpr size_t kMaxToken = 64 * 1024;  // longest word, number, text or comment
+  static constexpr size_t kArenaSize = 1 << 20;   // all text of one record
+
+ private:
+  using Symbol = Parser::symbol_type;
+  enum class Mode : uint8_t { LineStart, AfterMajor, Params, CommentText, AfterComment, SkipRecord };
+
+  Symbol lex_line_start();
+  Symbol lex_after_major();
+  Symbol lex_params();
+  Symbol lex_comment();
+  Symbol lex_after_comment();
+
+  int fill();                       // YYFILL: 0 when more input arrived
+  void newline(const unsigned char* after);
+  SourceLoc loc_of(const unsigned char* p) const;
+  uint64_t abs(const unsigned char* p) const { return base_ + uint64_t(p - buf_.get()); }
+  std::string_view keep(const unsigned char* b, const unsigned char* e);
+  Symbol error_token(SourceLoc loc, const std::string& msg);  // report, then skip the record
+  Symbol major(MajorId id, const unsigned char* b, const unsigned char* e);
+  Symbol free_text_major(MajorId id, size_t keyword_len);
+  bool skip_record();               // to the end of the record; false at end of input
+  std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }
+
+  SourceFile& src_;
+  Diagnostics* diags_;
+  const bool* wanted_;
+
+  std::unique_ptr<unsigned char[]> buf_;
+  size_t cap_;
+  const unsigned char* cur_;
+  const unsigned char* lim_;
+  const unsigned char* tok_;
+  const unsigned char* mar_;
+  const unsigned char* ctx_;
+  uint64_t base_ = 0;       // file offset of buf_[0]
+  uint64_t read_pos_ = 0;   // next file offset to read
+  bool eof_ = false;
+  bool overflow_ = false;   // a token outgrew kMaxToken
+
+  uint32_t line_ = 1;
+  uint64_t line_start_ = 0;  // file offset where the current line starts
+  Mode mode_ = Mode::LineStart;
+  bool data_comment_ = false;
+  bool at_end_ = false;
+  std::optional<Symbol> pending_;
+  SourceLoc record_start_;
+
+  std::unique_ptr<char[]> arena_;
+  size_t arena_used_ = 0;
+  bool arena_full_ = false;
+};
+
+}  // namespace clpc::grammar

@@ -1,0 +1,42 @@
+// The state the grammar actions build records in; one per parse. Internal to grammar/.
+#pragma once
+
+#include <vector>
+
+#include "grammar/lexer.h"
+#include "grammar/record.h"
+
+namespace clpc::grammar {
+
+class ParseState {
+ public:
+  ParseState(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted)
+      : lexer(src, diags, wanted), diags_(diags), sink_(sink) {
+    params_.reserve(64);
+  }
+
+  Lexer lexer;
+
+  void begin(const MajorTok& m, SourceLoc loc);
+  void slash() { rec_.has_slash = true; }
+  void number(double v, SourceLoc loc);
+  void word(std::string_view text, SourceLoc loc, Param::Kind kind);
+  void text(std::string_view t) { rec_.text = t; }
+  void end_statement(SourceLoc end);
+  void comment(std::string_view text, SourceLoc loc);
+  void recovered() { too_many_ = false; }
+  void syntax_error(SourceLoc loc, const std::string& msg);
+
+  static constexpr size_t kMaxParams = 4096;
+
+ private:
+  Diagnostics* diags_;
+  RecordSink& sink_;
+  Record rec_;
+  std::vector<Param> params_;
+  bool too_many_ = false;
+};
+
+inline Parser::symbol_type yylex(ParseState& st) { return st.lexer.lex(); }
+
+}  // namespace clpc::grammar

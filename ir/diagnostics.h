@@ -1,0 +1,72 @@
+// Compiler-style diagnostics: "file:line:col: error: message", the source line, a caret.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ir/source.h"
+
+namespace clpc {
+
+enum class Severity { Note, Warning, Error };
+
+struct Diagnostic {
+  Severity severity;
+  std::string file;
+  SourceLoc loc;
+  std::string message;
+};
+
+// Thrown when a run must stop at once (too many errors). Caught by the driver.
+struct FatalError {};
+
+class Diagnostics {
+ public:
+  explicit Diagnostics(std::ostream* out) : out_(out) {}
+
+  // Diagnostics without an explicit file name refer to this source.
+  void set_source(const SourceFile* src) { source_ = src; }
+  const SourceFile* source() const { return source_; }
+  void set_werror(bool on) { werror_ = on; }
+  // Keep every diagnostic in `all()` (tests); printing still happens when out != nullptr.
+  void set_keep(bool on) { keep_ = on; }
+
+  void error(SourceLoc loc, std::string_view msg) { report(Severity::Error, loc, msg); }
+  // `category` groups repeated warnings: after kRepeatLimit of one category the rest are
+  // counted but not printed, so a million-line file cannot bury the first ones.
+  void warning(SourceLoc loc, std::string_view msg, std::string_view category = {});
+  void note(SourceLoc loc, std::string_view msg) { report(Severity::Note, loc, msg); }
+  void report(Severity sev, SourceLoc loc, std::string_view msg);
+  // A diagnostic about another file (e.g. a machine description): file:line:col given.
+  void report_in(Severity sev, std::string_view file, SourceLoc loc, std::string_view msg,
+                 std::string_view line_text = {});
+
+  size_t error_count() const { return errors_; }
+  size_t warning_count() const { return warnings_; }
+  bool has_errors() const { return errors_ != 0; }
+  const std::vector<Diagnostic>& all() const { return kept_; }
+  // Prints the "N warnings suppressed" summary lines; call once at the end of a run.
+  void finish();
+
+  static constexpr size_t kErrorLimit = 50;
+  static constexpr size_t kRepeatLimit = 10;
+
+ private:
+  void emit(Severity sev, std::string_view file, SourceLoc loc, std::string_view msg,
+            std::string_view line_text, bool have_line_text);
+
+  std::ostream* out_;
+  const SourceFile* source_ = nullptr;
+  bool werror_ = false;
+  bool keep_ = false;
+  size_t errors_ = 0;
+  size_t warnings_ = 0;
+  std::map<std::string, size_t, std::less<>> repeats_;
+  std::vector<Diagnostic> kept_;
+};
+
+}  // namespace clpc

@@ -1,0 +1,219 @@
+// The clpc IR: a Program is header facts and tables (ProgramInfo) plus a stream of
+// Operations, each a vector of Instrs. Instructions are plain structs in a std::variant;
+// all lengths are in the program's units (ProgramInfo::units), angles in degrees unless a
+// name says otherwise. Text lives in the operation's string pool, so an Instr never owns
+// heap memory and an Operation can be cleared and refilled without allocating.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "ir/source.h"
+
+namespace clpc::ir {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+enum class Units : uint8_t { Mm, Inch };
+inline double mm_per_unit(Units u) { return u == Units::Inch ? 25.4 : 1.0; }
+std::string_view units_name(Units u);
+
+// A rigid frame: p_program = rotation * p_local + origin.
+struct Frame {
+  Mat3 rotation = Mat3::Identity();
+  Vec3 origin = Vec3::Zero();
+  bool is_identity(double tol = 1e-9) const;
+  bool same_as(const Frame& o, double lin_tol, double rot_tol = 1e-9) const;
+  Vec3 z_axis() const { return rotation.col(2); }
+};
+
+// A slice of Operation::text.
+struct TextRef {
+  uint32_t offset = 0;
+  uint32_t size = 0;
+};
+
+// --- instructions ----------------------------------------------------------------------
+
+enum class MoveKind : uint8_t {
+  Rapid,  // RAPID then GOTO (or GOHOME)
+  Feed,   // GOTO at the programmed feed
+  From,   // FROM: where the tool starts; no motion is programmed for it
+};
+
+struct Move {
+  Vec3 point;     // tool tip
+  Vec3 axis;      // tool axis (unit), as last given
+  MoveKind kind = MoveKind::Feed;
+  bool axis_written = false;  // this record wrote i,j,k
+};
+
+// Sense of rotation about Arc::axis: Ccw is the right-hand rule (counter-clockwise seen from
+// the tip of the axis).
+enum class ArcDir : uint8_t { Unknown, Ccw, Cw };
+
+// Which CL layout the arc came from; each has its own axis convention (docs/arcs.md).
+enum class ArcLayout : uint8_t {
+  Nx11,     // xc,yc,zc,i,j,k,r,tol,ratio,tool_d,tool_cr: NX CLSF, Makino FFCAM
+  Creo7,    // xc,yc,zc,i,j,k,r: Creo / Pro/E NCL, APT
+  NoRadius6,  // xc,yc,zc,i,j,k: SolidWorks CAM APT
+  Synthetic,  // made by a pass
+};
+
+struct Arc {
+  Vec3 start;     // previous tool tip
+  Vec3 end;       // the last GOTO on the arc
+  Vec3 center;    // as written: at the start's height for Creo helices
+  Vec3 axis;      // unit axis as written (sign per CAM convention)
+  Vec3 tool_axis;
+  double radius = 0;
+  ArcDir hint = ArcDir::Unknown;  // what the CAM system's convention says
+  ArcDir dir = ArcDir::Unknown;   // decided by the arc-direction pass
+  ArcLayout layout = ArcLayout::Creo7;
+  uint16_t extra_turns = 0;       // NX TIMES,n: n-1 full turns before reaching the end
+  uint32_t via_begin = 0;         // intermediate points (Creo) in Operation::points
+  uint32_t via_count = 0;
+  double sweep = 0;               // degrees (> 0) once the direction is decided
+};
+
+struct ToolChange {
+  int tool = 0;
+  int length_offset = 0;  // 0 = same as the tool number
+  int slot = -1;          // index in ProgramInfo::tools
+};
+
+struct ToolPreselect {
+  int tool = 0;
+};
+
+enum class SpindleDir : uint8_t { Cw, Ccw, Off };
+enum class SpindleMode : uint8_t { Rpm, SurfaceSpeed };
+
+struct Spindle {
+  double speed = 0;  // rpm, or surface speed in m/min (mm programs) / ft/min (inch)
+  SpindleMode mode = SpindleMode::Rpm;
+  SpindleDir dir = SpindleDir::Cw;
+  double max_rpm = 0;  // clamp for surface speed (0 = none given)
+};
+
+enum class FeedMode : uint8_t { PerMinute, PerRev, InverseTime };
+
+struct Feed {
+  double value = 0;  // program units per minute / per revolution; 1/min for inverse time
+  FeedMode mode = FeedMode::PerMinute;
+};
+
+enum class CoolantKind : uint8_t { Off, On, Flood, Mist, Thru, Air, Tap };
+struct Coolant {
+  CoolantKind kind = CoolantKind::Flood;
+};
+
+enum class CompSide : uint8_t { Off, Left, Right };
+struct CutterComp {
+  CompSide side = CompSide::Off;
+  int reg = 0;  // diameter-offset register; 0 = the tool's own
+};
+
+struct Dwell {
+  double value = 0;
+  bool revolutions = false;
+};
+
+enum class StopKind : uint8_t { Optional, Program };
+struct Stop {
+  StopKind kind = StopKind::Program;
+};
+
+struct Comment {
+  TextRef text;
+};
+
+// INSERT/text: a line written to the output as it is.
+struct Insert {
+  TextRef text;
+};
+
+// A record clpc does not know; kept (as its source text) so it can be seen in the output.
+struct Passthrough {
+  TextRef text;
+};
+
+// SET/..,n: the work-offset register (54..59, or extended) for the motion that follows.
+struct SelectOffset {
+  int reg = 0;
+};
+
+enum class FrameSource : uint8_t { Msys, Csys, Camera };
+struct SetFrame {
+  Frame frame;
+  FrameSource source = FrameSource::Csys;
+};
+
+// ROTATE/AAXIS,INCR,a,CCLW: index a rotary axis.
+struct RotaryIndex {
+  char axis = 'A';
+  double angle = 0;  // degrees
+  bool incremental = true;
+  ArcDir dir = ArcDir::Unknown;
+};
+
+using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
+                        Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex>;
+
+struct Instr {
+  SourceLoc loc;
+  Op op;
+};
+
+// --- operations and the program ---------------------------------------------------------
+
+struct Operation {
+  uint32_t number = 0;       // 1-based, in file order
+  std::string name;          // TOOL PATH name, "FEATNO 32", or empty
+  SourceLoc loc;
+  bool continued = false;    // a further chunk of the same operation (very long operations)
+  bool last_chunk = true;
+  std::vector<Instr> body;
+  std::string text;          // pool for TextRef
+  std::vector<Vec3> points;  // pool for Arc via points
+
+  TextRef add_text(std::string_view s);
+  std::string_view str(TextRef r) const { return std::string_view(text).substr(r.offset, r.size); }
+  void clear();  // keeps capacity
+};
+
+struct ToolInfo {
+  int number = 0;
+  std::string name;
+  std::string kind;            // MILL, DRILL, TURN, ... (TLDATA) or empty
+  double diameter = 0;
+  double corner_radius = 0;
+  double length = 0;
+  bool auto_numbered = false;  // the CL gave a name but no number
+  SourceLoc first_use;
+};
+
+struct ProgramInfo {
+  std::string part_name;
+  std::string source_name;     // input file name, for the header
+  Units units = Units::Mm;
+  bool units_given = false;    // a UNITS record was present
+  std::string units_reason;    // how units were decided when not given
+  std::vector<ToolInfo> tools;  // in order of first use
+  bool lathe = false;           // MACHIN/TURN
+  // Operations that name a tool but load none by number (NX TOOL PATH without LOAD/TOOL):
+  // the line of their TOOL PATH record and the number the pre-scan gave the tool.
+  std::vector<std::pair<uint32_t, int>> named_tool_ops;
+
+  const ToolInfo* tool(int number) const;
+  int tool_number_for_name(std::string_view name) const;  // 0 if unknown
+  int named_tool_at(uint32_t tool_path_line) const;        // 0 if none
+};
+
+}  // namespace clpc::ir

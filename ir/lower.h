@@ -1,0 +1,121 @@
+// Lowering: CL records -> IR operations. Dialect quirks (parameter orders, CIRCLE layouts,
+// unit words) are handled here and nowhere else. Records are lowered as they arrive and each
+// finished operation is handed to an OperationSink, so a file of any size is processed one
+// operation at a time.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "grammar/record.h"
+#include "ir/diagnostics.h"
+#include "ir/ir.h"
+#include "ir/tables.h"
+
+namespace clpc {
+
+class OperationSink {
+ public:
+  virtual ~OperationSink() = default;
+  // The operation may be modified by the sink; it is cleared after the call.
+  virtual void operation(ir::Operation& op) = 0;
+};
+
+struct LowerOptions {
+  // Instructions per operation chunk; longer operations are handed on in pieces so memory
+  // stays bounded whatever the file looks like.
+  size_t chunk_size = 1u << 18;
+};
+
+class Lowerer : public RecordSink {
+ public:
+  Lowerer(const ir::ProgramInfo& info, Diagnostics& diags, OperationSink& sink, LowerOptions opt = {});
+  void record(const Record& r) override;
+  // End of input: closes the open operation and reports what is left unfinished.
+  void finish();
+
+ private:
+  // lower.cpp: operations and dispatch
+  ir::Instr& push(SourceLoc loc, ir::Op op);
+  void open_operation(std::string name, SourceLoc loc);
+  void close_operation();
+  void ensure_operation(SourceLoc loc);
+  void flush_chunk();
+  void unknown(const Record& r, std::string_view why, bool warn);
+  void passthrough(const Record& r);
+
+  // lower_motion.cpp
+  void lower_goto(const Record& r);
+  void lower_from(const Record& r);
+  void lower_gohome(const Record& r);
+  void lower_godlta(const Record& r);
+  void lower_circle(const Record& r);
+  void move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written);
+  bool extend_arc(const ir::Vec3& p);
+
+  // lower_machine.cpp
+  void lower_tool_change(const Record& r);
+  void lower_spindle(const Record& r);
+  void lower_feed(const Record& r);
+  void lower_coolant(const Record& r);
+  void lower_cutcom(const Record& r);
+  void lower_delay(const Record& r);
+  void lower_units(const Record& r);
+
+  // lower_frames.cpp
+  void lower_msys(const Record& r);
+  void lower_matrix_frame(const Record& r, ir::FrameSource src);
+  void lower_set(const Record& r);
+  void lower_rotate(const Record& r);
+
+  // lower_subs.cpp
+  bool record_subroutine(const Record& r);
+  void lower_calsub(const Record& r);
+
+  const ir::ProgramInfo& info_;
+  Diagnostics& d_;
+  OperationSink& sink_;
+  LowerOptions opt_;
+
+  ir::Operation op_;
+  bool op_open_ = false;
+  uint32_t op_count_ = 0;
+  std::string op_tool_name_;     // tool named by TOOL PATH, if any
+
+  ir::Vec3 pos_ = ir::Vec3::Zero();
+  bool has_pos_ = false;
+  ir::Vec3 axis_ = ir::Vec3::UnitZ();
+  ir::Vec3 from_ = ir::Vec3::Zero();
+  bool has_from_ = false;
+  bool rapid_next_ = false;
+  int tool_ = -1;                 // tool in the spindle (-1 = none yet)
+  std::optional<ir::Spindle> last_spindle_;
+
+  struct PendingArc {
+    ir::Arc arc;
+    SourceLoc loc;
+  };
+  std::optional<PendingArc> pending_arc_;
+  bool arc_open_ = false;  // the last instruction is an arc that may take more points
+
+  bool finished_ = false;  // FINI seen
+  bool warned_after_fini_ = false;
+
+  // Subroutines: DEFSUB bodies are kept as owned copies of their records and replayed.
+  struct OwnedRecord {
+    Record rec;                  // string views and params are rebuilt by view()
+    std::vector<Param> params;
+    std::string storage;         // major, text, then each param's text
+    std::vector<uint32_t> sizes;
+    Record view(std::vector<Param>& scratch) const;
+  };
+  std::map<int, std::vector<OwnedRecord>> subs_;
+  int defining_sub_ = -1;
+  SourceLoc defining_loc_;
+  int call_depth_ = 0;
+  size_t stored_records_ = 0;
+};
+
+}  // namespace clpc

@@ -1,0 +1,218 @@
+// Motion records: GOTO, FROM, GOHOME, GODLTA, CIRCLE (+ the RAPID one-shot).
+#include <cmath>
+
+#include "ir/lower.h"
+#include "ir/params.h"
+
+namespace clpc {
+
+namespace {
+
+// Reads x,y,z[,i,j,k]; reports and returns false on a wrong count or a non-number.
+bool read_point(const Record& r, Diagnostics& d, ir::Vec3& p, ir::Vec3& axis, bool& has_axis) {
+  const auto& ps = r.params;
+  for (size_t i = 0; i < ps.size(); ++i)
+    if (!ps[i].is_number()) {
+      d.error(ps[i].loc, std::string(r.major) + ": expected a number, found '" + std::string(ps[i].text) + "'");
+      return false;
+    }
+  if (ps.size() != 3 && ps.size() != 6) {
+    d.error(ps.size() > 6 || ps.size() == 4 || ps.size() == 5 ? ps[3].loc : r.end,
+            std::string(r.major) + " needs 3 or 6 values (x,y,z[,i,j,k]), found " + std::to_string(ps.size()));
+    return false;
+  }
+  p = {ps[0].number, ps[1].number, ps[2].number};
+  has_axis = ps.size() == 6;
+  if (has_axis) {
+    ir::Vec3 a{ps[3].number, ps[4].number, ps[5].number};
+    double n = a.norm();
+    if (!(n > 1e-9)) {
+      d.error(ps[3].loc, std::string(r.major) + ": the tool axis (i,j,k) must not be zero");
+      return false;
+    }
+    axis = a / n;
+  }
+  return true;
+}
+
+}  // namespace
+
+void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written) {
+  ensure_operation(loc);
+  if (pending_arc_) {
+    PendingArc pa = std::move(*pending_arc_);
+    pending_arc_.reset();
+    if (kind == ir::MoveKind::Rapid)
+      d_.warning(loc, "RAPID before a CIRCLE's end point is ignored: arcs are cut at the feed rate");
+    pa.arc.end = p;
+    pa.arc.tool_axis = axis_;
+    push(pa.loc, pa.arc);
+    arc_open_ = pa.arc.layout == ir::ArcLayout::Creo7;
+    pos_ = p;
+    return;
+  }
+  if (arc_open_ && kind == ir::MoveKind::Feed && !axis_written && extend_arc(p)) {
+    pos_ = p;
+    return;
+  }
+  ir::Move m;
+  m.point = p;
+  m.axis = axis_;
+  m.kind = kind;
+  m.axis_written = axis_written;
+  push(loc, m);
+  pos_ = p;
+  has_pos_ = true;
+}
+
+// Creo may write intermediate points of an arc as further GOTOs. A point joins the arc when it
+// lies on the circle, in the arc's plane, and carries the rotation on in the same sense;
+// otherwise it is a move of its own (see docs/arcs.md).
+bool Lowerer::extend_arc(const ir::Vec3& p) {
+  auto* arc = std::get_if<ir::Arc>(&op_.body.back().op);
+  if (!arc || arc->extra_turns != 0) return false;
+  const ir::Vec3 n = arc->axis;
+  auto radial = [&](const ir::Vec3& q) {
+    ir::Vec3 v = q - arc->center;
+    return ir::Vec3(v - v.dot(n) * n);
+  };
+  double tol = std::max(1e-6, 1e-5 * arc->radius);
+  double h_start = (arc->start - arc->center).dot(n);
+  double h_end = (arc->end - arc->center).dot(n);
+  double h_p = (p - arc->center).dot(n);
+  if (std::abs(h_end - h_start) > tol || std::abs(h_p - h_start) > tol) return false;
+  ir::Vec3 rp = radial(p), re = radial(arc->end), rs = radial(arc->start);
+  if (std::abs(rp.norm() - arc->radius) > tol) return false;
+  if ((p - arc->end).norm() < tol) return false;
+  // Same sense: the turn start->end and end->p have the same sign about the axis.
+  double s1 = n.dot(rs.cross(re));
+  double s2 = n.dot(re.cross(rp));
+  if (s1 * s2 <= 0) return false;
+  op_.points.push_back(arc->end);
+  if (arc->via_count == 0) arc->via_begin = uint32_t(op_.points.size() - 1);
+  ++arc->via_count;
+  arc->end = p;
+  return true;
+}
+
+void Lowerer::lower_goto(const Record& r) {
+  ir::Vec3 p, a;
+  bool has_axis = false;
+  if (!read_point(r, d_, p, a, has_axis)) return;
+  if (has_axis) axis_ = a;
+  ir::MoveKind kind = rapid_next_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed;
+  rapid_next_ = false;
+  move_to(p, r.loc, kind, has_axis);
+}
+
+void Lowerer::lower_from(const Record& r) {
+  ir::Vec3 p, a;
+  bool has_axis = false;
+  if (!read_point(r, d_, p, a, has_axis)) return;
+  if (has_axis) axis_ = a;
+  from_ = p;
+  has_from_ = true;
+  if (pending_arc_) {
+    d_.error(r.loc, "FROM cannot end a CIRCLE");
+    pending_arc_.reset();
+  }
+  move_to(p, r.loc, ir::MoveKind::From, has_axis);
+}
+
+void Lowerer::lower_gohome(const Record& r) {
+  ir::Vec3 p = from_, a;
+  bool has_axis = false;
+  if (r.params.empty()) {
+    if (!has_from_) {
+      d_.error(r.loc, "GOHOME without a point needs an earlier FROM");
+      return;
+    }
+  } else if (!read_point(r, d_, p, a, has_axis)) {
+    return;
+  }
+  if (has_axis) axis_ = a;
+  rapid_next_ = false;
+  move_to(p, r.loc, ir::MoveKind::Rapid, has_axis);
+}
+
+void Lowerer::lower_godlta(const Record& r) {
+  ParamReader ps(r, d_);
+  if (!ps.all_numbers() || (ps.size() != 1 && ps.size() != 3)) {
+    d_.error(ps.size() ? ps[0].loc : r.end, "GODLTA needs dx,dy,dz or one distance along the tool axis");
+    return;
+  }
+  if (!has_pos_) {
+    d_.error(r.loc, "GODLTA needs a previous position");
+    return;
+  }
+  ir::Vec3 delta = ps.size() == 1 ? ir::Vec3(axis_ * ps[0].number) : ir::Vec3(ps[0].number, ps[1].number, ps[2].number);
+  ir::MoveKind kind = rapid_next_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed;
+  rapid_next_ = false;
+  move_to(pos_ + delta, r.loc, kind, false);
+}
+
+void Lowerer::lower_circle(const Record& r) {
+  ParamReader ps(r, d_);
+  size_t n = 0;
+  while (n < ps.size() && ps[n].is_number()) ++n;
+  int times = 1;
+  if (n < ps.size()) {
+    if (ps[n].is("TIMES") && n + 2 == ps.size()) {
+      auto t = ps.integer(n + 1, "the number of turns after TIMES", 1, 10000);
+      if (!t) return;
+      times = *t;
+    } else {
+      d_.error(ps[n].loc, "CIRCLE: unexpected '" + std::string(ps[n].text) + "' (only TIMES,n may follow the values)");
+      return;
+    }
+  }
+  if (n != 6 && n != 7 && n != 11) {
+    d_.error(n > 0 ? ps[std::min<size_t>(n, ps.size()) - 1].loc : r.end,
+             "CIRCLE needs 6, 7 or 11 values (xc,yc,zc,i,j,k[,r[,...]]), found " + std::to_string(n));
+    return;
+  }
+  if (pending_arc_) {
+    d_.error(pending_arc_->loc, "CIRCLE is not followed by a GOTO giving its end point");
+    pending_arc_.reset();
+  }
+  if (!has_pos_) {
+    d_.error(r.loc, "CIRCLE needs a start point: no motion comes before it");
+    return;
+  }
+  ir::Arc a;
+  a.start = pos_;
+  a.center = {ps[0].number, ps[1].number, ps[2].number};
+  ir::Vec3 axis{ps[3].number, ps[4].number, ps[5].number};
+  double len = axis.norm();
+  if (!(len > 1e-9)) {
+    d_.error(ps[3].loc, "CIRCLE: the axis (i,j,k) must not be zero");
+    return;
+  }
+  a.axis = axis / len;
+  a.extra_turns = uint16_t(times - 1);
+  if (n == 6) {
+    a.layout = ir::ArcLayout::NoRadius6;
+    ir::Vec3 v = pos_ - a.center;
+    a.radius = (v - v.dot(a.axis) * a.axis).norm();
+    a.hint = ir::ArcDir::Unknown;  // no convention known for this layout: geometry decides
+  } else {
+    a.radius = ps[6].number;
+    if (!(a.radius > 0)) {
+      d_.error(ps[6].loc, "CIRCLE: the radius must be greater than zero, found " + num_text(a.radius));
+      return;
+    }
+    // The conventions, established from real files (docs/arcs.md): NX and Makino give the
+    // axis about which the tool turns clockwise; Creo/APT use the right-hand rule.
+    a.layout = n == 11 ? ir::ArcLayout::Nx11 : ir::ArcLayout::Creo7;
+    a.hint = n == 11 ? ir::ArcDir::Cw : ir::ArcDir::Ccw;
+  }
+  if (rapid_next_) {
+    d_.warning(r.loc, "RAPID before a CIRCLE is ignored: arcs are cut at the feed rate");
+    rapid_next_ = false;
+  }
+  ensure_operation(r.loc);
+  arc_open_ = false;
+  pending_arc_ = PendingArc{a, r.loc};
+}
+
+}  // namespace clpc

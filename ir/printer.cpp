@@ -1,0 +1,121 @@
+#include "ir/printer.h"
+
+#include "ir/params.h"
+
+namespace clpc::ir {
+
+namespace {
+
+std::string vec(const Vec3& v) { return "(" + num_text(v.x()) + ", " + num_text(v.y()) + ", " + num_text(v.z()) + ")"; }
+
+const char* dir_name(ArcDir d) {
+  switch (d) {
+    case ArcDir::Ccw: return "ccw";
+    case ArcDir::Cw: return "cw";
+    case ArcDir::Unknown: break;
+  }
+  return "?";
+}
+
+const char* layout_name(ArcLayout l) {
+  switch (l) {
+    case ArcLayout::Nx11: return "nx11";
+    case ArcLayout::Creo7: return "creo7";
+    case ArcLayout::NoRadius6: return "noradius6";
+    case ArcLayout::Synthetic: return "synthetic";
+  }
+  return "?";
+}
+
+struct Printer {
+  std::ostream& o;
+  const Operation& op;
+
+  void operator()(const Move& m) {
+    o << (m.kind == MoveKind::Rapid ? "rapid " : m.kind == MoveKind::Feed ? "feed " : "from ") << vec(m.point);
+    if (m.axis_written || m.axis != Vec3::UnitZ()) o << " axis " << vec(m.axis);
+  }
+  void operator()(const Arc& a) {
+    o << "arc " << dir_name(a.dir) << " to " << vec(a.end) << " center " << vec(a.center) << " axis " << vec(a.axis)
+      << " r " << num_text(a.radius) << " hint " << dir_name(a.hint) << " " << layout_name(a.layout);
+    if (a.extra_turns) o << " turns+" << a.extra_turns;
+    if (a.sweep > 0) o << " sweep " << num_text(a.sweep);
+    for (uint32_t i = 0; i < a.via_count; ++i) o << " via " << vec(op.points[a.via_begin + i]);
+  }
+  void operator()(const ToolChange& t) {
+    o << "tool-change T" << t.tool;
+    if (t.length_offset) o << " H" << t.length_offset;
+  }
+  void operator()(const ToolPreselect& t) { o << "tool-preselect T" << t.tool; }
+  void operator()(const Spindle& s) {
+    if (s.dir == SpindleDir::Off) {
+      o << "spindle off";
+      return;
+    }
+    o << "spindle " << num_text(s.speed) << (s.mode == SpindleMode::Rpm ? " rpm" : " m/min")
+      << (s.dir == SpindleDir::Cw ? " cw" : " ccw");
+    if (s.max_rpm > 0) o << " max " << num_text(s.max_rpm);
+  }
+  void operator()(const Feed& f) {
+    o << "feed-rate " << num_text(f.value)
+      << (f.mode == FeedMode::PerMinute ? " /min" : f.mode == FeedMode::PerRev ? " /rev" : " inverse-time");
+  }
+  void operator()(const Coolant& c) {
+    static const char* names[] = {"off", "on", "flood", "mist", "thru", "air", "tap"};
+    o << "coolant " << names[int(c.kind)];
+  }
+  void operator()(const CutterComp& c) {
+    o << "cutter-comp " << (c.side == CompSide::Off ? "off" : c.side == CompSide::Left ? "left" : "right");
+    if (c.reg) o << " D" << c.reg;
+  }
+  void operator()(const Dwell& d) { o << "dwell " << num_text(d.value) << (d.revolutions ? " rev" : " s"); }
+  void operator()(const Stop& s) { o << (s.kind == StopKind::Optional ? "optional-stop" : "stop"); }
+  void operator()(const Comment& c) { o << "comment \"" << op.str(c.text) << "\""; }
+  void operator()(const Insert& c) { o << "insert \"" << op.str(c.text) << "\""; }
+  void operator()(const Passthrough& c) { o << "passthrough \"" << op.str(c.text) << "\""; }
+  void operator()(const SelectOffset& s) { o << "work-offset " << s.reg; }
+  void operator()(const SetFrame& f) {
+    static const char* names[] = {"msys", "csys", "camera"};
+    o << "frame " << names[int(f.source)] << " origin " << vec(f.frame.origin) << " x " << vec(f.frame.rotation.col(0))
+      << " y " << vec(f.frame.rotation.col(1)) << " z " << vec(f.frame.rotation.col(2));
+  }
+  void operator()(const RotaryIndex& r) {
+    o << "rotary-index " << r.axis << " " << num_text(r.angle) << (r.incremental ? " incremental" : " absolute");
+    if (r.dir != ArcDir::Unknown) o << " " << dir_name(r.dir);
+  }
+};
+
+}  // namespace
+
+void print_header(std::ostream& o, const ProgramInfo& info) {
+  o << "program";
+  if (!info.part_name.empty()) o << " \"" << info.part_name << "\"";
+  o << " units " << units_name(info.units);
+  if (!info.units_reason.empty()) o << " (" << info.units_reason << ")";
+  o << "\n";
+  for (const ToolInfo& t : info.tools) {
+    o << "tool T" << t.number;
+    if (!t.name.empty()) o << " \"" << t.name << "\"";
+    if (!t.kind.empty()) o << " " << t.kind;
+    o << " d " << num_text(t.diameter) << " r " << num_text(t.corner_radius);
+    if (t.length) o << " l " << num_text(t.length);
+    if (t.auto_numbered) o << " (numbered by clpc)";
+    o << "\n";
+  }
+}
+
+void print_instr(std::ostream& o, const Operation& op, const Instr& in) {
+  o << "  " << in.loc.line << ":" << in.loc.col << "\t";
+  std::visit(Printer{o, op}, in.op);
+  o << "\n";
+}
+
+void print_operation(std::ostream& o, const Operation& op) {
+  o << (op.continued ? "operation (continued) " : "operation ") << op.number;
+  if (!op.name.empty()) o << " \"" << op.name << "\"";
+  if (op.loc.valid()) o << " at " << op.loc.line << ":" << op.loc.col;
+  o << "\n";
+  for (const Instr& in : op.body) print_instr(o, op, in);
+}
+
+}  // namespace clpc::ir

@@ -1,0 +1,56 @@
+// Source files and locations: where every record, instruction and diagnostic comes from.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace clpc {
+
+// A position in the input, 1-based. line == 0 means "no location" (e.g. a whole-program
+// diagnostic). Kept at 8 bytes because every IR instruction carries one.
+struct SourceLoc {
+  uint32_t line = 0;
+  uint32_t col = 0;
+  bool valid() const { return line != 0; }
+  friend bool operator==(SourceLoc a, SourceLoc b) { return a.line == b.line && a.col == b.col; }
+};
+
+// An input file opened for reading. Non-seekable inputs (standard input, pipes) are spooled
+// to an unlinked temporary file first, so every input can be read twice (pre-scan, then
+// compile) and any line can be fetched again for a diagnostic, without holding the file in
+// memory.
+class SourceFile {
+ public:
+  // Opens `path` ("-" = standard input). Returns false and sets `error` on failure.
+  bool open(const std::string& path, std::string& error);
+  // Wraps an in-memory text (tests, fuzzers). The text must outlive the SourceFile.
+  void open_memory(std::string name, std::string_view text);
+  ~SourceFile();
+  SourceFile() = default;
+  SourceFile(const SourceFile&) = delete;
+  SourceFile& operator=(const SourceFile&) = delete;
+
+  const std::string& name() const { return name_; }
+  // Reads up to `n` bytes at absolute `offset`; returns the count (0 at end, -1 on error).
+  long read_at(uint64_t offset, char* dst, size_t n) const;
+  uint64_t size() const { return size_; }
+
+  // The lexer reports where lines start as it goes; a sparse index of them lets
+  // `line_text` find any earlier line quickly.
+  void note_line_start(uint32_t line, uint64_t offset);
+  // The text of line `line` (without its end), or "" when unknown. At most 512 bytes.
+  std::string line_text(uint32_t line) const;
+
+ private:
+  std::string name_;
+  int fd_ = -1;
+  std::string_view memory_;
+  bool in_memory_ = false;
+  uint64_t size_ = 0;
+  static constexpr uint32_t kCheckpointEvery = 1024;
+  std::vector<uint64_t> checkpoints_{0};  // offset of line 1 + k * kCheckpointEvery
+};
+
+}  // namespace clpc

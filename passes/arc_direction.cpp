@@ -1,0 +1,156 @@
+// arc-direction: decides which way each CL arc turns.
+//
+// Contract. Expects arcs as lowered: start, end, centre, axis, and the CAM convention's
+// hint (ir/lower_motion.cpp). Guarantees every arc has dir Ccw or Cw about its axis and its
+// sweep in degrees (full turns included). Geometry that decides (intermediate points, the
+// tangent of the cutting move entering or leaving the arc) wins over the convention, with a
+// warning where they disagree; an arc neither decides is an error.
+#include "passes/arc_direction.h"
+
+#include <cmath>
+
+#include "passes/arc_geometry.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+constexpr double kTangentCos = 0.985;  // within ~10 degrees counts as tangent
+
+const char* dir_word(ir::ArcDir d) { return d == ir::ArcDir::Ccw ? "counter-clockwise" : "clockwise"; }
+
+const char* convention_text(ir::ArcLayout l) {
+  switch (l) {
+    case ir::ArcLayout::Nx11: return "the NX/Makino convention (the axis of clockwise rotation)";
+    case ir::ArcLayout::Creo7: return "the Creo/APT convention (right-hand rule about the axis)";
+    default: return "the CIRCLE's convention";
+  }
+}
+
+void vote(ArcEvidence& e, ir::ArcDir d, const char* why) {
+  if (d == ir::ArcDir::Ccw) {
+    if (e.ccw_votes++ == 0) e.ccw_why = why;
+  } else {
+    if (e.cw_votes++ == 0) e.cw_why = why;
+  }
+}
+
+// Votes from a move direction `v` against the arc's counter-clockwise tangent `t_ccw`.
+void tangent_vote(ArcEvidence& e, const ir::Arc& a, const ir::Vec3& v, const ir::Vec3& t_ccw, double min_len,
+                  const char* why) {
+  ir::Vec3 plane = v - v.dot(a.axis) * a.axis;
+  double len = plane.norm();
+  if (len < min_len || len < 0.25 * v.norm() || t_ccw.norm() == 0) return;
+  double c = plane.dot(t_ccw) / (len * t_ccw.norm());
+  if (c >= kTangentCos) vote(e, ir::ArcDir::Ccw, why);
+  else if (c <= -kTangentCos) vote(e, ir::ArcDir::Cw, why);
+}
+
+class ArcDirection : public Pass {
+ public:
+  void run(ir::Operation& op, PassContext& ctx) override {
+    const double min_len = 20 * ctx.resolution();
+    const double close_tol = 1e-7;
+    auto& body = op.body;
+    for (size_t i = 0; i < body.size(); ++i) {
+      auto* a = std::get_if<ir::Arc>(&body[i].op);
+      if (!a) {
+        update_incoming(body[i]);
+        continue;
+      }
+      ir::Vec3 in = incoming_;
+      ir::Vec3 out = outgoing(body, i, a->end);
+      if (a->dir == ir::ArcDir::Unknown) decide(op, *a, in, out, body[i].loc, ctx, min_len);
+      if (a->dir != ir::ArcDir::Unknown && !(a->sweep > 0)) a->sweep = arcgeo::sweep_deg(*a, a->dir, close_tol);
+      if (a->dir != ir::ArcDir::Unknown) {
+        ir::Vec3 t = arcgeo::tangent_at(*a, 1.0);
+        incoming_ = t * 1e9;  // a tangent direction, as long as any move
+      } else {
+        incoming_.setZero();
+      }
+      last_ = a->end;
+      have_last_ = true;
+    }
+  }
+
+ private:
+  void update_incoming(const ir::Instr& in) {
+    auto* m = std::get_if<ir::Move>(&in.op);
+    if (!m) return;
+    if (m->kind == ir::MoveKind::Feed && have_last_) incoming_ = m->point - last_;
+    else incoming_.setZero();
+    last_ = m->point;
+    have_last_ = true;
+  }
+
+  static ir::Vec3 outgoing(const std::vector<ir::Instr>& body, size_t i, const ir::Vec3& end) {
+    for (size_t j = i + 1; j < body.size(); ++j) {
+      if (auto* m = std::get_if<ir::Move>(&body[j].op))
+        return m->kind == ir::MoveKind::Feed ? ir::Vec3(m->point - end) : ir::Vec3::Zero();
+      if (std::holds_alternative<ir::Arc>(body[j].op)) return ir::Vec3::Zero();
+      if (std::holds_alternative<ir::ToolChange>(body[j].op)) return ir::Vec3::Zero();
+    }
+    return ir::Vec3::Zero();
+  }
+
+  void decide(const ir::Operation& op, ir::Arc& a, const ir::Vec3& in, const ir::Vec3& out, SourceLoc loc,
+              PassContext& ctx, double min_len) {
+    ArcEvidence e = arc_evidence(op, a, in, out, min_len);
+    ir::ArcDir geo = e.geometry();
+    if (geo != ir::ArcDir::Unknown) {
+      if (a.hint != ir::ArcDir::Unknown && a.hint != geo) {
+        const std::string& why = geo == ir::ArcDir::Ccw ? e.ccw_why : e.cw_why;
+        ctx.diags.warning(loc,
+                          std::string("CIRCLE: ") + convention_text(a.layout) + " says " + dir_word(a.hint) + ", but " +
+                              why + " only if it turns " + dir_word(geo) + "; following the geometry",
+                          "arc convention overruled");
+      }
+      a.dir = geo;
+      return;
+    }
+    if (a.hint != ir::ArcDir::Unknown) {
+      a.dir = a.hint;
+      return;
+    }
+    if (e.conflicting())
+      ctx.diags.error(loc, "cannot decide which way this arc turns: " + e.ccw_why + " if counter-clockwise but " + e.cw_why +
+                               " if clockwise, and this CIRCLE layout has no axis convention");
+    else
+      ctx.diags.error(loc,
+                      "cannot decide which way this arc turns: this CIRCLE layout (no radius) has no axis convention "
+                      "and no tangent move or point on the arc tells");
+    a.dir = ir::ArcDir::Ccw;  // keep going to find further errors; no output is written
+  }
+
+  ir::Vec3 incoming_ = ir::Vec3::Zero();
+  ir::Vec3 last_ = ir::Vec3::Zero();
+  bool have_last_ = false;
+};
+
+}  // namespace
+
+ArcEvidence arc_evidence(const ir::Operation& op, const ir::Arc& a, const ir::Vec3& in, const ir::Vec3& out,
+                         double min_len) {
+  ArcEvidence e;
+  ir::Vec3 rs = arcgeo::radial(a, a.start), re = arcgeo::radial(a, a.end);
+  // Points on the arc: each must lie within the sweep of the true direction.
+  if (a.via_count > 0) {
+    double end_ccw = arcgeo::ccw_angle(rs, re, a.axis);
+    bool all_ccw = true, all_cw = true;
+    for (uint32_t k = 0; k < a.via_count; ++k) {
+      double v = arcgeo::ccw_angle(rs, arcgeo::radial(a, op.points[a.via_begin + k]), a.axis);
+      if (!(v > 0 && v < end_ccw)) all_ccw = false;
+      if (!(v > end_ccw)) all_cw = false;
+    }
+    if (all_ccw && !all_cw) vote(e, ir::ArcDir::Ccw, "the arc passes through its intermediate points");
+    if (all_cw && !all_ccw) vote(e, ir::ArcDir::Cw, "the arc passes through its intermediate points");
+  }
+  tangent_vote(e, a, in, a.axis.cross(rs), min_len, "the arc is tangent to the move entering it");
+  tangent_vote(e, a, out, a.axis.cross(re), min_len, "the arc is tangent to the move leaving it");
+  return e;
+}
+
+std::unique_ptr<Pass> make_arc_direction() { return std::make_unique<ArcDirection>(); }
+
+}  // namespace clpc

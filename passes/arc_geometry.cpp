@@ -1,0 +1,55 @@
+#include "passes/arc_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clpc::arcgeo {
+
+Vec3 radial(const Arc& a, const Vec3& p) {
+  Vec3 v = p - a.center;
+  return v - v.dot(a.axis) * a.axis;
+}
+
+double axial(const Arc& a, const Vec3& p) { return (p - a.center).dot(a.axis); }
+
+double ccw_angle(const Vec3& u, const Vec3& v, const Vec3& n) {
+  double ang = std::atan2(n.dot(u.cross(v)), u.dot(v));
+  if (ang < 0) ang += 2 * kPi;
+  return ang;
+}
+
+bool closes(const Arc& a, double tol) { return (radial(a, a.end) - radial(a, a.start)).norm() <= tol; }
+
+double sweep_deg(const Arc& a, ir::ArcDir dir, double close_tol) {
+  double turns = 360.0 * a.extra_turns;
+  if (closes(a, close_tol)) return 360.0 + turns;
+  double ccw = ccw_angle(radial(a, a.start), radial(a, a.end), a.axis) * 180 / kPi;
+  return (dir == ir::ArcDir::Cw ? 360.0 - ccw : ccw) + turns;
+}
+
+Vec3 point_at(const Arc& a, double t) {
+  Vec3 rs = radial(a, a.start), re = radial(a, a.end);
+  double r0 = rs.norm(), r1 = re.norm();
+  double phi = sense(a.dir) * a.sweep * t * kPi / 180;
+  Vec3 u = r0 > 0 ? Vec3(rs / r0) : Vec3(a.axis.unitOrthogonal());
+  Vec3 w = a.axis.cross(u);
+  double r = r0 + (r1 - r0) * t;
+  double h = axial(a, a.start) + (axial(a, a.end) - axial(a, a.start)) * t;
+  return a.center + h * a.axis + r * (std::cos(phi) * u + std::sin(phi) * w);
+}
+
+Vec3 tangent_at(const Arc& a, double t) {
+  Vec3 p = point_at(a, t);
+  Vec3 rv = radial(a, p);
+  Vec3 tan = a.axis.cross(rv) * sense(a.dir);
+  double n = tan.norm();
+  return n > 0 ? Vec3(tan / n) : Vec3::Zero();
+}
+
+double sweep_for_chord_error(double r, double tol) {
+  if (r <= tol) return 360;
+  double half = std::acos(std::clamp(1 - tol / r, -1.0, 1.0));
+  return std::max(2 * half * 180 / kPi, 1e-6);
+}
+
+}  // namespace clpc::arcgeo

@@ -1,0 +1,33 @@
+// Geometry of CL arcs and helices, shared by the arc passes and the verifier.
+#pragma once
+
+#include "ir/ir.h"
+
+namespace clpc::arcgeo {
+
+using ir::Arc;
+using ir::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Part of p - centre perpendicular to the axis.
+Vec3 radial(const Arc& a, const Vec3& p);
+// Height of p along the axis, measured from the centre.
+double axial(const Arc& a, const Vec3& p);
+// Angle in [0, 2*pi) turning from u to v right-handed about unit n.
+double ccw_angle(const Vec3& u, const Vec3& v, const Vec3& n);
+// True when start and end coincide in the arc's plane (a full circle, or whole turns).
+bool closes(const Arc& a, double tol);
+// Sweep in degrees if the arc turns `dir` about its axis (full turns included).
+double sweep_deg(const Arc& a, ir::ArcDir dir, double close_tol);
+// Sign of rotation about a.axis: +1 for Ccw, -1 for Cw.
+inline double sense(ir::ArcDir d) { return d == ir::ArcDir::Cw ? -1.0 : 1.0; }
+// The point a fraction t in [0, 1] along a decided arc (helices rise linearly with angle;
+// the radius moves linearly from the start's to the end's).
+Vec3 point_at(const Arc& a, double t);
+// Unit tangent of the decided arc at fraction t, projected into the arc's plane.
+Vec3 tangent_at(const Arc& a, double t);
+// The largest sweep (degrees) whose chord stays within `tol` of an arc of radius r.
+double sweep_for_chord_error(double r, double tol);
+
+}  // namespace clpc::arcgeo

@@ -1,0 +1,48 @@
+// A pass: a named transformation of the IR with a one-line summary and a contract (what it
+// expects, what it guarantees). Passes run one operation at a time, in the order the machine's
+// pipeline names them; state that must cross operations lives in the pass object.
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "backends/machine.h"
+#include "ir/diagnostics.h"
+#include "ir/ir.h"
+
+namespace clpc {
+
+struct PassContext {
+  const ir::ProgramInfo& info;
+  const Machine& machine;
+  Diagnostics& diags;
+  // Output units -> program units: machine tolerances are in output units, the IR is in
+  // program units.
+  double from_output() const { return ir::mm_per_unit(machine.units) / ir::mm_per_unit(info.units); }
+  // The machine's arc tolerance in program units.
+  double tolerance() const { return machine.arcs.tolerance * from_output(); }
+  // One increment of the X address (the output resolution) in program units.
+  double resolution() const;
+};
+
+class Pass {
+ public:
+  virtual ~Pass() = default;
+  virtual void begin(PassContext& ctx) {}
+  virtual void run(ir::Operation& op, PassContext& ctx) = 0;
+};
+
+struct PassInfo {
+  std::string_view name;
+  std::string_view summary;
+  std::string_view contract;
+  std::unique_ptr<Pass> (*make)();
+};
+
+// Every pass clpc has, in the order they are best run.
+const std::vector<PassInfo>& all_passes();
+const PassInfo* find_pass(std::string_view name);
+std::vector<std::string> pass_names();
+
+}  // namespace clpc

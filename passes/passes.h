@@ -1,0 +1,12 @@
+// Factories of every pass (registered in passes/registry.cpp).
+#pragma once
+
+#include <memory>
+
+#include "passes/pass.h"
+
+namespace clpc {
+
+std::unique_ptr<Pass> make_arc_direction();
+
+}  // namespace clpc

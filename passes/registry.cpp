@@ -1,0 +1,29 @@
+// The list of passes. Explicit rather than self-registering so the linker cannot drop one.
+#include "passes/passes.h"
+
+namespace clpc {
+
+const std::vector<PassInfo>& all_passes() {
+  static const std::vector<PassInfo> passes = {
+      {"arc-direction", "decide which way each CL arc turns (CW or CCW)",
+       "expects: arcs as lowered, with the CAM convention's hint. guarantees: every arc has a direction and "
+       "a sweep; geometry (tangent moves, points on the arc) overrules the convention with a warning; an arc "
+       "nothing decides is an error",
+       make_arc_direction},
+  };
+  return passes;
+}
+
+const PassInfo* find_pass(std::string_view name) {
+  for (const PassInfo& p : all_passes())
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::vector<std::string> pass_names() {
+  std::vector<std::string> n;
+  for (const PassInfo& p : all_passes()) n.emplace_back(p.name);
+  return n;
+}
+
+}  // namespace clpc
