@@ -45,6 +45,8 @@ class ProgramWriter : public Backend {
   void write_cutter_comp(const ir::CutterComp& c, SourceLoc loc);
   void blocks(const std::vector<CodeTemplate>& list, SourceLoc loc);
   void after_template(const CodeTemplate& t);
+  // Motion blocks are absolute: restores G90 after a template left the control incremental.
+  void absolute_code();
   // For a cutting block: the feed-mode code when it changed (before the motion code) and
   // the F word when the feed changed (after the coordinates).
   void feed_mode_code();
@@ -75,6 +77,7 @@ class ProgramWriter : public Backend {
   ir::CoolantKind coolant_ = ir::CoolantKind::Off;
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
+  bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental
   bool position_known_ = false;
   ir::Vec3 pos_ = ir::Vec3::Zero();  // last programmed tool tip, program units
 };

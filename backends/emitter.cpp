@@ -165,9 +165,9 @@ std::string Emitter::clean_comment(std::string_view text) const {
     if (ch == ' ' && (tidy.empty() || tidy.back() == ' ')) continue;
     tidy.push_back(ch);
   }
-  while (!tidy.empty() && tidy.back() == ' ') tidy.pop_back();
   size_t room = c.max_length > 0 ? size_t(c.max_length) : std::string::npos;
   if (tidy.size() > room) tidy.resize(room);
+  while (!tidy.empty() && tidy.back() == ' ') tidy.pop_back();
   return tidy;
 }
 

@@ -40,7 +40,9 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   }
   const CodeTemplate& dir = s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw;
   if (s.mode == ir::SpindleMode::SurfaceSpeed) {
-    double clamp = m_.lathe.max_rpm > 0 ? m_.lathe.max_rpm : s.max_rpm;
+    // The programmer's MAXRPM, never above the machine's limit.
+    double clamp = s.max_rpm;
+    if (m_.lathe.max_rpm > 0 && (clamp <= 0 || clamp > m_.lathe.max_rpm)) clamp = m_.lathe.max_rpm;
     if (clamp <= 0) {
       d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
       return;
@@ -92,11 +94,12 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (!in_plane(mv.point, loc)) return;
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
-  if (!changed('X', o.x()) && !changed('Z', o.z())) {
+  if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_) {
     pos_ = mv.point;
     return;
   }
   e_.begin(loc);
+  absolute_code();
   if (!rapid) feed_mode_code();
   motion_code(rapid ? Motion::Rapid : Motion::Linear);
   e_.modal_word('X', o.x());
@@ -140,6 +143,7 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
     cz = mz + t * nz;
   }
   e_.begin(loc);
+  absolute_code();
   feed_mode_code();
   motion_code(ccw ? Motion::Ccw : Motion::Cw);
   e_.modal_word('X', e_raw.x());

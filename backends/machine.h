@@ -68,7 +68,7 @@ struct LatheSettings {
   // alike, since X is written positive either way). True for a control that views them from
   // -Y: G02 and G03 swap. See docs/machines.md, [lathe].
   bool arcs_from_minus_y = false;
-  double max_rpm = 0;       // G50 S clamp written with constant surface speed (0 = the CL's MAXRPM)
+  double max_rpm = 0;       // spindle limit: caps the G50 S clamp written with surface speed (0 = none)
 };
 
 struct RotaryAxis {

@@ -90,6 +90,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (need_length_offset_ && rapid) {
     // Position in X Y with the work offset, then bring Z down with the length offset.
     e_.begin(loc);
+    absolute_code();
     work_offset_code();
     motion_code(Motion::Rapid);
     e_.modal_word('X', o.x());
@@ -106,11 +107,12 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
 
   bool any = changed('X', o.x()) || changed('Y', o.y()) || changed('Z', o.z());
-  if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_) {
+  if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
   }
   e_.begin(loc);
+  absolute_code();
   work_offset_code();
   comp_code();
   if (need_length_offset_) {
@@ -188,6 +190,7 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
   }
 
   e_.begin(loc);
+  absolute_code();
   work_offset_code();
   if (plane_ != p.plane) {
     e_.code(p.plane == Plane::XY ? m_.codes.plane_xy : p.plane == Plane::ZX ? m_.codes.plane_zx : m_.codes.plane_yz);

@@ -19,7 +19,8 @@ std::string ProgramWriter::length_text(double program_units) const {
 }
 
 std::string ProgramWriter::tool_comment(const ir::ToolInfo& t) const {
-  std::string c = "T" + std::to_string(t.number) + " D=" + length_text(t.diameter) + " CR=" + length_text(t.corner_radius);
+  std::string c = "T" + std::to_string(t.number);
+  if (t.diameter > 0 || t.corner_radius > 0) c += " D=" + length_text(t.diameter) + " CR=" + length_text(t.corner_radius);
   if (!t.name.empty()) c += " - " + t.name;
   else if (!t.kind.empty()) c += " - " + t.kind;
   return c;
@@ -82,6 +83,12 @@ void ProgramWriter::blocks(const std::vector<CodeTemplate>& list, SourceLoc loc)
 // machine coordinates): after one, every modal word is written again.
 void ProgramWriter::after_template(const CodeTemplate& t) {
   if (t.empty()) return;
+  // The last of G90 / G91 in the template sets the distance mode.
+  for (const CodeTemplate::Word& w : t.words) {
+    if (w.size() != 1 || w[0].var >= 0) continue;
+    if (w[0].literal == m_.codes.incremental.text) incremental_ = true;
+    else if (w[0].literal == m_.codes.absolute.text) incremental_ = false;
+  }
   if (t.has_g_code()) {
     motion_ = Motion::None;
     plane_ = Plane::None;
@@ -89,6 +96,12 @@ void ProgramWriter::after_template(const CodeTemplate& t) {
     e_.forget_all();
     feed_written_ = false;
   }
+}
+
+void ProgramWriter::absolute_code() {
+  if (!incremental_) return;
+  e_.code(m_.codes.absolute);
+  incremental_ = false;
 }
 
 void ProgramWriter::operation(const ir::Operation& op) {

@@ -332,7 +332,13 @@ Lexer::Symbol Lexer::lex_after_major() {
     /*!re2c
       $    { mode_ = Mode::LineStart; return Parser::make_EOL(loc_of(tok_)); }
       ws+  { continue; }
-      cont { for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1); continue; }
+      cont {
+        SourceLoc dollar = loc_of(tok_);
+        for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1);
+        if (cur_ >= lim_ && fill() != 0)
+          return error_token(dollar, "unterminated continuation: '$' at the end of the file");
+        continue;
+      }
       nl   { SourceLoc at = loc_of(tok_); newline(cur_); mode_ = Mode::LineStart; return Parser::make_EOL(at); }
       "/"  { mode_ = Mode::Params; return Parser::make_SLASH(loc_of(tok_)); }
       "$$" { mode_ = Mode::CommentText; return lex_comment(); }
@@ -352,7 +358,13 @@ Lexer::Symbol Lexer::lex_params() {
     /*!re2c
       $    { mode_ = Mode::LineStart; return Parser::make_EOL(loc_of(tok_)); }
       ws+  { continue; }
-      cont { for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1); continue; }
+      cont {
+        SourceLoc dollar = loc_of(tok_);
+        for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1);
+        if (cur_ >= lim_ && fill() != 0)
+          return error_token(dollar, "unterminated continuation: '$' at the end of the file");
+        continue;
+      }
       nl   { SourceLoc at = loc_of(tok_); newline(cur_); mode_ = Mode::LineStart; return Parser::make_EOL(at); }
       ","  { return Parser::make_COMMA(loc_of(tok_)); }
       "$$" { mode_ = Mode::CommentText; return lex_comment(); }

@@ -54,6 +54,7 @@ class Lowerer : public RecordSink {
   void lower_circle(const Record& r);
   void move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written);
   bool extend_arc(const ir::Vec3& p);
+  bool on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end);
 
   // lower_machine.cpp
   void lower_tool_change(const Record& r);

@@ -46,6 +46,10 @@ void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool 
       d_.warning(loc, "RAPID before a CIRCLE's end point is ignored: arcs are cut at the feed rate");
     pa.arc.end = p;
     pa.arc.tool_axis = axis_;
+    if (!on_circle(pa.arc, pa.loc, loc)) {
+      pos_ = p;
+      return;
+    }
     push(pa.loc, pa.arc);
     arc_open_ = pa.arc.layout == ir::ArcLayout::Creo7;
     pos_ = p;
@@ -63,6 +67,28 @@ void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool 
   push(loc, m);
   pos_ = p;
   has_pos_ = true;
+}
+
+// The CL must put the arc's start and end on its circle: a mismatch would make the control
+// alarm or cut a different arc. Allowed: 0.01 mm, or 1e-6 of the radius.
+bool Lowerer::on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end) {
+  const double tol = std::max(0.01 / ir::mm_per_unit(info_.units), 1e-6 * a.radius);
+  auto off = [&](const ir::Vec3& p) {
+    ir::Vec3 v = p - a.center;
+    return (v - v.dot(a.axis) * a.axis).norm() - a.radius;
+  };
+  double s = off(a.start), e = off(a.end);
+  if (std::abs(s) > tol) {
+    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + num_text(std::abs(s)) +
+                         " off its circle of radius " + num_text(a.radius));
+    return false;
+  }
+  if (std::abs(e) > tol) {
+    d_.error(circle, "CIRCLE: the arc's end point (GOTO at line " + std::to_string(end.line) + ") is " +
+                         num_text(std::abs(e)) + " off its circle of radius " + num_text(a.radius));
+    return false;
+  }
+  return true;
 }
 
 // Creo may write intermediate points of an arc as further GOTOs. A point joins the arc when it
@@ -84,10 +110,21 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
   ir::Vec3 rp = radial(p), re = radial(arc->end), rs = radial(arc->start);
   if (std::abs(rp.norm() - arc->radius) > tol) return false;
   if ((p - arc->end).norm() < tol) return false;
-  // Same sense: the turn start->end and end->p have the same sign about the axis.
-  double s1 = n.dot(rs.cross(re));
+  // Same sense: the turn from the previous point on the arc to its end, and from its end to
+  // p, have the same sign about the axis; and the whole stays within one turn.
+  ir::Vec3 rprev = arc->via_count ? radial(op_.points[arc->via_begin + arc->via_count - 1]) : rs;
+  double s1 = n.dot(rprev.cross(re));
   double s2 = n.dot(re.cross(rp));
   if (s1 * s2 <= 0) return false;
+  double turned = 0;
+  ir::Vec3 q = rs;
+  for (uint32_t k = 0; k < arc->via_count; ++k) {
+    ir::Vec3 v = radial(op_.points[arc->via_begin + k]);
+    turned += std::atan2(std::abs(n.dot(q.cross(v))), q.dot(v));
+    q = v;
+  }
+  turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
+  if (turned >= 2 * 3.14159265358979323846) return false;
   op_.points.push_back(arc->end);
   if (arc->via_count == 0) arc->via_begin = uint32_t(op_.points.size() - 1);
   ++arc->via_count;
@@ -195,6 +232,10 @@ void Lowerer::lower_circle(const Record& r) {
     ir::Vec3 v = pos_ - a.center;
     a.radius = (v - v.dot(a.axis) * a.axis).norm();
     a.hint = ir::ArcDir::Unknown;  // no convention known for this layout: geometry decides
+    if (!(a.radius > 1e-9)) {
+      d_.error(r.loc, "CIRCLE: the start point lies on the circle's axis, so the radius (not given) is zero");
+      return;
+    }
   } else {
     a.radius = ps[6].number;
     if (!(a.radius > 0)) {

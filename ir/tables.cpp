@@ -34,9 +34,10 @@ class TableBuilder : public RecordSink {
       case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: {
         ToolRecord t = read_tool_record(r, nullptr);
         if (t.number < 0 || t.preselect) break;
+        bool first_in_op = explicit_ < 0;
         explicit_ = t.number;
         ir::ToolInfo& tool = slot(t.number, r.loc);
-        if (tool.name.empty()) tool.name = op_name_;
+        if (tool.name.empty() && first_in_op) tool.name = op_name_;
         if (pending_.any) { attach(tool, pending_); pending_ = {}; }
         break;
       }

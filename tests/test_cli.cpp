@@ -1,0 +1,131 @@
+// The command line, run as a program: exit codes, stdin/stdout, default output names,
+// atomic output, diagnostics format.
+#include <sys/stat.h>
+
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+namespace {
+const char* kSmall = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,100\nGOTO/0,0,0\nGOTO/10,0,0\nFINI\n";
+}
+
+TEST(Cli, VersionAndHelp) {
+  RunResult v = run_clpc("--version");
+  EXPECT_EQ(v.status, 0);
+  EXPECT_THAT(v.out, StartsWith("clpc "));
+  RunResult h = run_clpc("--help");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_THAT(h.out, HasSubstr("compile"));
+  EXPECT_THAT(h.out, HasSubstr("machines"));
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run_clpc("").status, 2);
+  EXPECT_EQ(run_clpc("compile").status, 2);
+  EXPECT_EQ(run_clpc("compile x.cls").status, 2);  // no -t
+  EXPECT_EQ(run_clpc("frobnicate").status, 2);
+  EXPECT_EQ(run_clpc("compile - -t fanuc-mill --emit=pdf").status, 2);
+  EXPECT_EQ(run_clpc("compile - -t fanuc-mill --print-after=nosuch").status, 2);
+}
+
+TEST(Cli, Machines) {
+  RunResult r = run_clpc("machines");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_THAT(r.out, HasSubstr("haas-umc750\tHaas UMC-750"));
+  EXPECT_THAT(r.out, HasSubstr("fanuc-mill\t"));
+  EXPECT_THAT(r.out, HasSubstr("fanuc-lathe\t"));
+}
+
+TEST(Cli, StdinToStdout) {
+  RunResult r = run_clpc("compile - -t fanuc-mill -o -", kSmall);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, StartsWith("%\nO1000\n"));
+  EXPECT_THAT(r.out, HasSubstr("N70 G94 G01 Z0. F100.\nN80 X10.\n"));
+}
+
+TEST(Cli, DefaultOutputNameAndRefusingTheInput) {
+  TempDir t;
+  write_file(t.path("part.cls"), kSmall);
+  RunResult r = run_clpc("compile " + t.path("part.cls") + " -t haas-umc750");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(read_file(t.path("part.nc")), HasSubstr("M30"));
+  RunResult same = run_clpc("compile " + t.path("part.cls") + " -t haas-umc750 -o " + t.path("part.cls"));
+  EXPECT_EQ(same.status, 1);
+  EXPECT_THAT(same.err, HasSubstr("is the input file; refusing to overwrite it"));
+  EXPECT_EQ(read_file(t.path("part.cls")), kSmall);
+}
+
+TEST(Cli, ErrorKeepsTheOldOutputAndLeavesNoTemporary) {
+  TempDir t;
+  write_file(t.path("bad.cls"), "UNITS/MM\nGOTO/1,2,3,4\n");
+  write_file(t.path("bad.nc"), "old program\n");
+  RunResult r = run_clpc("compile " + t.path("bad.cls") + " -t fanuc-mill");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, t.path("bad.cls") + ":2:12: error: GOTO needs 3 or 6 values (x,y,z[,i,j,k]), found 4\n 2 | GOTO/1,2,3,4\n   |            ^\n");
+  EXPECT_EQ(read_file(t.path("bad.nc")), "old program\n");
+  int files = 0;
+  for (auto& e : std::filesystem::directory_iterator(std::filesystem::path(t.path("")))) files += e.is_regular_file();
+  EXPECT_EQ(files, 2);  // bad.cls and bad.nc: no temporary left
+}
+
+TEST(Cli, NoOutputOnErrorToStdout) {
+  RunResult r = run_clpc("compile - -t fanuc-mill -o -", "GOTO/1,2,3\nFOO/1\nGOTO/1,2\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:2:1: warning: unknown record 'FOO'"));
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:3:9: error: GOTO needs 3 or 6 values"));
+}
+
+TEST(Cli, WerrorTurnsWarningsIntoErrors) {
+  RunResult r = run_clpc("compile - -t fanuc-mill -o - --Werror", std::string(kSmall) + "FOO/1\n");
+  EXPECT_EQ(r.status, 1);
+  RunResult ok = run_clpc("compile - -t fanuc-mill -o -", std::string("FOO/1\n") + kSmall);
+  EXPECT_EQ(ok.status, 0) << ok.err;
+}
+
+TEST(Cli, CheckWritesNothing) {
+  TempDir t;
+  write_file(t.path("p.cls"), kSmall);
+  RunResult r = run_clpc("check " + t.path("p.cls"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(t.path("p.nc")));
+  RunResult bad = run_clpc("check -", "GOTO/1,2,3,4\n");
+  EXPECT_EQ(bad.status, 1);
+}
+
+TEST(Cli, EmitIr) {
+  RunResult r = run_clpc("compile - -t fanuc-mill --emit=ir", kSmall);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("program units mm\ntool T1 d 0 r 0\noperation 1 at 2:1\n  2:1\ttool-change T1\n"));
+}
+
+TEST(Cli, PrintAfterPass) {
+  RunResult r = run_clpc("compile - -t fanuc-mill -o - --print-after=arc-direction",
+                   "UNITS/MM\nLOAD/TOOL,1\nFEDRAT/100\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("; after arc-direction\n"));
+  EXPECT_THAT(r.err, HasSubstr("arc ccw to (0, 10, 0)"));
+}
+
+TEST(Cli, MissingInputFile) {
+  RunResult r = run_clpc("compile /nonexistent/x.cls -t fanuc-mill");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("cannot open '/nonexistent/x.cls'"));
+}
+
+TEST(Cli, UnknownMachine) {
+  RunResult r = run_clpc("compile - -t nosuch", kSmall);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("no machine named 'nosuch'"));
+}
+
+TEST(Cli, ExampleCompiles) {
+  RunResult r = run_clpc(std::string("compile ") + CLPC_SOURCE_DIR + "/examples/bracket.cls -t haas-umc750 -o -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("T2 M06"));
+}

@@ -1,0 +1,58 @@
+// Golden files: each tests/golden/NAME.{cls,ncl} names the machines it is compiled for on its
+// first line ("$$ golden: m1 m2 ..."); the whole output must equal NAME.MACHINE.nc.
+// CLPC_UPDATE_GOLDEN=1 rewrites the expected files (then review the diff before committing).
+#include <cstdlib>
+
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+
+namespace {
+
+struct Case {
+  std::string input, machine, expected;
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  std::string dir = std::string(CLPC_SOURCE_DIR) + "/tests/golden";
+  std::vector<std::string> inputs;
+  for (auto& e : std::filesystem::directory_iterator(dir)) {
+    auto ext = e.path().extension();
+    if (ext == ".cls" || ext == ".ncl") inputs.push_back(e.path().string());
+  }
+  std::sort(inputs.begin(), inputs.end());
+  for (const std::string& in : inputs) {
+    std::string first = read_file(in).substr(0, read_file(in).find('\n'));
+    const std::string tag = "$$ golden:";
+    if (first.rfind(tag, 0) != 0) continue;
+    std::istringstream names(first.substr(tag.size()));
+    std::string m;
+    std::string stem = in.substr(0, in.rfind('.'));
+    while (names >> m) out.push_back({in, m, stem + "." + m + ".nc"});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(Golden, EveryCaseMatches) {
+  auto all = cases();
+  ASSERT_GE(all.size(), 1u);
+  bool update = std::getenv("CLPC_UPDATE_GOLDEN") != nullptr;
+  for (const Case& c : all) {
+    SCOPED_TRACE(c.input + " for " + c.machine);
+    Machine m = machine(c.machine);
+    Compiled out = compile_path(c.input, m);
+    ASSERT_TRUE(out.ok) << out.diags;
+    // The source line names the file: make it independent of where the tree is.
+    std::string text = out.output;
+    if (update) {
+      write_file(c.expected, text);
+      continue;
+    }
+    ASSERT_TRUE(std::filesystem::exists(c.expected)) << "missing " << c.expected << " (CLPC_UPDATE_GOLDEN=1 makes it)";
+    EXPECT_EQ(text, read_file(c.expected));
+  }
+}

@@ -1,0 +1,243 @@
+// Front end: the lexical rules and record forms of docs/cl-input.md, and every error path
+// with its message, line and column.
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::ElementsAre;
+
+namespace {
+
+std::vector<std::string> recs(const std::string& text) {
+  Parsed p = parse_text(text);
+  EXPECT_EQ(first_error(p.diags), "") << text;
+  return p.records;
+}
+
+struct Ids : RecordSink {
+  std::vector<MajorId> ids;
+  void record(const Record& r) override { ids.push_back(r.id); }
+};
+
+}  // namespace
+
+TEST(Lexer, MajorWithParameters) { EXPECT_THAT(recs("GOTO/1,2,3\n"), ElementsAre("1:1 GOTO/1,2,3")); }
+
+TEST(Lexer, BareMajorsWithAndWithoutSlash) {
+  EXPECT_THAT(recs("RAPID\nRAPID/\nFINI \nEND-OF-PATH\n"),
+              ElementsAre("1:1 RAPID", "2:1 RAPID/", "3:1 FINI", "4:1 END-OF-PATH"));
+}
+
+TEST(Lexer, SpacesAnywhere) {
+  EXPECT_THAT(recs("  GOTO / 1.0 ,2.0,  3 \n\tFEDRAT /  250.0,   MMPM\n"),
+              ElementsAre("1:3 GOTO/1,2,3", "2:2 FEDRAT/250,MMPM"));
+}
+
+TEST(Lexer, NumberForms) {
+  EXPECT_THAT(recs("GOTO/12,12.,.5\nGOTO/-1.5E-3,+3,-55.\nGOTO/1e-400,-.25,0.0000\n"),
+              ElementsAre("1:1 GOTO/12,12,0.5", "2:1 GOTO/-0.0015,3,-55", "3:1 GOTO/0,-0.25,0"));
+}
+
+TEST(Lexer, ParameterLocations) {
+  Parsed p = parse_text("GOTO / 1, $\n   2.5, x\n");
+  ASSERT_EQ(p.records.size(), 1u);
+  // The word lands on line 2, column 9.
+  Ids ids;
+  SourceFile src;
+  std::string text = "GOTO / 1, $\n   2.5, x\n";
+  src.open_memory("t", text);
+  Diagnostics d(nullptr);
+  struct Locs : RecordSink {
+    std::vector<SourceLoc> locs;
+    void record(const Record& r) override {
+      for (auto& p : r.params) locs.push_back(p.loc);
+    }
+  } l;
+  parse_cl(src, d, l);
+  ASSERT_EQ(l.locs.size(), 3u);
+  EXPECT_EQ(l.locs[0], (SourceLoc{1, 8}));
+  EXPECT_EQ(l.locs[1], (SourceLoc{2, 4}));
+  EXPECT_EQ(l.locs[2], (SourceLoc{2, 9}));
+}
+
+TEST(Lexer, DollarContinuation) {
+  EXPECT_THAT(recs("CIRCLE / 0., 0., -1.5,  $\n0., 0., -1.,  1.5\nGOTO/1,$   \n 2,$\n3\n"),
+              ElementsAre("1:1 CIRCLE/0,0,-1.5,0,0,-1,1.5", "3:1 GOTO/1,2,3"));
+}
+
+TEST(Lexer, ContinuationFollowedByComment) {
+  EXPECT_THAT(recs("GOTO/1,2, $ $$ the rest follows\n3\n"), ElementsAre("1:1 GOTO/1,2,3"));
+}
+
+TEST(Lexer, CommentsWholeLineAndTrailing) {
+  EXPECT_THAT(recs("$$ centerline data\nLOADTL / 4,  OSETNO,  4 $$-> THREAD TOOL\n$$\n"),
+              ElementsAre("1:1 $$ centerline data", "2:1 LOADTL/4,OSETNO,4", "2:25 $$-> THREAD TOOL", "3:1 $$"));
+}
+
+TEST(Lexer, CreoDataComments) {
+  EXPECT_THAT(recs("$$-> FEATNO / 32\n$$-> CSYS / 1., 0., $\n   2., 3.\n$$-> END / \n$$-> SETSTART\n"),
+              ElementsAre("1:6 $$-> FEATNO/32", "2:6 $$-> CSYS/1,0,2,3", "4:6 $$-> END/", "5:6 $$-> SETSTART"));
+}
+
+TEST(Lexer, DataCommentThatIsNotARecordIsAComment) {
+  EXPECT_THAT(recs("$$-> 3D contour\n$$*  Pro/CLfile  Version 8.0\n"),
+              ElementsAre("1:1 $$-> 3D contour", "2:1 $$*  Pro/CLfile  Version 8.0"));
+}
+
+TEST(Lexer, NxToolPathAndEndOfPath) {
+  EXPECT_THAT(recs("TOOL PATH/ZLEVEL_FOLLOW_CORE,TOOL,MILL-20MM\nEND-OF-PATH\n"),
+              ElementsAre("1:1 TOOL PATH/ZLEVEL_FOLLOW_CORE,TOOL,MILL-20MM", "2:1 END-OF-PATH"));
+}
+
+TEST(Lexer, WordsMayHoldSpacesBetweenCommas) {
+  EXPECT_THAT(recs("TOOL PATH/CAVITY MILL,TOOL,EM 10\n"), ElementsAre("1:1 TOOL PATH/CAVITY MILL,TOOL,EM 10"));
+}
+
+TEST(Lexer, FreeTextAfterPartnoPprintInsertRemark) {
+  EXPECT_THAT(recs("PARTNO MFG0004\nPARTNO / HOUSING 2\nPPRINT/APTCL-SPEC,MAKINO-FF,1\nINSERT/G65 P9000 (X)\nREMARK any $ text\n"),
+              ElementsAre("1:1 PARTNO [MFG0004]", "2:1 PARTNO [HOUSING 2]", "3:1 PPRINT [APTCL-SPEC,MAKINO-FF,1]",
+                          "4:1 INSERT [G65 P9000 (X)]", "5:1 REMARK [any $ text]"));
+}
+
+TEST(Lexer, QuotedStrings) { EXPECT_THAT(recs("TOOL PATH/'OP 1',TOOL,\"T,2\"\n"), ElementsAre("1:1 TOOL PATH/'OP 1',TOOL,'T,2'")); }
+
+TEST(Lexer, CrLfLineEnds) {
+  EXPECT_THAT(recs("GOTO/1,2,3\r\n$$ note\r\nRAPID\r\n\r\nGOTO/1,$\r\n2,3\r\n"),
+              ElementsAre("1:1 GOTO/1,2,3", "2:1 $$ note", "3:1 RAPID", "5:1 GOTO/1,2,3"));
+}
+
+TEST(Lexer, BlankLinesAndNoFinalNewline) {
+  EXPECT_THAT(recs("\n\n   \nGOTO/1,2,3\n\nFINI"), ElementsAre("4:1 GOTO/1,2,3", "6:1 FINI"));
+}
+
+TEST(Lexer, MajorWordsAreCaseInsensitive) {
+  Ids ids;
+  SourceFile src;
+  std::string text = "goto/1,2,3\nLoadTl/1\ntool path/a\n";
+  src.open_memory("t", text);
+  Diagnostics d(nullptr);
+  parse_cl(src, d, ids);
+  EXPECT_THAT(ids.ids, ElementsAre(MajorId::Goto, MajorId::Loadtl, MajorId::ToolPath));
+}
+
+// Every major word in majors.def lexes to its own id (the lexer's keyword rules and the
+// list must not drift apart).
+TEST(Lexer, KeywordRulesMatchMajorsDef) {
+  std::vector<std::pair<MajorId, std::string>> all = {
+#define X(id, spelling) {MajorId::id, spelling},
+#include "grammar/majors.def"
+#undef X
+  };
+  for (auto& [id, spelling] : all) {
+    Ids ids;
+    SourceFile src;
+    std::string text = spelling + "/1\n";
+    src.open_memory("t", text);
+    Diagnostics d(nullptr);
+    parse_cl(src, d, ids);
+    ASSERT_EQ(ids.ids.size(), 1u) << spelling;
+    EXPECT_EQ(ids.ids[0], id) << spelling;
+  }
+}
+
+TEST(Lexer, UnknownMajorKeepsItsText) { EXPECT_THAT(recs("FOO BAR/1,X\n"), ElementsAre("1:1 FOO BAR/1,X")); }
+
+TEST(Lexer, LongLinesAreFine) {
+  std::string line = "GOTO/1";
+  for (int i = 0; i < 500; ++i) line += ",1";
+  Parsed p = parse_text(line + "\n");
+  EXPECT_EQ(first_error(p.diags), "");
+  EXPECT_EQ(p.records.size(), 1u);
+}
+
+// --- errors --------------------------------------------------------------------------------
+
+TEST(LexerErrors, RecordTruncatedInTheMiddle) {
+  Parsed p = parse_text("GOTO/1.0,2.0,\nRAPID\n");
+  EXPECT_EQ(first_error(p.diags), "1:14: record ends too early: expected number, word or quoted string");
+  EXPECT_THAT(p.records, ElementsAre("2:1 RAPID"));  // the parse goes on
+}
+
+TEST(LexerErrors, RecordTruncatedByEndOfFile) {
+  Parsed p = parse_text("GOTO/1.0,");
+  EXPECT_EQ(first_error(p.diags), "1:10: record ends too early: expected number, word or quoted string");
+}
+
+TEST(LexerErrors, BadNumber) {
+  Parsed p = parse_text("GOTO/1,2,3\nGOTO/1.2.3,4,5\n");
+  EXPECT_EQ(first_error(p.diags), "2:6: bad number '1.2.3'");
+  EXPECT_THAT(p.records, ElementsAre("1:1 GOTO/1,2,3"));
+}
+
+TEST(LexerErrors, OtherBadNumbers) {
+  EXPECT_EQ(first_error(parse_text("GOTO/--1,2,3\n").diags), "1:6: bad number '--1'");
+  EXPECT_EQ(first_error(parse_text("GOTO/1,2E,3\n").diags), "1:8: bad number '2E'");
+  EXPECT_EQ(first_error(parse_text("GOTO/1e999,2,3\n").diags), "1:6: number out of range: '1e999'");
+}
+
+TEST(LexerErrors, UnterminatedContinuation) {
+  Parsed p = parse_text("GOTO/1,2,$");
+  EXPECT_EQ(first_error(p.diags), "1:10: unterminated continuation: '$' at the end of the file");
+  Parsed q = parse_text("GOTO/1,2,  $   \n");
+  EXPECT_EQ(first_error(q.diags), "1:12: unterminated continuation: '$' at the end of the file");
+}
+
+TEST(LexerErrors, DollarInsideALine) {
+  EXPECT_EQ(first_error(parse_text("GOTO/1,$2,3\n").diags), "1:8: '$' continues a record only at the end of a line");
+}
+
+TEST(LexerErrors, UnexpectedCharacter) {
+  Parsed p = parse_text("GOTO/1,2;3\nRAPID\n");
+  EXPECT_EQ(first_error(p.diags), "1:9: unexpected ';' in a record");
+  EXPECT_THAT(p.records, ElementsAre("2:1 RAPID"));
+}
+
+TEST(LexerErrors, MissingComma) {
+  EXPECT_EQ(first_error(parse_text("LOADTL/4 5\n").diags), "1:10: unexpected number: expected end of line or comment");
+}
+
+TEST(LexerErrors, NoMajorWord) {
+  EXPECT_EQ(first_error(parse_text("1.0, 2.0\n").diags),
+            "1:1: expected a major word at the start of a record, found '1'");
+}
+
+TEST(LexerErrors, NulByte) {
+  std::string text = std::string("GOTO/1,2,3") + '\0' + "\n";
+  EXPECT_EQ(first_error(parse_text(text).diags), "1:11: unexpected NUL byte in a record");
+}
+
+TEST(LexerErrors, ErrorInsideDataCommentIsAWarning) {
+  Parsed p = parse_text("$$-> CSYS / 1, 2 x\nRAPID\n");
+  EXPECT_EQ(first_error(p.diags), "");
+  ASSERT_EQ(count(p.diags, Severity::Warning), 1u);
+  EXPECT_EQ(p.diags[0].message, "malformed '$$->' data comment ignored: unexpected word: expected end of line or comment");
+  EXPECT_THAT(p.records, ElementsAre("2:1 RAPID"));
+}
+
+TEST(LexerErrors, ContinuationCarriesRecoveryToTheRecordEnd) {
+  // The bad number is on the first line; the continuation line must not parse as a record.
+  Parsed p = parse_text("GOTO/1.2.3,$\n4,5\nRAPID\n");
+  EXPECT_EQ(count(p.diags, Severity::Error), 1u);
+  EXPECT_THAT(p.records, ElementsAre("3:1 RAPID"));
+}
+
+TEST(LexerErrors, TooManyErrorsStops) {
+  std::string text;
+  for (int i = 0; i < 200; ++i) text += "GOTO/1.2.3\n";
+  Parsed p = parse_text(text);
+  EXPECT_EQ(count(p.diags, Severity::Error), Diagnostics::kErrorLimit);
+}
+
+// A window refill in the middle of tokens: a file much larger than the 1 MiB read window.
+TEST(Lexer, RecordsAcrossReadWindowRefills) {
+  std::string text;
+  int n = 0;
+  while (text.size() < 3u * 1024 * 1024) {
+    text += "GOTO / " + std::to_string(n) + ".125, -2.5, $\n   3.75\n";
+    ++n;
+  }
+  Parsed p = parse_text(text);
+  EXPECT_EQ(first_error(p.diags), "");
+  ASSERT_EQ(p.records.size(), size_t(n));
+  EXPECT_EQ(p.records.back(), std::to_string(2 * n - 1) + ":1 GOTO/" + std::to_string(n - 1) + ".125,-2.5,3.75");
+}

@@ -1,0 +1,263 @@
+// Lowering: every record form of docs/cl-input.md becomes the right IR, and each lowering
+// error names the record, line and column.
+#include "helpers.h"
+#include "ir/printer.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+namespace {
+
+// The instruction lines of the lowered IR ("line:col<TAB>text" -> "text").
+std::vector<std::string> instrs(const std::string& cl, const std::vector<std::string>& passes = {}) {
+  Lowered l = lower_text(cl, passes);
+  EXPECT_EQ(first_error(l.diags), "") << cl;
+  std::vector<std::string> out;
+  for (const auto& op : l.ops)
+    for (const auto& in : op.body) {
+      std::ostringstream o;
+      ir::print_instr(o, op, in);
+      std::string s = o.str();
+      out.push_back(s.substr(s.find('\t') + 1, s.size() - s.find('\t') - 2));
+    }
+  return out;
+}
+
+std::string err(const std::string& cl) { return first_error(lower_text(cl).diags); }
+
+}  // namespace
+
+TEST(Lower, GotoThreeAndSixValuesToolAxisPersists) {
+  EXPECT_THAT(instrs("GOTO/1,2,3\nGOTO/4,5,6,0,0.6,0.8\nGOTO/7,8,9\n"),
+              ElementsAre("feed (1, 2, 3)", "feed (4, 5, 6) axis (0, 0.6, 0.8)", "feed (7, 8, 9) axis (0, 0.6, 0.8)"));
+}
+
+TEST(Lower, ToolAxisIsNormalised) {
+  EXPECT_THAT(instrs("GOTO/1,2,3,0,0,2\n"), ElementsAre("feed (1, 2, 3) axis (0, 0, 1)"));
+}
+
+TEST(Lower, RapidIsOneShot) {
+  EXPECT_THAT(instrs("RAPID\nGOTO/1,2,3\nGOTO/4,5,6\nRAPID/\nGOTO/0,0,0\n"),
+              ElementsAre("rapid (1, 2, 3)", "feed (4, 5, 6)", "rapid (0, 0, 0)"));
+}
+
+TEST(Lower, FromGohomeGodlta) {
+  EXPECT_THAT(instrs("FROM/0,0,100\nGOTO/1,1,1\nGODLTA/1,2,3\nGODLTA/-2\nGOHOME\nGOHOME/5,5,50\n"),
+              ElementsAre("from (0, 0, 100)", "feed (1, 1, 1)", "feed (2, 3, 4)", "feed (2, 3, 2)", "rapid (0, 0, 100)",
+                          "rapid (5, 5, 50)"));
+}
+
+TEST(Lower, CircleNxElevenValues) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0\nGOTO/0,10,0\n"),
+              ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint cw nx11"));
+}
+
+TEST(Lower, CircleCreoSevenValuesWithContinuation) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE / 0., 0., 0.,  $\n0., 0., -1.,  10.\nGOTO/0,10,0\n"),
+              ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, -1) r 10 hint ccw creo7"));
+}
+
+TEST(Lower, CircleSolidWorksSixValuesDerivesRadius) {
+  EXPECT_THAT(instrs("GOTO/3,4,0\nCIRCLE/0,0,0,0,0,1\nGOTO/-3,4,0\n"),
+              ElementsAre("feed (3, 4, 0)", "arc ? to (-3, 4, 0) center (0, 0, 0) axis (0, 0, 1) r 5 hint ? noradius6"));
+}
+
+TEST(Lower, CircleNxTimesIsExtraTurns) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0,TIMES,3\nGOTO/10,0,-3\n"),
+              ElementsAre("feed (10, 0, 0)", "arc ? to (10, 0, -3) center (0, 0, 0) axis (0, 0, 1) r 10 hint cw nx11 turns+2"));
+}
+
+TEST(Lower, CreoIntermediatePointsJoinTheArc) {
+  // Two points further along the same circle, the same way round: one arc.
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/-10,0,0\nGOTO/0,-10,0\nGOTO/0,-20,0\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (0, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (0, 10, 0) via (-10, 0, 0)",
+                          "feed (0, -20, 0)"));
+}
+
+TEST(Lower, RetractAfterArcIsNotAnIntermediatePoint) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/0,10,5\n"),
+              ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
+                          "feed (0, 10, 5)"));
+}
+
+TEST(Lower, NxArcTakesOnlyOnePoint) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0\nGOTO/0,10,0\nGOTO/-10,0,0\n"),
+              ::testing::Contains("feed (-10, 0, 0)"));
+}
+
+TEST(Lower, ToolRecords) {
+  EXPECT_THAT(instrs("LOAD/TOOL,3,ADJUST,13\nLOADTL/4\nLOADTL / 5,  OSETNO,  15\nTURRET/6\nSELECT/TOOL,7\n"),
+              ElementsAre("tool-change T3 H13", "tool-change T4", "tool-change T5 H15", "tool-change T6", "tool-preselect T7"));
+}
+
+TEST(Lower, ToolTableFromTldataCutterAndCreoCutter) {
+  Lowered l = lower_text(
+      "TOOL PATH/OP1,TOOL,EM10\nTLDATA/MILL,10,1,50,0,0\nLOAD/TOOL,3\nGOTO/0,0,0\nEND-OF-PATH\n"
+      "LOADTL/4\nCUTTER/6,0.5\nGOTO/0,0,0\n$$-> FEATNO / 9\nLOADTL / 5\n$$-> CUTTER / 2.5\nGOTO/0,0,0\n");
+  EXPECT_THAT(l.ir, HasSubstr("tool T3 \"EM10\" MILL d 10 r 1 l 50\ntool T4 d 6 r 0.5\ntool T5 d 2.5 r 0\n"));
+}
+
+TEST(Lower, NxToolByNameOnly) {
+  Lowered l = lower_text("LOAD/TOOL,1\nGOTO/0,0,0\nTOOL PATH/OP1,TOOL,BALL6\nTLDATA/MILL,6,3,40,0,0\nSPINDL/RPM,5000,CLW\nGOTO/1,1,1\n");
+  EXPECT_THAT(l.ir, HasSubstr("tool T2 \"BALL6\" MILL d 6 r 3 l 40 (numbered by clpc)"));
+  // The change comes at TOOL PATH, before the spindle starts.
+  EXPECT_THAT(l.ir, HasSubstr("operation 2 \"OP1\" at 3:1\n  3:1\ttool-change T2\n  5:1\tspindle 5000 rpm cw"));
+  ASSERT_EQ(count(l.diags, Severity::Warning), 1u);
+  EXPECT_EQ(l.diags[0].message, "operation 'OP1' names tool 'BALL6' but loads no tool number; using T2");
+}
+
+TEST(Lower, SpindleBothOrdersAndKinds) {
+  EXPECT_THAT(instrs("SPINDL/RPM,1000,CLW\nSPINDL/2000,RPM,CCLW\nSPINDL/SMM,200,CLW,MAXRPM,3000\nSPINDL/SFM,500\n"
+                     "SPINDL/OFF\nSPINDL/ON\nSPINDL/750\n"),
+              ElementsAre("spindle 1000 rpm cw", "spindle 2000 rpm ccw", "spindle 200 m/min cw max 3000",
+                          "spindle 152.4 m/min cw", "spindle off", "spindle 152.4 m/min cw", "spindle 750 rpm cw"));
+}
+
+TEST(Lower, FeedBothOrdersAndUnits) {
+  EXPECT_THAT(instrs("UNITS/MM\nFEDRAT/MMPM,250\nFEDRAT/10,IPM\nFEDRAT/0.2,MMPR\nFEDRAT/IPR,0.01\nFEDRAT/PERMIN,141\nFEDRAT/500\n"
+                     "FEDRAT/INVERS,12\n"),
+              ElementsAre("feed-rate 250 /min", "feed-rate 254 /min", "feed-rate 0.2 /rev", "feed-rate 0.254 /rev",
+                          "feed-rate 141 /min", "feed-rate 500 /min", "feed-rate 12 inverse-time"));
+}
+
+TEST(Lower, FeedConvertsToInchPrograms) {
+  EXPECT_THAT(instrs("UNITS/INCHES\nFEDRAT/254,MMPM\nFEDRAT/IPM,10\n"),
+              ElementsAre("feed-rate 10 /min", "feed-rate 10 /min"));
+}
+
+TEST(Lower, CoolantCutcomDelayStops) {
+  EXPECT_THAT(instrs("COOLNT/ON\nCOOLNT/FLOOD\nCOOLNT/MIST\nCOOLNT/THRU\nCOOLNT/OFF\nCUTCOM/LEFT,5\nCUTCOM/RIGHT\n"
+                     "CUTCOM/OFF\nDELAY/1.5\nOPSTOP\nSTOP\n"),
+              ElementsAre("coolant on", "coolant flood", "coolant mist", "coolant thru", "coolant off",
+                          "cutter-comp left D5", "cutter-comp right", "cutter-comp off", "dwell 1.5 s", "optional-stop",
+                          "stop"));
+}
+
+TEST(Lower, TextRecords) {
+  EXPECT_THAT(instrs("PARTNO BRACKET\nPPRINT hello world\nINSERT/M100\nAUXFUN/8\nREMARK nothing\n"),
+              ElementsAre("comment \"hello world\"", "insert \"M100\"", "insert \"M8\""));
+  EXPECT_THAT(lower_text("PARTNO BRACKET\nGOTO/0,0,0\n").ir, HasSubstr("program \"BRACKET\""));
+}
+
+TEST(Lower, Frames) {
+  EXPECT_THAT(instrs("MSYS/1,2,3,0,1,0,-1,0,0\n$$-> CSYS / 1,0,0,10, 0,1,0,20, 0,0,1,30\nCSYS/1,0,0,0,0,1,0,0,0,0,1,0\n"
+                     "CAMERA/0,0,-1,-7.874, 0,1,0,0, 1,0,0,0\n"),
+              ElementsAre("frame msys origin (1, 2, 3) x (0, 1, 0) y (-1, 0, 0) z (0, 0, 1)",
+                          "frame csys origin (10, 20, 30) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
+                          "frame csys origin (0, 0, 0) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
+                          "frame camera origin (-7.874, 0, 0) x (0, 0, 1) y (0, 1, 0) z (-1, 0, 0)"));
+}
+
+TEST(Lower, SetWorkOffsetAndMode) {
+  EXPECT_THAT(instrs("SET/MODE,ABSOL\nSET/OFSETL,55\n"), ElementsAre("work-offset 55"));
+}
+
+TEST(Lower, RotateAndSubroutines) {
+  EXPECT_THAT(instrs("DEFSUB/1\nGOTO/1,0,0\nGOTO/2,0,0\nENDSUB\nCALSUB/1\nROTATE/AAXIS,INCR,-36,CCLW\nCALSUB/1\n"),
+              ElementsAre("feed (1, 0, 0)", "feed (2, 0, 0)", "rotary-index A -36 incremental ccw", "feed (1, 0, 0)",
+                          "feed (2, 0, 0)"));
+}
+
+TEST(Lower, OperationsFromToolPathAndFeatno) {
+  Lowered l = lower_text(
+      "GOTO/0,0,0\nTOOL PATH/ROUGH,TOOL,T\nGOTO/1,0,0\nEND-OF-PATH\n$$-> FEATNO / 32\nGOTO/2,0,0\n$$-> END /\nFINI\n");
+  EXPECT_THAT(l.ir, HasSubstr("operation 1 at 1:1\n"));
+  EXPECT_THAT(l.ir, HasSubstr("operation 2 \"ROUGH\" at 2:1\n"));
+  EXPECT_THAT(l.ir, HasSubstr("operation 3 \"FEATNO 32\" at 5:6\n"));
+}
+
+TEST(Lower, DisplayRecordsDroppedSilently) {
+  Lowered l = lower_text("PAINT/COLOR,3\nPPWORD/X,1\nMULTAX/ON\nMACHIN/MILL,1\n$$-> MFGNO / X\nGOTO/0,0,0\n");
+  EXPECT_TRUE(l.diags.empty());
+  EXPECT_EQ(l.ops.at(0).body.size(), 1u);
+}
+
+TEST(Lower, UnknownRecordWarnsAndPassesThrough) {
+  Lowered l = lower_text("GOTO/0,0,0\nFOO/1,BAR\n");
+  ASSERT_EQ(l.diags.size(), 1u);
+  EXPECT_EQ(l.diags[0].severity, Severity::Warning);
+  EXPECT_EQ(l.diags[0].loc, (SourceLoc{2, 1}));
+  EXPECT_EQ(l.diags[0].message, "unknown record 'FOO' (passed through as a comment)");
+  EXPECT_THAT(l.ir, HasSubstr("passthrough \"FOO/1,BAR\""));
+}
+
+TEST(Lower, ChunksLongOperations) {
+  std::string cl = "TOOL PATH/LONG,TOOL,T\n";
+  for (int i = 0; i < 1000; ++i) cl += "GOTO/" + std::to_string(i) + ",0,0\n";
+  SourceFile src;
+  src.open_memory("t", cl);
+  Diagnostics d(nullptr);
+  ir::ProgramInfo info = prescan_program(src);
+  struct Count : OperationSink {
+    std::vector<std::pair<size_t, bool>> chunks;
+    void operation(ir::Operation& op) override { chunks.emplace_back(op.body.size(), op.continued); }
+  } c;
+  LowerOptions opt;
+  opt.chunk_size = 300;
+  Lowerer low(info, d, c, opt);
+  parse_cl(src, d, low);
+  low.finish();
+  // The auto tool change comes first in the first chunk.
+  EXPECT_THAT(c.chunks, ElementsAre(std::make_pair(300u, false), std::make_pair(300u, true), std::make_pair(300u, true),
+                                    std::make_pair(101u, true)));
+}
+
+// --- errors --------------------------------------------------------------------------------
+
+TEST(LowerErrors, GotoWithFourValues) {
+  EXPECT_EQ(err("GOTO/1,2,3\nGOTO/1,2,3,4\n"), "2:12: GOTO needs 3 or 6 values (x,y,z[,i,j,k]), found 4");
+}
+
+TEST(LowerErrors, GotoWithAWord) { EXPECT_EQ(err("GOTO/1,X,3\n"), "1:8: GOTO: expected a number, found 'X'"); }
+
+TEST(LowerErrors, ZeroToolAxis) { EXPECT_EQ(err("GOTO/1,2,3,0,0,0\n"), "1:12: GOTO: the tool axis (i,j,k) must not be zero"); }
+
+TEST(LowerErrors, CircleWrongCount) {
+  EXPECT_EQ(err("GOTO/1,0,0\nCIRCLE/0,0,0,0,0\nGOTO/0,1,0\n"), "2:16: CIRCLE needs 6, 7 or 11 values (xc,yc,zc,i,j,k[,r[,...]]), found 5");
+}
+
+TEST(LowerErrors, CircleWithoutEndPoint) {
+  EXPECT_EQ(err("GOTO/1,0,0\nCIRCLE/0,0,0,0,0,1,1\nFINI\n"), "2:1: CIRCLE is not followed by a GOTO giving its end point");
+}
+
+TEST(LowerErrors, CircleWithoutStart) {
+  EXPECT_EQ(err("CIRCLE/0,0,0,0,0,1,1\nGOTO/1,0,0\n"), "1:1: CIRCLE needs a start point: no motion comes before it");
+}
+
+TEST(LowerErrors, CircleEndOffTheCircle) {
+  EXPECT_EQ(err("GOTO/1,0,0\nCIRCLE/0,0,0,0,0,1,1\nGOTO/0,2,0\n"),
+            "2:1: CIRCLE: the arc's end point (GOTO at line 3) is 1 off its circle of radius 1");
+}
+
+TEST(LowerErrors, SpindleAndFeedWords) {
+  EXPECT_EQ(err("SPINDL/RPM,1000,SIDEWAYS\n"), "1:17: SPINDL: unknown word 'SIDEWAYS'");
+  EXPECT_EQ(err("FEDRAT/MMPM\n"), "1:12: FEDRAT: no feed value");
+  EXPECT_EQ(err("FEDRAT/-5,MMPM\n"), "1:1: FEDRAT: the feed must be greater than zero, found -5");
+}
+
+TEST(LowerErrors, ToolNumber) {
+  EXPECT_EQ(err("LOADTL/1.5\n"), "1:8: LOADTL: tool number must be a whole number from 0 to 99999, found 1.5");
+  EXPECT_EQ(err("LOAD/1\n"), "1:6: LOAD: expected TOOL,n");
+}
+
+TEST(LowerErrors, FrameValues) {
+  EXPECT_EQ(err("MSYS/0,0,0,1,0,0\n"), "1:6: MSYS needs 9 values (origin, X axis, Y axis), found 6");
+  EXPECT_EQ(err("CSYS/1,0,0,0, 0,2,0,0, 0,0,1,0\n"), "1:1: CSYS: not a valid frame: its axes are not unit length and perpendicular");
+}
+
+TEST(LowerErrors, Subroutines) {
+  EXPECT_EQ(err("CALSUB/3\n"), "1:8: CALSUB/3: no such subroutine (DEFSUB must come first)");
+  EXPECT_EQ(err("DEFSUB/1\nDEFSUB/2\nENDSUB\n"), "2:1: DEFSUB inside DEFSUB/1: subroutine definitions cannot nest");
+  EXPECT_EQ(err("DEFSUB/1\nGOTO/1,2,3\n"), "1:1: DEFSUB/1 has no ENDSUB");
+  EXPECT_EQ(err("DEFSUB/1\nCALSUB/1\nENDSUB\nCALSUB/1\n"), "2:1: CALSUB/1: subroutine calls nest deeper than 16 (recursion?)");
+}
+
+TEST(LowerErrors, UnitsChange) {
+  EXPECT_EQ(err("UNITS/MM\nGOTO/0,0,0\nUNITS/INCHES\n"),
+            "3:7: UNITS changes to inch but the program is in mm: clpc needs one unit per file");
+}
+
+TEST(LowerErrors, Nurbs) { EXPECT_EQ(err("NURBS/1\n"), "1:1: NURBS motion is not supported: have the CAM system write it as GOTO points"); }
