@@ -1,5 +1,8 @@
 #include "backends/lathe.h"
 
+#include "backends/arc_center.h"
+#include "ir/arc_geometry.h"
+
 #include <cmath>
 
 #include "backends/mill.h"
@@ -133,15 +136,13 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
   if (e_.last('Z', last)) s_out.z() = last;
   ir::Vec3 e_raw = a.end * k_, c_raw = a.center * k_;
   double ex = e_.as_written('X', e_raw.x()), ez = e_.as_written('Z', e_raw.z());
-  double cx = c_raw.x(), cz = c_raw.z();
-  double dx = ex - s_out.x(), dz = ez - s_out.z(), len = std::hypot(dx, dz);
-  if (len > 1e-12) {
-    double mx = (s_out.x() + ex) / 2, mz = (s_out.z() + ez) / 2;
-    double nx = -dz / len, nz = dx / len;
-    double t = (cx - mx) * nx + (cz - mz) * nz;
-    cx = mx + t * nx;
-    cz = mz + t * nz;
-  }
+  // In the (Z, X) plane, right-handed about +Y: u = Z, v = X. I is a radius value whatever
+  // X's scale, so the centre is chosen in radius units.
+  ir::Vec3 mid = arcgeo::point_at(a, 0.5) * k_;
+  bool ccw_math = (a.dir == ir::ArcDir::Ccw) == (a.axis.y() > 0);
+  ArcCenterInput ci{s_out.z(), s_out.x(), ez, ex, c_raw.z(), c_raw.x(), mid.z(), mid.x(), ccw_math, a.sweep >= 360 - 1e-9};
+  ArcCenterChoice ctr = choose_arc_center(ci, m_.format('K'), m_.format('I'), m_.arcs.center == ArcCenter::Incremental);
+  double cz = ctr.cu, cx = ctr.cv;
   e_.begin(loc);
   absolute_code();
   feed_mode_code();

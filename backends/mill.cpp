@@ -2,6 +2,9 @@
 // arcs in G17/G18/G19 for a machine whose spindle is along Z.
 #include "backends/mill.h"
 
+#include "backends/arc_center.h"
+#include "ir/arc_geometry.h"
+
 #include <cmath>
 
 #include "ir/params.h"
@@ -176,18 +179,13 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
   ir::Vec3 e_raw = a.end * k_, c_raw = a.center * k_;
   ir::Vec3 e_out = e_raw;
   for (int i = 0; i < 3; ++i) e_out[i] = e_.as_written(kAxisLetter[i], e_raw[i]);
-  // Centre on the perpendicular bisector of the rounded chord, nearest the true centre, so
-  // the start and end radii the control computes agree.
   double su = s_out[p.u], sv = s_out[p.v], eu = e_out[p.u], ev = e_out[p.v];
-  double cu = c_raw[p.u], cv = c_raw[p.v];
-  double du = eu - su, dv = ev - sv, len = std::hypot(du, dv);
-  if (len > 1e-12) {
-    double mu = (su + eu) / 2, mv = (sv + ev) / 2;
-    double nu = -dv / len, nv = du / len;
-    double t = (cu - mu) * nu + (cv - mv) * nv;
-    cu = mu + t * nu;
-    cv = mv + t * nv;
-  }
+  double len = std::hypot(eu - su, ev - sv);
+  ir::Vec3 mid = arcgeo::point_at(a, 0.5) * k_;
+  // (u, v) is right-handed about the plane normal in all three planes (X-Y, Z-X, Y-Z).
+  ArcCenterInput ci{su, sv, eu, ev, c_raw[p.u], c_raw[p.v], mid[p.u], mid[p.v], ccw, a.sweep >= 360 - 1e-9};
+  ArcCenterChoice ctr = choose_arc_center(ci, m_.format(p.cu), m_.format(p.cv), m_.arcs.center == ArcCenter::Incremental);
+  double cu = ctr.cu, cv = ctr.cv;
 
   e_.begin(loc);
   absolute_code();

@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "passes/arc_geometry.h"
+#include "ir/arc_geometry.h"
 #include "passes/passes.h"
 
 namespace clpc {

@@ -8,5 +8,7 @@
 namespace clpc {
 
 std::unique_ptr<Pass> make_arc_direction();
+std::unique_ptr<Pass> make_helix();
+std::unique_ptr<Pass> make_arc_legalise();
 
 }  // namespace clpc

@@ -10,6 +10,15 @@ const std::vector<PassInfo>& all_passes() {
        "a sweep; geometry (tangent moves, points on the arc) overrules the convention with a warning; an arc "
        "nothing decides is an error",
        make_arc_direction},
+      {"helix", "keep, split or linearise helical and multi-turn arcs as the machine allows",
+       "expects: decided arcs. guarantees: no extra turns; helical arcs within arcs.helix_max_sweep where "
+       "arcs.helical, none where not (linearised within arcs.tolerance)",
+       make_helix},
+      {"arc-legalise", "make every arc one the machine can do, or lines within tolerance",
+       "expects: decided arcs without extra turns. guarantees: arcs in the machine's planes, radii within "
+       "its limits, sweep within arcs.max_sweep, no full circle in R format, no arc too short to survive "
+       "rounding",
+       make_arc_legalise},
   };
   return passes;
 }

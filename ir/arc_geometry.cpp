@@ -1,4 +1,4 @@
-#include "passes/arc_geometry.h"
+#include "ir/arc_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,427 @@
+#include "backends/gcode_interp.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "backends/format.h"
+
+namespace clpc::gcode {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+
+struct Word {
+  char letter;
+  double value;     // converted: units (or degrees), radius for X on a diameter lathe
+  double raw;       // as written, number of the word
+  bool has_point;
+};
+
+enum class Motion { Rapid, Linear, Cw, Ccw, None };
+
+class Interp {
+ public:
+  Interp(const Machine& m, const Options& opt) : m_(m), opt_(opt) {
+    res_.units = m.units;
+    pos_ = Vec3(kNaN, kNaN, kNaN);
+    radius_tol_ = opt.arc_radius_tolerance > 0 ? opt.arc_radius_tolerance : std::abs(dequantize(1, m.format('X')));
+  }
+
+  Result run(std::string_view text) {
+    size_t at = 0;
+    int line = 0;
+    while (at <= text.size()) {
+      size_t nl = text.find('\n', at);
+      std::string_view l = text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at);
+      ++line;
+      block(l, line);
+      if (nl == std::string_view::npos) break;
+      at = nl + 1;
+    }
+    return std::move(res_);
+  }
+
+ private:
+  void problem(int line, std::string msg) { res_.problems.push_back({line, std::move(msg)}); }
+
+  // Converts a word's number as the control would: a value without a decimal point on an
+  // address whose format never writes one is in least-input increments.
+  double convert(char letter, std::string_view digits, bool has_point) {
+    double v = 0;
+    const char* b = digits.data();
+    const char* e = b + digits.size();
+    if (b < e && *b == '+') ++b;
+    std::from_chars(b, e, v);
+    const AddressFormat& f = m_.format(letter);
+    if (!has_point && f.point == AddressFormat::Point::Never && f.decimals > 0) v /= std::pow(10.0, f.decimals);
+    return v;
+  }
+
+  bool parse(std::string_view l, int line, std::vector<Word>& words) {
+    size_t i = 0;
+    while (i < l.size()) {
+      char c = l[i];
+      if (c == ' ' || c == '\t' || c == '\r') { ++i; continue; }
+      if (c == '(') {
+        size_t close = l.find(')', i);
+        if (close == std::string_view::npos) {
+          problem(line, "comment without ')'");
+          return false;
+        }
+        i = close + 1;
+        continue;
+      }
+      if (c == ';') break;  // end of block
+      if (c == '%' ) { ++i; continue; }
+      char letter = char(std::toupper(static_cast<unsigned char>(c)));
+      if (letter < 'A' || letter > 'Z') {
+        problem(line, std::string("unexpected character '") + c + "'");
+        return false;
+      }
+      ++i;
+      while (i < l.size() && l[i] == ' ') ++i;
+      size_t start = i;
+      if (i < l.size() && (l[i] == '+' || l[i] == '-')) ++i;
+      bool point = false;
+      while (i < l.size() && (std::isdigit(static_cast<unsigned char>(l[i])) || l[i] == '.')) {
+        point |= l[i] == '.';
+        ++i;
+      }
+      std::string_view num = l.substr(start, i - start);
+      if (num.empty() || num == "-" || num == "+") {
+        problem(line, std::string("address ") + letter + " without a number");
+        return false;
+      }
+      Word w;
+      w.letter = letter;
+      w.has_point = point;
+      std::from_chars(num.data() + (num[0] == '+'), num.data() + num.size(), w.raw);
+      w.value = convert(letter, num, point);
+      words.push_back(w);
+    }
+    return true;
+  }
+
+  static bool is_g(double v, double code) { return std::abs(v - code) < 1e-6; }
+
+  void block(std::string_view l, int line) {
+    std::vector<Word> words;
+    if (!parse(l, line, words) || words.empty()) return;
+    if (words[0].letter == 'O') return;  // program number
+    ++res_.blocks;
+
+    std::map<char, double> a;  // address -> value (last one)
+    std::map<char, bool> point;
+    std::vector<double> gs, ms;
+    for (const Word& w : words) {
+      if (w.letter == 'G') gs.push_back(w.raw);
+      else if (w.letter == 'M') ms.push_back(w.raw);
+      else if (w.letter != 'N') {
+        a[w.letter] = w.value;
+        point[w.letter] = w.has_point;
+      }
+    }
+    auto has = [&](char c) { return a.count(c) != 0; };
+
+    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false;
+    int new_offset = 0;
+    bool lathe = m_.is_lathe();
+    for (double g : gs) {
+      if (is_g(g, 0)) motion_ = Motion::Rapid;
+      else if (is_g(g, 1)) motion_ = Motion::Linear;
+      else if (is_g(g, 2)) motion_ = Motion::Cw;
+      else if (is_g(g, 3)) motion_ = Motion::Ccw;
+      else if (is_g(g, 4)) g04 = true;
+      else if (is_g(g, 10)) g10 = true;
+      else if (is_g(g, 17)) plane_ = 17;
+      else if (is_g(g, 18)) plane_ = 18;
+      else if (is_g(g, 19)) plane_ = 19;
+      else if (is_g(g, 20)) set_units(ir::Units::Inch, line);
+      else if (is_g(g, 21)) set_units(ir::Units::Mm, line);
+      else if (is_g(g, 28)) g28 = true;
+      else if (is_g(g, 40)) comp_ = 0;
+      else if (is_g(g, 41)) comp_ = 1;
+      else if (is_g(g, 42)) comp_ = 2;
+      else if (is_g(g, 43)) length_comp_ = true;
+      else if (is_g(g, 49)) length_comp_ = false;
+      else if (is_g(g, 50) && lathe) { /* spindle clamp (with S) */ }
+      else if (is_g(g, 53)) g53 = true;
+      else if (g >= 54 - 1e-6 && g <= 59 + 1e-6 && is_g(g, std::round(g))) new_offset = int(std::round(g)) - 53;
+      else if (is_g(g, 54.1) || is_g(g, 154)) new_offset = -1;  // P gives the register
+      else if (is_g(g, 65)) g65 = true;
+      else if (is_g(g, 80)) cycle_ = 0;
+      else if (is_g(g, 90)) absolute_ = true;
+      else if (is_g(g, 91)) absolute_ = false;
+      else if (is_g(g, 93)) { inverse_time_ = true; }
+      else if (is_g(g, 94) && !lathe) { inverse_time_ = false; per_rev_ = false; }
+      else if (is_g(g, 95) && !lathe) { inverse_time_ = false; per_rev_ = true; }
+      else if (is_g(g, 98) && lathe) per_rev_ = false;
+      else if (is_g(g, 99) && lathe) per_rev_ = true;
+      else if ((is_g(g, 98) || is_g(g, 99)) && !lathe) cycle_return_initial_ = is_g(g, 98);
+      else if (is_g(g, 96) && lathe) css_ = true;
+      else if (is_g(g, 97) && lathe) css_ = false;
+      else problem(line, "G" + fmt(g) + " is not a code clpc's reader knows");
+    }
+    if (new_offset > 0) work_offset_ = new_offset;
+    if (new_offset < 0) {
+      if (!has('P')) problem(line, "G54.1/G154 without P");
+      else work_offset_ = 6 + int(std::round(a['P']));
+    }
+
+    for (double mc : ms) {
+      int code = int(std::round(mc));
+      switch (code) {
+        case 0: case 1: res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
+        case 2: case 30: res_.ended = true; break;
+        case 3: case 4: spindle_on_ = true; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
+        case 5: spindle_on_ = false; res_.events.push_back({Event::Kind::Spindle, line, 0}); break;
+        case 6:
+          if (!has('T') && pending_tool_ <= 0) problem(line, "M06 without a tool");
+          tool_ = has('T') ? int(std::round(a['T'])) : pending_tool_;
+          ++res_.tool_changes;
+          length_comp_ = false;  // must be applied again for the new tool
+          spindle_on_ = false;
+          res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
+          break;
+        case 7: case 8: case 88: case 83: res_.events.push_back({Event::Kind::Coolant, line, double(code)}); break;
+        case 9: case 89: case 84: res_.events.push_back({Event::Kind::Coolant, line, 0}); break;
+        default: break;  // machine functions (clamps, ...) carry no motion
+      }
+    }
+    if (lathe && has('T') && !g04) {
+      // T0101: tool and offset, changed at once.
+      int t = int(std::round(a['T']));
+      tool_ = t / 100;
+      ++res_.tool_changes;
+      res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
+    } else if (!lathe && has('T') && std::find_if(ms.begin(), ms.end(), [](double v) { return std::round(v) == 6; }) == ms.end()) {
+      pending_tool_ = int(std::round(a['T']));
+    }
+    if (has('S')) spindle_ = a['S'];
+    if (has('F')) feed_ = a['F'];
+
+    if (g04) {
+      // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
+      // seconds.
+      double secs = has('P') ? (point['P'] ? a['P'] : a['P'] / 1000.0)
+                             : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
+      res_.events.push_back({Event::Kind::Dwell, line, secs});
+      return;
+    }
+    if (g10) {
+      offset_set(a, line);
+      return;
+    }
+    if (g65) {
+      problem(line, "G65 macro call: the reader knows no macro here");
+      return;
+    }
+
+    // Axis words -> target.
+    Vec3 target = pos_;
+    bool any_axis = false;
+    const double xs = m_.format('X').scale;
+    auto axis = [&](char letter, char inc, int i) {
+      if (has(letter)) {
+        double v = a[letter] / (letter == 'X' ? xs : 1.0);
+        target[i] = absolute_ || g53 ? v : (std::isnan(pos_[i]) ? kNaN : pos_[i] + v);
+        any_axis = true;
+      }
+      if (lathe && inc && has(inc)) {
+        double v = a[inc] / (inc == 'U' ? xs : 1.0);
+        target[i] = std::isnan(pos_[i]) ? kNaN : pos_[i] + v;
+        any_axis = true;
+      }
+    };
+    axis('X', 'U', 0);
+    axis('Y', 0, 1);
+    axis('Z', 'W', 2);
+    std::array<double, 3> rot_target = rotary_;
+    for (int i = 0; i < 3; ++i) {
+      char letter = char('A' + i);
+      if (has(letter)) {
+        rot_target[size_t(i)] = absolute_ ? a[letter] : rotary_[size_t(i)] + a[letter];
+        any_axis = true;
+      }
+    }
+
+    if (g53) {
+      // Machine coordinates: where that is in the work frame is unknown to the reader.
+      for (int i = 0; i < 3; ++i)
+        if (has("XYZ"[i])) pos_[i] = kNaN;
+      rotary_ = rot_target;
+      return;
+    }
+    if (g28) {
+      // Home through the intermediate point: the axes named end up at the reference point.
+      for (int i = 0; i < 3; ++i)
+        if (has("XYZ"[i]) || (lathe && has("UVW"[i]))) pos_[i] = kNaN;
+      return;
+    }
+    if (!any_axis) {
+      if ((has('I') || has('J') || has('K')) && (motion_ == Motion::Cw || motion_ == Motion::Ccw)) {
+        // A full circle: no end point, only the centre.
+        target = pos_;
+      } else {
+        return;
+      }
+    }
+    if (motion_ == Motion::None) {
+      problem(line, "axis words with no motion mode (G00/G01/G02/G03) in effect");
+      return;
+    }
+    move(target, rot_target, a, line);
+  }
+
+  void set_units(ir::Units u, int line) {
+    if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
+    res_.units = u;
+    res_.units_set = true;
+  }
+
+  void offset_set(std::map<char, double>& a, int line) {
+    if (!a.count('L') || !a.count('P')) {
+      problem(line, "G10 needs L and P");
+      return;
+    }
+    Event e{Event::Kind::OffsetSet, line};
+    int L = int(std::round(a['L'])), P = int(std::round(a['P']));
+    e.reg = L == 2 ? P : L == 20 ? 6 + P : 0;
+    if (e.reg == 0) {
+      problem(line, "G10 L" + std::to_string(L) + " is not a work-offset setting the reader knows");
+      return;
+    }
+    e.v = Vec3(a.count('X') ? a['X'] : 0, a.count('Y') ? a['Y'] : 0, a.count('Z') ? a['Z'] : 0);
+    res_.events.push_back(e);
+  }
+
+  void move(const Vec3& target, const std::array<double, 3>& rot, std::map<char, double>& a, int line) {
+    Segment s;
+    s.start = pos_;
+    s.end = target;
+    s.rotary_start = rotary_;
+    s.rotary = rot;
+    s.line = line;
+    s.tool = tool_;
+    s.work_offset = work_offset_;
+    s.inverse_time = inverse_time_;
+    bool moves_z = (a.count('Z') || a.count('W')) && !(std::abs(target.z() - pos_.z()) < 1e-12);
+    if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && moves_z && !m_.codes.length_offset.empty())
+      problem(line, "Z moves with no tool length compensation (G43) for the tool in the spindle");
+    if (motion_ == Motion::Rapid) {
+      s.kind = Segment::Kind::Rapid;
+    } else {
+      if (!(feed_ > 0)) problem(line, "cutting move with no feed rate (F)");
+      if (inverse_time_ && !a.count('F')) problem(line, "inverse time (G93) needs F in every cutting block");
+      s.feed = feed_;
+      if (motion_ == Motion::Linear) {
+        s.kind = Segment::Kind::Feed;
+      } else if (!arc(s, a, line)) {
+        pos_ = target;
+        rotary_ = rot;
+        return;
+      }
+    }
+    res_.segments.push_back(s);
+    pos_ = target;
+    rotary_ = rot;
+  }
+
+  bool arc(Segment& s, std::map<char, double>& a, int line) {
+    s.kind = Segment::Kind::Arc;
+    s.ccw = motion_ == Motion::Ccw;
+    int u, v;
+    char cu, cv;
+    if (plane_ == 17) { u = 0; v = 1; cu = 'I'; cv = 'J'; s.normal = Vec3::UnitZ(); }
+    else if (plane_ == 18) { u = 2; v = 0; cu = 'K'; cv = 'I'; s.normal = Vec3::UnitY(); }
+    else { u = 1; v = 2; cu = 'J'; cv = 'K'; s.normal = Vec3::UnitX(); }
+    if (std::isnan(s.start[u]) || std::isnan(s.start[v])) {
+      problem(line, "arc from an unknown position");
+      return false;
+    }
+    double su = s.start[u], sv = s.start[v], eu = s.end[u], ev = s.end[v];
+    double c_u, c_v;
+    if (a.count('R')) {
+      double r = a['R'];
+      double du = eu - su, dv = ev - sv, d = std::hypot(du, dv);
+      if (d < 1e-12 || std::abs(r) * 2 < d - radius_tol_) {
+        problem(line, "R arc with no centre (end point too far, or a full circle)");
+        return false;
+      }
+      double h = std::sqrt(std::max(0.0, r * r - d * d / 4));
+      // Centre left of the chord (seen from the normal) for a ccw arc under 180 degrees.
+      double side = (s.ccw ? 1 : -1) * (r > 0 ? 1 : -1);
+      c_u = (su + eu) / 2 - side * h * dv / d;
+      c_v = (sv + ev) / 2 + side * h * du / d;
+    } else {
+      bool abs_center = m_.arcs.center == ArcCenter::Absolute;
+      double iu = a.count(cu) ? a[cu] : 0, iv = a.count(cv) ? a[cv] : 0;
+      // I, J, K are never diameter values, even on a diameter lathe (the reader divided X only).
+      c_u = abs_center ? iu : su + iu;
+      c_v = abs_center ? iv : sv + iv;
+      if (!a.count(cu) && !a.count(cv)) {
+        problem(line, "arc with neither centre (I/J/K) nor radius (R)");
+        return false;
+      }
+    }
+    s.center = s.start;
+    s.center[u] = c_u;
+    s.center[v] = c_v;
+    s.start_radius = std::hypot(su - c_u, sv - c_v);
+    s.end_radius = std::hypot(eu - c_u, ev - c_v);
+    if (std::abs(s.start_radius - s.end_radius) > radius_tol_ * 1.0000001)
+      problem(line, "arc start and end radius differ by " + fmt(std::abs(s.start_radius - s.end_radius)) +
+                        " (the control alarms above " + fmt(radius_tol_) + ")");
+    double a0 = std::atan2(sv - c_v, su - c_u), a1 = std::atan2(ev - c_v, eu - c_u);
+    double ccw = a1 - a0;
+    while (ccw < 0) ccw += 2 * kPi;
+    while (ccw >= 2 * kPi) ccw -= 2 * kPi;
+    bool closed = std::abs(eu - su) < 1e-12 && std::abs(ev - sv) < 1e-12;
+    double sweep = closed ? 2 * kPi : (s.ccw ? ccw : 2 * kPi - ccw);
+    if (!closed && sweep == 0) sweep = 2 * kPi;
+    s.sweep = sweep * 180 / kPi;
+    return true;
+  }
+
+  static std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+  }
+
+  const Machine& m_;
+  const Options& opt_;
+  Result res_;
+  double radius_tol_;
+  Vec3 pos_;
+  std::array<double, 3> rotary_{0, 0, 0};
+  Motion motion_ = Motion::None;
+  int plane_ = 17;
+  bool absolute_ = true;
+  bool inverse_time_ = false;
+  bool per_rev_ = false;
+  bool css_ = false;
+  bool length_comp_ = false;
+  int comp_ = 0;
+  int cycle_ = 0;
+  bool cycle_return_initial_ = true;
+  int work_offset_ = 1;
+  int tool_ = 0;
+  int pending_tool_ = 0;
+  double feed_ = 0;
+  double spindle_ = 0;
+  bool spindle_on_ = false;
+};
+
+}  // namespace
+
+Result interpret(std::string_view program, const Machine& m, const Options& opt) {
+  Interp in(m, opt);
+  return in.run(program);
+}
+
+}  // namespace clpc::gcode

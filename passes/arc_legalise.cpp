@@ -1,0 +1,80 @@
+// arc-legalise: arcs the machine cannot do become arcs or lines it can. Arcs outside the
+// machine's planes (or in an arbitrary plane) and radii outside min/max are linearised within
+// tolerance; sweeps over the maximum are split; R-format machines never get a full circle;
+// an arc too short to survive rounding (its rounded ends would meet, which a control reads as
+// a full circle) becomes a straight move.
+//
+// Contract. Expects: decided arcs without extra turns (helix). Guarantees: every arc lies in
+// a plane the machine has, with a radius within its limits, sweep <= arcs.max_sweep (and
+// < 360 in R format), and a chord of at least two output increments unless it is a whole
+// circle.
+#include <cmath>
+
+#include "passes/arc_edit.h"
+#include "ir/arc_geometry.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+bool plane_ok(const ArcSettings& s, const ir::Vec3& axis) {
+  const double k = 1 - 1e-9;
+  if (std::abs(axis.z()) > k) return s.xy;
+  if (std::abs(axis.y()) > k) return s.zx;
+  if (std::abs(axis.x()) > k) return s.yz;
+  return false;
+}
+
+class ArcLegalise : public Pass {
+ public:
+  void run(ir::Operation& op, PassContext& ctx) override {
+    const ArcSettings& s = ctx.machine.arcs;
+    const double to_prog = ctx.from_output();
+    const double tol = ctx.tolerance();
+    const double res = ctx.resolution();
+    const bool r_format = s.center == ArcCenter::Radius;
+    arcedit::rewrite(op, [&](ir::Instr& in, std::vector<ir::Instr>& out) {
+      auto* a = std::get_if<ir::Arc>(&in.op);
+      if (!a || a->dir == ir::ArcDir::Unknown) return false;
+      double r = arcgeo::radial(*a, a->start).norm();
+      bool closed = a->sweep >= 360 - 1e-9;
+      double chord = (arcgeo::radial(*a, a->end) - arcgeo::radial(*a, a->start)).norm();
+      // Too short to write as an arc: a straight move (or nothing) is within tolerance.
+      if (!closed && chord < 2 * res && a->sweep < 180) {
+        ir::Move m;
+        m.point = a->end;
+        m.axis = a->tool_axis;
+        m.kind = ir::MoveKind::Feed;
+        out.push_back(ir::Instr{in.loc, m});
+        return true;
+      }
+      if (closed && r < res) {  // a circle smaller than the resolution: nothing to cut
+        if ((a->end - a->start).norm() > 0) {
+          ir::Move m;
+          m.point = a->end;
+          m.axis = a->tool_axis;
+          out.push_back(ir::Instr{in.loc, m});
+        }
+        return true;
+      }
+      bool radius_ok = (s.min_radius <= 0 || r >= s.min_radius * to_prog) && (s.max_radius <= 0 || r <= s.max_radius * to_prog);
+      if (!plane_ok(s, a->axis) || !radius_ok) {
+        arcedit::linearise(*a, tol, in.loc, out);
+        return true;
+      }
+      double limit = s.max_sweep;
+      if (r_format && closed) limit = std::min(limit, 180.0);
+      int n = int(std::ceil(a->sweep / limit - 1e-9));
+      if (n <= 1) return false;
+      arcedit::split(*a, n, in.loc, out);
+      return true;
+    });
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_arc_legalise() { return std::make_unique<ArcLegalise>(); }
+
+}  // namespace clpc

@@ -1,0 +1,114 @@
+// Arcs as emitted, read back with the G-code interpreter (not the IR): for every arc of every
+// corpus milling file and every mill machine, the start and end radii agree within one output
+// unit and the emitted arc's midpoint lies within the machine's tolerance (or one unit,
+// whichever is larger) of the CL arc.
+#include <cmath>
+
+#include "backends/format.h"
+#include "backends/gcode_interp.h"
+#include "helpers.h"
+#include "ir/arc_geometry.h"
+
+using namespace clpc;
+using namespace clpc::test;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Distance from p to a decided CL arc (within its angular range).
+double distance_to_arc(const ir::Arc& a, const ir::Vec3& p) {
+  ir::Vec3 rs = arcgeo::radial(a, a.start), rp = arcgeo::radial(a, p);
+  double phi = arcgeo::ccw_angle(rs, rp, a.axis) * 180 / kPi;
+  if (a.dir == ir::ArcDir::Cw) phi = phi == 0 ? 0 : 360 - phi;
+  double sweep = a.sweep;
+  double best = std::min((p - a.start).norm(), (p - a.end).norm());
+  // The angle may be reached on any of the turns of a multi-turn arc.
+  for (double turn = 0; turn * 360 <= sweep + 1e-9; ++turn) {
+    double t = (phi + 360 * turn) / sweep;
+    if (t < -1e-9 || t > 1 + 1e-9) continue;
+    best = std::min(best, (arcgeo::point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm());
+  }
+  return best;
+}
+
+ir::Vec3 emitted_midpoint(const gcode::Segment& s) {
+  int u = s.normal.z() != 0 ? 0 : s.normal.y() != 0 ? 2 : 1;
+  int v = s.normal.z() != 0 ? 1 : s.normal.y() != 0 ? 0 : 2;
+  int w = 3 - u - v;
+  double a0 = std::atan2(s.start[v] - s.center[v], s.start[u] - s.center[u]);
+  double half = s.sweep / 2 * kPi / 180 * (s.ccw ? 1 : -1);
+  ir::Vec3 m;
+  m[u] = s.center[u] + s.start_radius * std::cos(a0 + half);
+  m[v] = s.center[v] + s.start_radius * std::sin(a0 + half);
+  m[w] = (s.start[w] + s.end[w]) / 2;
+  return m;
+}
+
+struct ArcStats {
+  int cl_arcs = 0, emitted = 0;
+  double worst_radius = 0, worst_mid = 0;
+};
+
+void check_file(const std::string& file, const Machine& m, ArcStats& st) {
+  SCOPED_TRACE(file + " on " + m.name);
+  Compiled c = compile_path(file, m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  gcode::Result g = gcode::interpret(c.output, m);
+  for (const auto& p : g.problems) ADD_FAILURE() << "line " << p.line << ": " << p.message;
+
+  Lowered l = lower_text(read_file(file), {"arc-direction"}, &m);
+  std::vector<ir::Arc> arcs;
+  for (const auto& op : l.ops)
+    for (const auto& in : op.body)
+      if (auto* a = std::get_if<ir::Arc>(&in.op)) arcs.push_back(*a);
+  const double k = ir::mm_per_unit(l.info.units) / ir::mm_per_unit(m.units);
+  for (auto& a : arcs) {
+    a.start *= k;
+    a.end *= k;
+    a.center *= k;
+    a.radius *= k;
+  }
+  st.cl_arcs += int(arcs.size());
+  const double unit = std::abs(dequantize(1, m.format('X')));
+  const double tol = std::max(m.arcs.tolerance, unit) + 1e-9;
+  size_t next = 0;
+  for (const gcode::Segment& s : g.segments) {
+    if (s.kind != gcode::Segment::Kind::Arc) continue;
+    ++st.emitted;
+    double dr = std::abs(s.start_radius - s.end_radius);
+    st.worst_radius = std::max(st.worst_radius, dr);
+    EXPECT_LE(dr, unit * (1 + 1e-6)) << "G-code line " << s.line;
+    // The CL arc this piece belongs to: the next one (in order) holding both its ends.
+    ir::Vec3 mid = emitted_midpoint(s);
+    bool found = false;
+    for (size_t i = next; i < arcs.size() && !found; ++i) {
+      if (distance_to_arc(arcs[i], s.start) <= tol && distance_to_arc(arcs[i], s.end) <= tol) {
+        double d = distance_to_arc(arcs[i], mid);
+        st.worst_mid = std::max(st.worst_mid, d);
+        EXPECT_LE(d, tol) << "G-code line " << s.line << ": midpoint off the CL arc";
+        next = i;
+        found = true;
+      }
+    }
+    EXPECT_TRUE(found) << "G-code line " << s.line << ": arc matches no CL arc";
+  }
+}
+
+}  // namespace
+
+TEST(ArcOutput, CorpusArcsReadBackWithinTolerance) {
+  if (corpus_dir().empty()) GTEST_SKIP() << "no corpus at " << CLPC_CORPUS_DIR;
+  for (const char* name : {"haas-umc750", "fanuc-mill"}) {
+    Machine m = machine(name);
+    ArcStats st;
+    for (const std::string& f : corpus_files()) {
+      if (is_lathe_file(f) || is_five_axis_file(f)) continue;
+      if (f.find("bohren") != std::string::npos) continue;  // canned cycles: see the drilling tests
+      check_file(f, m, st);
+    }
+    std::printf("%s: %d CL arcs, %d arcs emitted; worst radius mismatch %.3g, worst midpoint %.3g (%s units)\n",
+                name, st.cl_arcs, st.emitted, st.worst_radius, st.worst_mid, m.units == ir::Units::Inch ? "inch" : "mm");
+    EXPECT_GT(st.emitted, 1000);
+  }
+}
