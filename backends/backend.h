@@ -38,6 +38,9 @@ class ProgramWriter : public Backend {
   virtual void write_feed_mode(ir::FeedMode mode);
   virtual void start_program() {}
   virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
+  virtual void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc);
+  // Ends a run of canned-cycle holes (G80) if one is active.
+  virtual void cancel_cycle(SourceLoc loc) {}
 
   void visit(const ir::Operation& op, const ir::Instr& in);
   void write_coolant(const ir::Coolant& c, SourceLoc loc);
@@ -74,6 +77,7 @@ class ProgramWriter : public Backend {
   bool feed_known_ = false;
   bool feed_written_ = false;
   ir::SpindleDir spindle_ = ir::SpindleDir::Off;
+  double spindle_rpm_ = 0;  // last programmed speed (rpm mode)
   ir::CoolantKind coolant_ = ir::CoolantKind::Off;
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;

@@ -127,14 +127,15 @@ class Interp {
     }
     auto has = [&](char c) { return a.count(c) != 0; };
 
-    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false;
+    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, new_cycle = false;
+    bool motion_word = false;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
-      if (is_g(g, 0)) motion_ = Motion::Rapid;
-      else if (is_g(g, 1)) motion_ = Motion::Linear;
-      else if (is_g(g, 2)) motion_ = Motion::Cw;
-      else if (is_g(g, 3)) motion_ = Motion::Ccw;
+      if (is_g(g, 0)) motion_ = Motion::Rapid, motion_word = true;
+      else if (is_g(g, 1)) motion_ = Motion::Linear, motion_word = true;
+      else if (is_g(g, 2)) motion_ = Motion::Cw, motion_word = true;
+      else if (is_g(g, 3)) motion_ = Motion::Ccw, motion_word = true;
       else if (is_g(g, 4)) g04 = true;
       else if (is_g(g, 10)) g10 = true;
       else if (is_g(g, 17)) plane_ = 17;
@@ -153,7 +154,11 @@ class Interp {
       else if (g >= 54 - 1e-6 && g <= 59 + 1e-6 && is_g(g, std::round(g))) new_offset = int(std::round(g)) - 53;
       else if (is_g(g, 54.1) || is_g(g, 154)) new_offset = -1;  // P gives the register
       else if (is_g(g, 65)) g65 = true;
-      else if (is_g(g, 80)) cycle_ = 0;
+      else if (is_g(g, 80)) cycle_ = 0, cycle_on_ = false;
+      else if (!lathe && (is_g(g, 73) || is_g(g, 74) || is_g(g, 76) || (g > 80.5 && g < 89.5 && is_g(g, std::round(g))))) {
+        cycle_ = int(std::round(g));
+        new_cycle = true;
+      }
       else if (is_g(g, 90)) absolute_ = true;
       else if (is_g(g, 91)) absolute_ = false;
       else if (is_g(g, 93)) { inverse_time_ = true; }
@@ -166,6 +171,7 @@ class Interp {
       else if (is_g(g, 97) && lathe) css_ = false;
       else problem(line, "G" + fmt(g) + " is not a code clpc's reader knows");
     }
+    if (motion_word && !new_cycle) cycle_ = 0, cycle_on_ = false;  // a motion code cancels a canned cycle
     if (new_offset > 0) work_offset_ = new_offset;
     if (new_offset < 0) {
       if (!has('P')) problem(line, "G54.1/G154 without P");
@@ -249,6 +255,10 @@ class Interp {
       }
     }
 
+    if (cycle_ != 0 && !g53 && !g28) {
+      hole(a, new_cycle, target, line);
+      return;
+    }
     if (g53) {
       // Machine coordinates: where that is in the work frame is unknown to the reader.
       for (int i = 0; i < 3; ++i)
@@ -275,6 +285,73 @@ class Interp {
       return;
     }
     move(target, rot_target, a, line);
+  }
+
+  // A canned-cycle block: (re)defines the cycle's words, and drills at X Y if given (or at the
+  // current position when the cycle is new).
+  void hole(std::map<char, double>& a, bool new_cycle, const Vec3& target, int line) {
+    if (new_cycle && !cycle_on_) {
+      initial_z_ = pos_.z();
+      cycle_on_ = true;
+    }
+    if (a.count('Z')) cyc_bottom_ = a['Z'];
+    if (a.count('R')) cyc_r_ = a['R'];
+    if (a.count('Q')) cyc_q_ = a['Q'];
+    if (a.count('P')) cyc_p_ = a['P'];
+    bool xy = a.count('X') || a.count('Y');
+    if (!xy && !new_cycle) return;
+    if (std::isnan(cyc_bottom_) || std::isnan(cyc_r_)) {
+      problem(line, "canned cycle without Z or R");
+      return;
+    }
+    if (!(feed_ > 0)) problem(line, "canned cycle with no feed rate (F)");
+    if (std::isnan(initial_z_)) initial_z_ = std::max(cyc_r_, pos_.z());
+    if (cyc_bottom_ > cyc_r_) problem(line, "canned cycle bottom (Z) above its R plane");
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, double(cycle_)});
+    auto seg = [&](Segment::Kind k, const Vec3& to) {
+      Segment s;
+      s.kind = k;
+      s.start = pos_;
+      s.end = to;
+      s.line = line;
+      s.tool = tool_;
+      s.work_offset = work_offset_;
+      s.rotary = s.rotary_start = rotary_;
+      s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
+      s.from_cycle = true;
+      res_.segments.push_back(s);
+      pos_ = to;
+    };
+    Vec3 over(target.x(), target.y(), pos_.z());
+    if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && !m_.codes.length_offset.empty())
+      problem(line, "canned cycle with no tool length compensation (G43) for the tool in the spindle");
+    seg(Segment::Kind::Rapid, over);
+    auto z = [&](double zz) { return Vec3(target.x(), target.y(), zz); };
+    seg(Segment::Kind::Rapid, z(cyc_r_));
+    double d = m_.cycles.peck_clearance;
+    if (cycle_ == 83 || cycle_ == 73) {
+      if (!(cyc_q_ > 0)) problem(line, "peck cycle without Q");
+      double depth = cyc_r_;
+      while (cyc_q_ > 0 && depth > cyc_bottom_ + 1e-9) {
+        double next = std::max(cyc_bottom_, depth - cyc_q_);
+        if (depth < cyc_r_ && cycle_ == 83) seg(Segment::Kind::Rapid, z(depth + d));
+        seg(Segment::Kind::Feed, z(next));
+        depth = next;
+        if (depth > cyc_bottom_ + 1e-9) seg(Segment::Kind::Rapid, z(cycle_ == 83 ? cyc_r_ : depth + d));
+      }
+    } else {
+      seg(Segment::Kind::Feed, z(cyc_bottom_));
+    }
+    if (cycle_ == 82 || cycle_ == 89) res_.events.push_back({Event::Kind::Dwell, line, cyc_p_});
+    double ret = cycle_return_initial_ ? std::max(initial_z_, cyc_r_) : cyc_r_;
+    bool feed_out = cycle_ == 84 || cycle_ == 74 || cycle_ == 85 || cycle_ == 89;
+    if (feed_out) {
+      seg(Segment::Kind::Feed, z(cyc_r_));
+      if (ret != cyc_r_) seg(Segment::Kind::Rapid, z(ret));
+    } else {
+      seg(Segment::Kind::Rapid, z(ret));
+    }
   }
 
   void set_units(ir::Units u, int line) {
@@ -408,7 +485,9 @@ class Interp {
   bool length_comp_ = false;
   int comp_ = 0;
   int cycle_ = 0;
+  bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
+  double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;
   int work_offset_ = 1;
   int tool_ = 0;
   int pending_tool_ = 0;

@@ -118,6 +118,18 @@ struct Codes {
   CodeTemplate comp_left, comp_right, comp_off;
   CodeTemplate work_offset, work_offset_extended;
   CodeTemplate safe_retract;
+  // Canned cycles; an empty code means the machine lacks the cycle (holes become moves).
+  CodeTemplate cycle_drill, cycle_dwell, cycle_peck, cycle_chip_break, cycle_tap, cycle_tap_left, cycle_bore,
+      cycle_bore_dwell, cycle_bore_stop, cycle_fine_bore, cycle_back_bore;
+  CodeTemplate cycle_cancel, cycle_return_initial, cycle_return_r;
+  CodeTemplate cycle_dwell_word;  // the dwell word in a cycle block, e.g. "P{milliseconds}"
+  CodeTemplate rigid_tap;         // a block before G84, e.g. "M29 S{speed}"
+};
+
+struct CycleSettings {
+  bool return_initial = true;  // G98 between holes (to the level the cycle started at); false: G99
+  bool tap_per_rev = false;    // tapping feed as F = pitch with G95 (true) or F = pitch x S (false)
+  double peck_clearance = 0;   // output units: re-entry clearance for pecking written as moves
 };
 
 struct Machine {
@@ -146,6 +158,7 @@ struct Machine {
   LatheSettings lathe;
   KinematicsSettings kinematics;
   OffsetSettings offsets;
+  CycleSettings cycles;
   Codes codes;
   double rapid_rate = 0;        // output units per minute; for cycle-time estimates (0 = unknown)
   double max_feed = 0;          // output units per minute; caps feeds (0 = none)

@@ -104,6 +104,11 @@ std::string explain_machine(const Machine& m) {
   o << "extended = " << m.offsets.extended_count << "\ndefault = " << m.offsets.default_index
     << "\ntable = " << quote(tables[int(m.offsets.table)]) << "\n";
 
+  o << "\n[" << m.name << ".cycles]\n";
+  o << "return = " << quote(m.cycles.return_initial ? "initial" : "r-plane") << "\ntap_feed = "
+    << quote(m.cycles.tap_per_rev ? "per-rev" : "per-minute") << "\npeck_clearance = " << num_text(m.cycles.peck_clearance)
+    << "\n";
+
   const Codes& k = m.codes;
   o << "\n[" << m.name << ".codes]\n";
   auto code = [&](const char* n, const CodeTemplate& t) { o << n << " = " << quote(t.text) << "\n"; };
@@ -146,6 +151,22 @@ std::string explain_machine(const Machine& m) {
   code("work_offset", k.work_offset);
   code("work_offset_extended", k.work_offset_extended);
   code("safe_retract", k.safe_retract);
+  code("cycle_drill", k.cycle_drill);
+  code("cycle_dwell", k.cycle_dwell);
+  code("cycle_peck", k.cycle_peck);
+  code("cycle_chip_break", k.cycle_chip_break);
+  code("cycle_tap", k.cycle_tap);
+  code("cycle_tap_left", k.cycle_tap_left);
+  code("cycle_bore", k.cycle_bore);
+  code("cycle_bore_dwell", k.cycle_bore_dwell);
+  code("cycle_bore_stop", k.cycle_bore_stop);
+  code("cycle_fine_bore", k.cycle_fine_bore);
+  code("cycle_back_bore", k.cycle_back_bore);
+  code("cycle_cancel", k.cycle_cancel);
+  code("cycle_return_initial", k.cycle_return_initial);
+  code("cycle_return_r", k.cycle_return_r);
+  code("cycle_dwell_word", k.cycle_dwell_word);
+  code("rigid_tap", k.rigid_tap);
   return o.str();
 }
 

@@ -314,6 +314,7 @@ void set_defaults(Machine& m) {
   k.comp_left = tpl("G41 D{register}");
   k.comp_right = tpl("G42 D{register}");
   k.comp_off = tpl("G40");
+  m.cycles.peck_clearance = inch ? 0.02 : 0.5;
   if (m.is_lathe()) {
     k.feed_per_minute = tpl("G98");
     k.feed_per_rev = tpl("G99");
@@ -335,6 +336,21 @@ void set_defaults(Machine& m) {
     k.work_offset = tpl("G{number}");
     k.work_offset_extended = tpl("G54.1 P{number}");
     k.safe_retract = tpl("G91 G28 Z0.");
+    k.cycle_drill = tpl("G81");
+    k.cycle_dwell = tpl("G82");
+    k.cycle_peck = tpl("G83");
+    k.cycle_chip_break = tpl("G73");
+    k.cycle_tap = tpl("G84");
+    k.cycle_tap_left = tpl("G74");
+    k.cycle_bore = tpl("G85");
+    k.cycle_bore_dwell = tpl("G89");
+    k.cycle_bore_stop = tpl("G86");
+    k.cycle_fine_bore = tpl("G76");
+    k.cycle_back_bore = tpl("G87");
+    k.cycle_cancel = tpl("G80");
+    k.cycle_return_initial = tpl("G98");
+    k.cycle_return_r = tpl("G99");
+    k.cycle_dwell_word = tpl("P{milliseconds}");
     m.safe_start = {tpl("G00 G17 G40 G49 G80 G90")};
     m.finish = {tpl("M05"), tpl("M09"), tpl("G91 G28 Z0."), tpl("G90"), tpl("M30")};
     m.pipeline = {"arc-direction", "helix", "arc-legalise"};
@@ -488,6 +504,14 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
     if (tb >= 0) o.table = OffsetTable(tb);
     s->finish();
   }
+  if (auto s = r.sub("cycles")) {
+    int ret = s->choice("return", {"initial", "r-plane"});
+    if (ret >= 0) m.cycles.return_initial = ret == 0;
+    int tf = s->choice("tap_feed", {"per-minute", "per-rev"});
+    if (tf >= 0) m.cycles.tap_per_rev = tf == 1;
+    s->number("peck_clearance", m.cycles.peck_clearance, 0, 1e6);
+    s->finish();
+  }
   if (auto s = r.sub("codes")) {
     Codes& k = m.codes;
     const uint32_t none = 0;
@@ -522,6 +546,15 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
         {"work_offset", &k.work_offset, bit(Var::Number)},
         {"work_offset_extended", &k.work_offset_extended, bit(Var::Number)},
         {"safe_retract", &k.safe_retract, none},
+        {"cycle_drill", &k.cycle_drill, none}, {"cycle_dwell", &k.cycle_dwell, none},
+        {"cycle_peck", &k.cycle_peck, none}, {"cycle_chip_break", &k.cycle_chip_break, none},
+        {"cycle_tap", &k.cycle_tap, none}, {"cycle_tap_left", &k.cycle_tap_left, none},
+        {"cycle_bore", &k.cycle_bore, none}, {"cycle_bore_dwell", &k.cycle_bore_dwell, none},
+        {"cycle_bore_stop", &k.cycle_bore_stop, none}, {"cycle_fine_bore", &k.cycle_fine_bore, none},
+        {"cycle_back_bore", &k.cycle_back_bore, none}, {"cycle_cancel", &k.cycle_cancel, none},
+        {"cycle_return_initial", &k.cycle_return_initial, none}, {"cycle_return_r", &k.cycle_return_r, none},
+        {"cycle_dwell_word", &k.cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
+        {"rigid_tap", &k.rigid_tap, bit(Var::Speed)},
     };
     for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
     s->finish();

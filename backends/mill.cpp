@@ -219,4 +219,107 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
   (void)op;
 }
 
+void MillBackend::cancel_cycle(SourceLoc loc) {
+  if (!cycle_active_) return;
+  e_.begin(loc);
+  e_.code(m_.codes.cycle_cancel);
+  e_.end();
+  cycle_active_ = false;
+  motion_ = Motion::None;  // write G00/G01 again after the cycle
+}
+
+void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc) {
+  const ir::CycleSpec& c = op.cycles.at(h.spec);
+  if (!check_axis(h.axis, loc)) return;
+  const Codes& k = m_.codes;
+  const CodeTemplate* code = nullptr;
+  switch (c.kind) {
+    case ir::CycleKind::Drill: code = &k.cycle_drill; break;
+    case ir::CycleKind::SpotDwell: code = &k.cycle_dwell; break;
+    case ir::CycleKind::Peck: code = &k.cycle_peck; break;
+    case ir::CycleKind::ChipBreak: code = &k.cycle_chip_break; break;
+    case ir::CycleKind::Tap: code = c.left_hand ? &k.cycle_tap_left : &k.cycle_tap; break;
+    case ir::CycleKind::Bore: code = &k.cycle_bore; break;
+    case ir::CycleKind::BoreDwell: code = &k.cycle_bore_dwell; break;
+    case ir::CycleKind::BoreStop: code = &k.cycle_bore_stop; break;
+    case ir::CycleKind::FineBore: code = &k.cycle_fine_bore; break;
+    case ir::CycleKind::BackBore: code = &k.cycle_back_bore; break;
+  }
+  const ir::Vec3 o = h.point * k_;
+  ActiveCycle want;
+  want.code = code;
+  want.top = o.z();
+  want.bottom = o.z() - c.depth * k_;
+  want.r = o.z() + c.clearance * k_;
+  want.peck = c.kind == ir::CycleKind::Peck || c.kind == ir::CycleKind::ChipBreak ? c.peck * k_ : 0;
+  want.dwell = c.kind == ir::CycleKind::SpotDwell || c.kind == ir::CycleKind::BoreDwell ? c.dwell : 0;
+  want.left_hand = c.left_hand;
+  bool tap = c.kind == ir::CycleKind::Tap;
+  ir::FeedMode mode = c.feed > 0 ? c.feed_mode : feed_mode_;
+  if (tap) {
+    mode = m_.cycles.tap_per_rev ? ir::FeedMode::PerRev : ir::FeedMode::PerMinute;
+    if (!m_.cycles.tap_per_rev && !(spindle_rpm_ > 0)) {
+      d_.error(loc, "tapping needs the spindle speed (SPINDL/RPM) to set the feed: F = pitch x S");
+      return;
+    }
+    want.feed = m_.cycles.tap_per_rev ? c.pitch * k_ : c.pitch * k_ * spindle_rpm_;
+  } else if (c.feed > 0) {
+    want.feed = c.feed * k_;
+  } else if (feed_known_) {
+    want.feed = feed_ * k_;
+  } else {
+    d_.error(loc, "drilling with no feed rate: no FEDRAT and none in the CYCLE record");
+    return;
+  }
+  double ret = m_.cycles.return_initial ? std::max(h.initial, c.clearance) : c.clearance;
+  bool same = cycle_active_ && cycle_.code == want.code && e_.as_written('Z', cycle_.bottom) == e_.as_written('Z', want.bottom) &&
+              e_.as_written('R', cycle_.r) == e_.as_written('R', want.r) && cycle_.peck == want.peck &&
+              cycle_.dwell == want.dwell && cycle_.feed == want.feed;
+  if (!same) {
+    if (cycle_active_) cancel_cycle(loc);
+    if (tap && !k.rigid_tap.empty()) {
+      e_.begin(loc);
+      e_.code(k.rigid_tap, TemplateVars().with(Var::Speed, spindle_rpm_));
+      e_.end();
+    }
+    e_.begin(loc);
+    absolute_code();
+    work_offset_code();
+    if (need_length_offset_) {
+      e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+      need_length_offset_ = false;
+    }
+    if (feed_mode_ != mode || !feed_mode_known_ || written_feed_mode_ != mode) {
+      feed_mode_ = mode;
+      feed_mode_code();
+    }
+    e_.code(m_.cycles.return_initial ? k.cycle_return_initial : k.cycle_return_r);
+    e_.code(*code);
+    e_.word('X', o.x());
+    e_.word('Y', o.y());
+    e_.word('Z', want.bottom);
+    e_.word('R', want.r);
+    if (want.peck > 0) e_.word('Q', want.peck);
+    if (want.dwell > 0)
+      e_.code(k.cycle_dwell_word, TemplateVars().with(Var::Seconds, want.dwell).with(Var::Milliseconds, want.dwell * 1000));
+    e_.word('F', want.feed);
+    e_.end();
+    cycle_ = want;
+    cycle_active_ = true;
+    feed_written_ = false;  // F in a cycle block holds the cycle's feed
+  } else {
+    bool xy = changed('X', o.x()) || changed('Y', o.y());
+    if (!xy) return;  // the same hole again
+    e_.begin(loc);
+    e_.modal_word('X', o.x());
+    e_.modal_word('Y', o.y());
+    e_.end();
+  }
+  e_.set_last('X', o.x());
+  e_.set_last('Y', o.y());
+  e_.set_last('Z', o.z() + ret * k_);
+  pos_ = h.point + h.axis * ret;
+  position_known_ = true;
+}
+
 }  // namespace clpc

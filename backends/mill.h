@@ -12,12 +12,23 @@ class MillBackend : public ProgramWriter {
   void write_move(const ir::Move& m, SourceLoc loc) override;
   void write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) override;
   void write_tool_change(const ir::ToolChange& t, SourceLoc loc) override;
+  void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc) override;
+  void cancel_cycle(SourceLoc loc) override;
 
   void work_offset_code();
   void motion_code(Motion mo);
   void comp_code();
   bool check_axis(const ir::Vec3& axis, SourceLoc loc);
   bool changed(char letter, double value) const;
+
+  // The canned cycle the control has active, as last written.
+  struct ActiveCycle {
+    const CodeTemplate* code = nullptr;
+    double bottom = 0, r = 0, peck = 0, dwell = 0, feed = 0, top = 0;
+    bool left_hand = false;
+  };
+  bool cycle_active_ = false;
+  ActiveCycle cycle_;
 };
 
 }  // namespace clpc

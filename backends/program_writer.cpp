@@ -61,6 +61,7 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
 }
 
 void ProgramWriter::end() {
+  cancel_cycle({});
   // The finish sequence, less a spindle or coolant stop the program has already made.
   for (const CodeTemplate& t : m_.finish) {
     if (spindle_ == ir::SpindleDir::Off && t.text == m_.codes.spindle_off.text) continue;
@@ -114,6 +115,18 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
   std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, ir::Hole>) {
+          write_hole(op, x, loc);
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::CycleOn> || std::is_same_v<T, ir::CycleOff>) {
+          cancel_cycle(loc);  // a new cycle starts with all its words; OFF ends the run
+          return;
+        }
+        // Anything else that moves or changes the machine ends a cycle run first.
+        if constexpr (!std::is_same_v<T, ir::Feed> && !std::is_same_v<T, ir::Comment> &&
+                      !std::is_same_v<T, ir::SetFrame> && !std::is_same_v<T, ir::SelectOffset>)
+          cancel_cycle(loc);
         if constexpr (std::is_same_v<T, ir::Move>) {
           write_move(x, loc);
         } else if constexpr (std::is_same_v<T, ir::Arc>) {
@@ -163,6 +176,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
       in.op);
 }
 
+void ProgramWriter::write_hole(const ir::Operation&, const ir::Hole&, SourceLoc loc) {
+  d_.error(loc, "internal: machine '" + m_.name + "' writes no canned cycles (is 'drill-cycles' in its pipeline?)");
+}
+
 void ProgramWriter::write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc) {
   d_.error(loc, std::string("ROTATE: machine '") + m_.name + "' has no " + r.axis + " axis to index");
 }
@@ -182,6 +199,7 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   e_.word('S', s.speed);
   e_.code(s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
   spindle_ = s.dir;
+  spindle_rpm_ = s.speed;
   e_.end();
 }
 

@@ -42,6 +42,7 @@ std::string describe(unsigned char c) {
   numlike = [+.0-9-] [A-Za-z0-9_.+-]*;
   pchar   = [A-Za-z0-9_.#@-];
   pword   = [A-Za-z_#@] pchar* ([ \t]+ pchar+)*;
+  dword   = [0-9]+ [A-Za-z] [A-Za-z_] pchar*;  // APT minor words such as 1STPECK
   cont    = "$" ws* ("$$" [^\n\x00]*)? nl;
   text    = [^\n\x00]*;
 */
@@ -391,6 +392,10 @@ Lexer::Symbol Lexer::lex_params() {
           return error_token(loc_of(tok_), "bad number '" + std::string(lexeme()) + "'");
         }
         return Parser::make_NUMBER(v, loc_of(tok_));
+      }
+      dword {
+        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        return Parser::make_WORD(keep(tok_, cur_), loc_of(tok_));
       }
       numlike {
         if (overflow_) return error_token(loc_of(tok_), "line too long");

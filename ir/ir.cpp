@@ -17,6 +17,22 @@ namespace ir {
 
 std::string_view units_name(Units u) { return u == Units::Inch ? "inch" : "mm"; }
 
+std::string_view cycle_kind_name(CycleKind k) {
+  switch (k) {
+    case CycleKind::Drill: return "drill";
+    case CycleKind::SpotDwell: return "spot-dwell";
+    case CycleKind::Peck: return "peck";
+    case CycleKind::ChipBreak: return "chip-break";
+    case CycleKind::Tap: return "tap";
+    case CycleKind::Bore: return "bore";
+    case CycleKind::BoreDwell: return "bore-dwell";
+    case CycleKind::BoreStop: return "bore-stop";
+    case CycleKind::FineBore: return "fine-bore";
+    case CycleKind::BackBore: return "back-bore";
+  }
+  return "?";
+}
+
 bool Frame::is_identity(double tol) const {
   return (rotation - Mat3::Identity()).cwiseAbs().maxCoeff() <= tol && origin.cwiseAbs().maxCoeff() <= tol;
 }
@@ -36,6 +52,7 @@ void Operation::clear() {
   body.clear();
   text.clear();
   points.clear();
+  cycles.clear();
   name.clear();
   continued = false;
   last_chunk = true;

@@ -163,8 +163,54 @@ struct RotaryIndex {
   ArcDir dir = ArcDir::Unknown;
 };
 
+// --- canned cycles ----------------------------------------------------------------------
+
+enum class CycleKind : uint8_t {
+  Drill,      // G81
+  SpotDwell,  // G82: dwell at the bottom (CSINK, FACE, DRILL with DWELL)
+  Peck,       // G83: full retract between pecks (DEEP)
+  ChipBreak,  // G73: short retract between pecks (BRKCHP)
+  Tap,        // G84 (G74 left hand)
+  Bore,       // G85: feed in, feed out (BORE, REAM)
+  BoreDwell,  // G89: G85 with a dwell
+  BoreStop,   // G86: spindle stops at the bottom, rapid out (BORE,DRAG)
+  FineBore,   // G76: oriented stop and shift (BORE,ORIENT)
+  BackBore,   // G87 (BORE,BACK)
+};
+std::string_view cycle_kind_name(CycleKind k);
+
+// A CYCLE record's parameters, as distances along the tool axis from each hole's point.
+struct CycleSpec {
+  CycleKind kind = CycleKind::Drill;
+  double depth = 0;       // bottom below the hole point
+  double clearance = 0;   // R plane above the hole point
+  double retract = -1;    // RTRCTO: return level above the hole point (-1: where the tool started)
+  double peck = 0;        // first peck (0: none)
+  double peck_next = 0;   // later pecks (DEEP2); 0: same as the first
+  double dwell = 0;       // seconds at the bottom
+  double pitch = 0;       // tapping: program units per revolution
+  double shift = 0;       // fine and back boring: tool shift
+  double feed = 0;        // 0: the current FEDRAT
+  FeedMode feed_mode = FeedMode::PerMinute;
+  bool left_hand = false; // tapping with the spindle counter-clockwise
+};
+
+struct CycleOn {
+  uint32_t spec = 0;  // index in Operation::cycles
+};
+struct CycleOff {};
+
+// One hole of a canned cycle (made by the drill-cycles pass from the GOTOs of a cycle).
+struct Hole {
+  Vec3 point;          // on the hole's top: the CL GOTO
+  Vec3 axis;           // tool axis (unit); the hole goes the other way
+  uint32_t spec = 0;   // index in Operation::cycles
+  double initial = 0;  // where the tool starts the cycle, above the point (for G98 returns)
+};
+
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
-                        Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex>;
+                        Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex,
+                        CycleOn, CycleOff, Hole>;
 
 struct Instr {
   SourceLoc loc;
@@ -182,6 +228,7 @@ struct Operation {
   std::vector<Instr> body;
   std::string text;          // pool for TextRef
   std::vector<Vec3> points;  // pool for Arc via points
+  std::vector<CycleSpec> cycles;  // pool for CycleOn and Hole
 
   TextRef add_text(std::string_view s);
   std::string_view str(TextRef r) const { return std::string_view(text).substr(r.offset, r.size); }

@@ -128,9 +128,7 @@ void Lowerer::record(const Record& r) {
     case MajorId::Nurbs: case MajorId::Knot: case MajorId::Cntrl:
       d_.error(r.loc, "NURBS motion is not supported: have the CAM system write it as GOTO points");
       return;
-    case MajorId::Cycle:
-      unknown(r, "canned cycles are not lowered yet", true);
-      return;
+    case MajorId::Cycle: lower_cycle(r); return;
     case MajorId::Mode: case MajorId::Head: case MajorId::Origin: case MajorId::Thread:
       unknown(r, "not supported by clpc's machines", true);
       return;
@@ -196,6 +194,7 @@ void Lowerer::flush_chunk() {
 }
 
 void Lowerer::close_operation() {
+  cycle_open_ = false;  // the drill-cycles pass cancels (with a warning) what is still on
   if (pending_arc_) {
     d_.error(pending_arc_->loc, "CIRCLE is not followed by a GOTO giving its end point");
     pending_arc_.reset();

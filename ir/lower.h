@@ -71,6 +71,10 @@ class Lowerer : public RecordSink {
   void lower_set(const Record& r);
   void lower_rotate(const Record& r);
 
+  // lower_cycle.cpp, lower_groove.cpp
+  void lower_cycle(const Record& r);
+  void lower_groove_cycle(const Record& r);
+
   // lower_subs.cpp
   bool record_subroutine(const Record& r);
   void lower_calsub(const Record& r);
@@ -101,6 +105,7 @@ class Lowerer : public RecordSink {
   std::optional<PendingArc> pending_arc_;
   bool arc_open_ = false;  // the last instruction is an arc that may take more points
 
+  bool cycle_open_ = false;  // a CYCLE without its CYCLE/OFF yet
   bool finished_ = false;  // FINI seen
   bool warned_after_fini_ = false;
 

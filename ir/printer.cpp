@@ -79,6 +79,24 @@ struct Printer {
     o << "frame " << names[int(f.source)] << " origin " << vec(f.frame.origin) << " x " << vec(f.frame.rotation.col(0))
       << " y " << vec(f.frame.rotation.col(1)) << " z " << vec(f.frame.rotation.col(2));
   }
+  void operator()(const CycleOn& c) {
+    const CycleSpec& s = op.cycles.at(c.spec);
+    o << "cycle-on " << cycle_kind_name(s.kind) << " depth " << num_text(s.depth) << " clear " << num_text(s.clearance);
+    if (s.retract >= 0) o << " retract " << num_text(s.retract);
+    if (s.peck > 0) o << " peck " << num_text(s.peck);
+    if (s.peck_next > 0) o << " then " << num_text(s.peck_next);
+    if (s.dwell > 0) o << " dwell " << num_text(s.dwell);
+    if (s.pitch > 0) o << " pitch " << num_text(s.pitch);
+    if (s.shift > 0) o << " shift " << num_text(s.shift);
+    if (s.feed > 0) o << " feed " << num_text(s.feed) << (s.feed_mode == FeedMode::PerRev ? " /rev" : " /min");
+    if (s.left_hand) o << " left-hand";
+  }
+  void operator()(const CycleOff&) { o << "cycle-off"; }
+  void operator()(const Hole& h) {
+    o << "hole " << cycle_kind_name(op.cycles.at(h.spec).kind) << " at " << vec(h.point);
+    if (h.axis != Vec3::UnitZ()) o << " axis " << vec(h.axis);
+    o << " initial " << num_text(h.initial);
+  }
   void operator()(const RotaryIndex& r) {
     o << "rotary-index " << r.axis << " " << num_text(r.angle) << (r.incremental ? " incremental" : " absolute");
     if (r.dir != ArcDir::Unknown) o << " " << dir_name(r.dir);

@@ -10,5 +10,6 @@ namespace clpc {
 std::unique_ptr<Pass> make_arc_direction();
 std::unique_ptr<Pass> make_helix();
 std::unique_ptr<Pass> make_arc_legalise();
+std::unique_ptr<Pass> make_drill_cycles();
 
 }  // namespace clpc

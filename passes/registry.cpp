@@ -19,6 +19,11 @@ const std::vector<PassInfo>& all_passes() {
        "its limits, sweep within arcs.max_sweep, no full circle in R format, no arc too short to survive "
        "rounding",
        make_arc_legalise},
+      {"drill-cycles", "turn the GOTOs of a CYCLE into canned-cycle holes, or moves where the machine lacks the cycle",
+       "expects: CYCLE records lowered to cycle-on / moves / cycle-off. guarantees: every move inside a cycle is a "
+       "hole or expanded into plain moves; every cycle ends (a warning and an implicit cancel at the end of an "
+       "operation without CYCLE/OFF)",
+       make_drill_cycles},
   };
   return passes;
 }

@@ -99,6 +99,11 @@ TEST(Lexer, FreeTextAfterPartnoPprintInsertRemark) {
                           "4:1 INSERT [G65 P9000 (X)]", "5:1 REMARK [any $ text]"));
 }
 
+TEST(Lexer, MinorWordsStartingWithDigits) {
+  EXPECT_THAT(recs("CYCLE/DEEP2,FEDTO,1.5,1STPECK,0.2,2NDPECK,0.1\n"),
+              ElementsAre("1:1 CYCLE/DEEP2,FEDTO,1.5,1STPECK,0.2,2NDPECK,0.1"));
+}
+
 TEST(Lexer, QuotedStrings) { EXPECT_THAT(recs("TOOL PATH/'OP 1',TOOL,\"T,2\"\n"), ElementsAre("1:1 TOOL PATH/'OP 1',TOOL,'T,2'")); }
 
 TEST(Lexer, CrLfLineEnds) {

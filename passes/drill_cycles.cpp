@@ -1,0 +1,128 @@
+// drill-cycles: the GOTOs between a CYCLE record and CYCLE/OFF are hole positions. Each becomes
+// a Hole (the machine's canned cycle), or, where the machine has no code for the cycle, the
+// plain moves the cycle would make.
+//
+// Contract. Expects: CycleOn / moves / CycleOff as lowered. Guarantees: every move inside a
+// cycle is a Hole (with the level the tool starts from) or expanded into moves; every cycle
+// ends with a CycleOff (a warning and an implicit cancel where the CL has none at the end of
+// an operation); no CycleOn remains for a cycle the machine lacks.
+#include <cmath>
+
+#include "passes/cycle_expand.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+bool machine_has(const Codes& k, const ir::CycleSpec& c) {
+  switch (c.kind) {
+    case ir::CycleKind::Drill: return !k.cycle_drill.empty();
+    case ir::CycleKind::SpotDwell: return !k.cycle_dwell.empty();
+    case ir::CycleKind::Peck: return !k.cycle_peck.empty() && (c.peck_next <= 0 || c.peck_next == c.peck);
+    case ir::CycleKind::ChipBreak: return !k.cycle_chip_break.empty() && (c.peck_next <= 0 || c.peck_next == c.peck);
+    case ir::CycleKind::Tap: return !(c.left_hand ? k.cycle_tap_left : k.cycle_tap).empty();
+    case ir::CycleKind::Bore: return !k.cycle_bore.empty();
+    case ir::CycleKind::BoreDwell: return !k.cycle_bore_dwell.empty();
+    case ir::CycleKind::BoreStop: return !k.cycle_bore_stop.empty();
+    case ir::CycleKind::FineBore: return !k.cycle_fine_bore.empty();
+    case ir::CycleKind::BackBore: return !k.cycle_back_bore.empty();
+  }
+  return false;
+}
+
+class DrillCycles : public Pass {
+ public:
+  void run(ir::Operation& op, PassContext& ctx) override {
+    std::vector<ir::Instr> out;
+    out.reserve(op.body.size());
+    int spec_in_op = -1;  // index of the active spec in this chunk's op.cycles
+    if (active_) {        // a cycle carried over from the previous chunk
+      op.cycles.push_back(*active_);
+      spec_in_op = int(op.cycles.size() - 1);
+    }
+    for (ir::Instr& in : op.body) {
+      if (auto* on = std::get_if<ir::CycleOn>(&in.op)) {
+        if (active_) close(out, in.loc, false, ctx);
+        active_ = op.cycles.at(on->spec);
+        spec_in_op = int(on->spec);
+        expand_ = !machine_has(ctx.machine.codes, *active_) || ctx.machine.is_lathe();
+        have_start_ = have_pos_;
+        start_ = pos_;
+        if (!expand_) out.push_back(std::move(in));
+        continue;
+      }
+      if (std::holds_alternative<ir::CycleOff>(in.op)) {
+        if (active_) close(out, in.loc, false, ctx);
+        continue;
+      }
+      if (auto* f = std::get_if<ir::Feed>(&in.op)) {
+        feed_ = *f;
+        have_feed_ = true;
+      }
+      if (auto* s = std::get_if<ir::Spindle>(&in.op)) spindle_ = *s;
+      auto* m = std::get_if<ir::Move>(&in.op);
+      if (!m || !active_ || m->kind == ir::MoveKind::From) {
+        if (m) {
+          pos_ = m->point;
+          have_pos_ = true;
+        } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+          if (active_) ctx.diags.error(in.loc, "an arc inside a drilling cycle (no CYCLE/OFF before it?)");
+          pos_ = a->end;
+          have_pos_ = true;
+        }
+        out.push_back(std::move(in));
+        continue;
+      }
+      ir::Hole h;
+      h.point = m->point;
+      h.axis = m->axis;
+      h.spec = uint32_t(spec_in_op);
+      // The level the tool starts from, above this hole: where it was when the cycle began.
+      double initial = have_start_ ? (start_ - h.point).dot(h.axis) : active_->clearance;
+      h.initial = active_->retract >= 0 ? active_->retract : std::max(initial, active_->clearance);
+      if (expand_) {
+        ExpandContext x{ctx.machine.cycles.peck_clearance * ctx.from_output(), feed_.value, feed_.mode, have_feed_,
+                        ctx.machine.cycles.return_initial, spindle_.speed, spindle_.dir};
+        expand_hole(h, *active_, x, in.loc, out, ctx.diags);
+      } else {
+        out.push_back({in.loc, h});
+      }
+      // Where the tool ends: over the hole, at the return level.
+      double ret = ctx.machine.cycles.return_initial ? std::max(h.initial, active_->clearance) : active_->clearance;
+      pos_ = h.point + h.axis * ret;
+      have_pos_ = true;
+      if (active_->retract < 0 && !ctx.machine.cycles.return_initial) {
+        // G99: later holes start from the R plane of this one.
+      }
+    }
+    if (active_ && op.last_chunk) {
+      ctx.diags.warning(op.body.empty() ? op.loc : op.body.back().loc,
+                        "CYCLE without CYCLE/OFF at the end of the operation: cancelled here", "cycle without off");
+      close(out, op.body.empty() ? op.loc : op.body.back().loc, true, ctx);
+    }
+    op.body.swap(out);
+  }
+
+ private:
+  void close(std::vector<ir::Instr>& out, SourceLoc loc, bool implicit, PassContext& ctx) {
+    if (!expand_) out.push_back({loc, ir::CycleOff{}});
+    active_.reset();
+    (void)implicit;
+    (void)ctx;
+  }
+
+  std::optional<ir::CycleSpec> active_;
+  bool expand_ = false;
+  ir::Vec3 pos_ = ir::Vec3::Zero(), start_ = ir::Vec3::Zero();
+  bool have_pos_ = false, have_start_ = false;
+  ir::Feed feed_;
+  bool have_feed_ = false;
+  ir::Spindle spindle_;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_drill_cycles() { return std::make_unique<DrillCycles>(); }
+
+}  // namespace clpc

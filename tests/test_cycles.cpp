@@ -1,0 +1,179 @@
+// Drilling, tapping and boring cycles: each kind, each dialect's parameter order, errors,
+// expansion where the machine lacks a cycle, and the holes read back from the G-code.
+#include "backends/gcode_interp.h"
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+const char* kHead = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,10,20\n";
+
+// The cycle blocks of compiling `cycle` + holes at (10,10,0) and (30,10,0) for fanuc-mill.
+std::string cycle_blocks(const std::string& cycle, const std::string& machine_name = "fanuc-mill",
+                         const std::string& extra = {}) {
+  Machine m = machine(machine_name, extra);
+  Compiled c = compile_text(std::string(kHead) + cycle + "\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n", m);
+  EXPECT_TRUE(c.ok) << c.diags;
+  // From the first block after the G43 positioning to G80.
+  size_t from = c.output.find("N70 ");
+  size_t to = from == std::string::npos ? from : c.output.find("G80", from);
+  if (from == std::string::npos || to == std::string::npos) return c.output;
+  return c.output.substr(from, to - from + 3);
+}
+
+}  // namespace
+
+TEST(Cycles, CreoDrill) {
+  EXPECT_EQ(cycle_blocks("CYCLE / DRILL, DEPTH, 5.0, MMPM, 80.0, CLEAR, 2.0"),
+            "N70 G94 G98 G81 X10. Y10. Z-5. R2. F80.\nN80 X30.\nN90 G80");
+}
+
+TEST(Cycles, NxDrillKeywordsInAnotherOrder) {
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,RAPTO,2.0,FEDTO,5.0,MMPM,80.0"),
+            "N70 G94 G98 G81 X10. Y10. Z-5. R2. F80.\nN80 X30.\nN90 G80");
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,MMPM,80,CLEAR,2,DEPTH,5"), cycle_blocks("CYCLE/DRILL,FEDTO,5,RAPTO,2,MMPM,80"));
+}
+
+TEST(Cycles, FeedFromFedratWhenTheCycleGivesNone) {
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEPTH,5,CLEAR,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN80 X30.\nN90 G80");
+}
+
+TEST(Cycles, InchFeedConvertedToAMetricProgram) {
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEPTH,5,IPM,10,CLEAR,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F254.\nN80 X30.\nN90 G80");
+}
+
+TEST(Cycles, SpotDwell) {
+  EXPECT_EQ(cycle_blocks("CYCLE/CSINK,DEPTH,1,DWELL,0.5,CLEAR,2"),
+            "N70 G94 G98 G82 X10. Y10. Z-1. R2. P500 F100.\nN80 X30.\nN90 G80");
+  EXPECT_THAT(cycle_blocks("CYCLE/DRILL,DEPTH,1,DWELL,0.5,CLEAR,2", "haas-umc750"), HasSubstr("G82 X0.3937 Y0.3937 Z-0.0394 R0.0787 P0.5 F3.94"));
+}
+
+TEST(Cycles, PeckAndChipBreak) {
+  EXPECT_EQ(cycle_blocks("CYCLE / DEEP, DEPTH, 12.0, STEP, 3.0, MMPM, 50.0, CLEAR, 1.0"),
+            "N70 G94 G98 G83 X10. Y10. Z-12. R1. Q3. F50.\nN80 X30.\nN90 G80");
+  EXPECT_EQ(cycle_blocks("CYCLE/BRKCHP,FEDTO,12,STEP,2,RAPTO,1"), "N70 G94 G98 G73 X10. Y10. Z-12. R1. Q2. F100.\nN80 X30.\nN90 G80");
+}
+
+TEST(Cycles, TapRigidWithPitchTimesSpeed) {
+  // M6 x 1: F = 1 mm x 1000 rpm.
+  EXPECT_EQ(cycle_blocks("CYCLE/TAP,DEPTH,10,PITCH,1.0,CLEAR,3"),
+            "N70 M29 S1000\nN80 G94 G98 G84 X10. Y10. Z-10. R3. F1000.\nN90 X30.\nN100 G80");
+  // 20 threads per inch in a metric program: pitch 1.27 mm.
+  EXPECT_THAT(cycle_blocks("CYCLE / TAP, DEPTH, 10, TPI, 20.0, CLEAR, 3"), HasSubstr("G84 X10. Y10. Z-10. R3. F1270."));
+}
+
+TEST(Cycles, LeftHandTapWithTheSpindleCounterClockwise) {
+  Machine m = machine("fanuc-mill");
+  Compiled c = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,500,CCLW\nRAPID\nGOTO/0,0,10\nCYCLE/TAP,DEPTH,8,PITCH,1.25,CLEAR,2\nGOTO/0,0,0\nCYCLE/OFF\n",
+      m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G98 G74 X0. Y0. Z-8. R2. F625."));
+}
+
+TEST(Cycles, BoringKinds) {
+  EXPECT_THAT(cycle_blocks("CYCLE/BORE,DEPTH,6,CLEAR,2"), HasSubstr("G98 G85 X10. Y10. Z-6. R2. F100."));
+  EXPECT_THAT(cycle_blocks("CYCLE/REAM,DEPTH,6,CLEAR,2"), HasSubstr("G98 G85 X10. Y10. Z-6. R2. F100."));
+  EXPECT_THAT(cycle_blocks("CYCLE/BORE,DEPTH,6,DWELL,1,CLEAR,2"), HasSubstr("G98 G89 X10. Y10. Z-6. R2. P1000 F100."));
+  EXPECT_THAT(cycle_blocks("CYCLE/BORE,DRAG,DEPTH,6,CLEAR,2"), HasSubstr("G98 G86 X10. Y10. Z-6. R2. F100."));
+}
+
+TEST(Cycles, ReturnToTheRPlaneWhenTheMachineSaysSo) {
+  std::string extra = "[g99-mill]\ninherits = \"fanuc-mill\"\n[g99-mill.cycles]\nreturn = \"r-plane\"\n";
+  EXPECT_THAT(cycle_blocks("CYCLE/DRILL,DEPTH,5,CLEAR,2", "g99-mill", extra), HasSubstr("G99 G81"));
+}
+
+TEST(Cycles, HolesAtDifferentHeightsRestateZAndR) {
+  Machine m = machine("fanuc-mill");
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nGOTO/30,10,-4\nCYCLE/OFF\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN80 G80\nN90 G98 G81 X30. Y10. Z-9. R-2. F100.\nN100 G80\n"));
+}
+
+TEST(Cycles, MachineWithoutTheCycleGetsMoves) {
+  std::string extra = "[no-peck]\ninherits = \"fanuc-mill\"\n[no-peck.codes]\ncycle_peck = \"\"\n[no-peck.cycles]\npeck_clearance = 0.5\n";
+  Machine m = machine("no-peck", extra);
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DEEP,DEPTH,7,STEP,3,CLEAR,1\nGOTO/10,10,0\nCYCLE/OFF\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N70 Z1.\nN80 G94 G01 Z-3. F100.\nN90 G00 Z1.\nN100 Z-2.5\nN110 G01 Z-6.\nN120 G00 Z1.\n"
+                                  "N130 Z-5.5\nN140 G01 Z-7.\nN150 G00 Z20.\n"));
+  EXPECT_EQ(c.output.find("G83"), std::string::npos);
+}
+
+TEST(Cycles, TappingCannotBeWrittenAsMoves) {
+  std::string extra = "[no-tap]\ninherits = \"fanuc-mill\"\n[no-tap.codes]\ncycle_tap = \"\"\n";
+  Machine m = machine("no-tap", extra);
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/TAP,DEPTH,7,PITCH,1,CLEAR,1\nGOTO/10,10,0\nCYCLE/OFF\n", m);
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":8:1: error: a tap cycle cannot be written as plain moves"));
+}
+
+TEST(Cycles, ParameterRecordsInTheIr) {
+  Lowered l = lower_text("UNITS/INCHES\nCYCLE/DEEP2,FEDTO,1.5,1STPECK,0.2,2NDPECK,0.1,IPM,12,RAPTO,0.1,RTRCTO,1\nGOTO/0,0,0\nCYCLE/OFF\n");
+  EXPECT_EQ(first_error(l.diags), "");
+  EXPECT_THAT(l.ir, HasSubstr("cycle-on peck depth 1.5 clear 0.1 retract 1 peck 0.2 then 0.1 feed 12 /min\n  3:1\tfeed (0, 0, 0)\n  4:1\tcycle-off"));
+  Lowered p = lower_text("UNITS/MM\nRAPID\nGOTO/0,0,20\nCYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/0,0,0\nGOTO/9,0,0\nCYCLE/OFF\n", {"drill-cycles"});
+  EXPECT_THAT(p.ir, HasSubstr("cycle-on drill depth 5 clear 2\n  5:1\thole drill at (0, 0, 0) initial 20\n  6:1\thole drill at (9, 0, 0) initial 20\n  7:1\tcycle-off"));
+}
+
+TEST(Cycles, VariablePecksBecomeMovesOnAFanuc) {
+  Machine m = machine("fanuc-mill");
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DEEP2,FEDTO,10,1STPECK,4,2NDPECK,2,RAPTO,1\nGOTO/10,10,0\nCYCLE/OFF\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-4."));
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-6."));
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-8."));
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-10."));
+}
+
+// --- errors --------------------------------------------------------------------------------
+
+TEST(CycleErrors, MissingDepth) {
+  EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,CLEAR,2,MMPM,80\n").diags), "1:1: CYCLE/DRILL: no depth (DEPTH or FEDTO)");
+}
+
+TEST(CycleErrors, NegativePeck) {
+  EXPECT_EQ(first_error(lower_text("CYCLE/DEEP,DEPTH,5,STEP,-1,CLEAR,2\n").diags),
+            "1:25: CYCLE: the peck must not be negative, found -1");
+}
+
+TEST(CycleErrors, PeckCycleWithoutPeck) {
+  EXPECT_EQ(first_error(lower_text("CYCLE/DEEP,DEPTH,5,CLEAR,2\n").diags),
+            "1:1: CYCLE/DEEP: a peck cycle needs a peck depth (STEP or 1STPECK) greater than zero");
+}
+
+TEST(CycleErrors, UnknownWordAndStrayNumber) {
+  EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,DEPTH,5,SIDEWAYS,2\n").diags), "1:21: CYCLE: unknown word 'SIDEWAYS'");
+  EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,5,CLEAR,2\n").diags), "1:13: CYCLE: the number 5 has no keyword before it");
+  EXPECT_EQ(first_error(lower_text("CYCLE/SPIRAL,DEPTH,5\n").diags),
+            "1:7: CYCLE: unknown cycle 'SPIRAL' (DRILL, DEEP, DEEP2, BRKCHP, TAP, BORE, REAM, CSINK, FACE or OFF)");
+}
+
+TEST(CycleErrors, CycleWithoutOffWarnsAndCancels) {
+  Machine m = machine("fanuc-mill");
+  std::string cl = std::string(kHead) + "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nEND-OF-PATH\nTOOL PATH/NEXT,TOOL,T2\nLOAD/TOOL,2\nGOTO/0,0,50\n";
+  Compiled d = compile_text(cl, m);
+  ASSERT_TRUE(d.ok) << d.diags;
+  EXPECT_THAT(d.diags, HasSubstr(":8:1: warning: CYCLE without CYCLE/OFF at the end of the operation: cancelled here"));
+  EXPECT_THAT(d.output, HasSubstr("G81 X10. Y10. Z-5. R2. F100.\nN80 G80\n"));
+}
+
+// --- read back -----------------------------------------------------------------------------
+
+TEST(Cycles, HoleBottomsReadBackFromTheGcode) {
+  Machine m = machine("fanuc-mill");
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DEEP,DEPTH,12,STEP,5,CLEAR,1\nGOTO/10,10,0\nGOTO/30,10,-2\nCYCLE/OFF\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  gcode::Result g = gcode::interpret(c.output, m);
+  EXPECT_TRUE(g.problems.empty());
+  EXPECT_EQ(g.cycles, 2);
+  std::vector<ir::Vec3> bottoms;
+  for (auto& s : g.segments)
+    if (s.from_cycle && s.kind == gcode::Segment::Kind::Feed && s.end.z() <= -11.999) bottoms.push_back(s.end);
+  ASSERT_EQ(bottoms.size(), 2u);
+  EXPECT_NEAR((bottoms[0] - ir::Vec3(10, 10, -12)).norm(), 0, 1e-9);
+  EXPECT_NEAR((bottoms[1] - ir::Vec3(30, 10, -14)).norm(), 0, 1e-9);
+}
