@@ -46,6 +46,20 @@ Vec3 tangent_at(const Arc& a, double t) {
   return n > 0 ? Vec3(tan / n) : Vec3::Zero();
 }
 
+double distance_to_arc(const Arc& a, const Vec3& p) {
+  Vec3 rs = radial(a, a.start), rp = radial(a, p);
+  double phi = ccw_angle(rs, rp, a.axis) * 180 / kPi;
+  if (a.dir == ir::ArcDir::Cw && phi > 0) phi = 360 - phi;
+  double best = std::min((p - a.start).norm(), (p - a.end).norm());
+  // The angle may be reached on any turn of a multi-turn arc.
+  for (double turn = 0; turn * 360 <= a.sweep + 1e-9; ++turn) {
+    double t = (phi + 360 * turn) / a.sweep;
+    if (t < -1e-9 || t > 1 + 1e-9) continue;
+    best = std::min(best, (point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm());
+  }
+  return best;
+}
+
 double sweep_for_chord_error(double r, double tol) {
   if (r <= tol) return 360;
   double half = std::acos(std::clamp(1 - tol / r, -1.0, 1.0));

@@ -27,6 +27,8 @@ inline double sense(ir::ArcDir d) { return d == ir::ArcDir::Cw ? -1.0 : 1.0; }
 Vec3 point_at(const Arc& a, double t);
 // Unit tangent of the decided arc at fraction t, projected into the arc's plane.
 Vec3 tangent_at(const Arc& a, double t);
+// Distance from p to a decided arc (helix), within its sweep.
+double distance_to_arc(const Arc& a, const Vec3& p);
 // The largest sweep (degrees) whose chord stays within `tol` of an arc of radius r.
 double sweep_for_chord_error(double r, double tol);
 

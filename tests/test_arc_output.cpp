@@ -16,21 +16,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Distance from p to a decided CL arc (within its angular range).
-double distance_to_arc(const ir::Arc& a, const ir::Vec3& p) {
-  ir::Vec3 rs = arcgeo::radial(a, a.start), rp = arcgeo::radial(a, p);
-  double phi = arcgeo::ccw_angle(rs, rp, a.axis) * 180 / kPi;
-  if (a.dir == ir::ArcDir::Cw) phi = phi == 0 ? 0 : 360 - phi;
-  double sweep = a.sweep;
-  double best = std::min((p - a.start).norm(), (p - a.end).norm());
-  // The angle may be reached on any of the turns of a multi-turn arc.
-  for (double turn = 0; turn * 360 <= sweep + 1e-9; ++turn) {
-    double t = (phi + 360 * turn) / sweep;
-    if (t < -1e-9 || t > 1 + 1e-9) continue;
-    best = std::min(best, (arcgeo::point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm());
-  }
-  return best;
-}
+using arcgeo::distance_to_arc;
 
 ir::Vec3 emitted_midpoint(const gcode::Segment& s) {
   int u = s.normal.z() != 0 ? 0 : s.normal.y() != 0 ? 2 : 1;
