@@ -61,24 +61,41 @@ std::string type_name(const toml::node& n) {
   }
 }
 
-// Reads one TOML table with validation; keys never read are reported by finish().
+// Reads one machine table with validation. A machine that inherits is a stack of tables,
+// parent first: a key is looked up from the top, so every value keeps its own file and line.
+// Keys never read are reported by finish(), in whichever file they are.
 class Reader {
  public:
-  Reader(Ctx& c, const toml::table& t, std::string path) : c_(c), t_(t), path_(std::move(path)) {}
+  using Layers = std::vector<const toml::table*>;
+  Reader(Ctx& c, Layers layers, std::string path) : c_(c), layers_(std::move(layers)), path_(std::move(path)) {}
 
   const std::string& path() const { return path_; }
-  const toml::table& table() const { return t_; }
-  bool has(std::string_view k) const { return t_.contains(k); }
+  bool has(std::string_view k) const { return find(k) != nullptr; }
+  const toml::node* find(std::string_view k) const {
+    for (auto it = layers_.rbegin(); it != layers_.rend(); ++it)
+      if (const toml::node* n = (*it)->get(k)) return n;
+    return nullptr;
+  }
+  // The top table (for "missing key" messages) and all keys of all layers.
+  const toml::table& top() const { return *layers_.back(); }
+  std::vector<std::pair<std::string, const toml::key*>> keys() const {
+    std::vector<std::pair<std::string, const toml::key*>> out;
+    std::set<std::string> seen;
+    for (const toml::table* t : layers_)
+      for (auto&& [key, n] : *t)
+        if (seen.insert(std::string(key.str())).second) out.emplace_back(std::string(key.str()), &key);
+    return out;
+  }
 
   const toml::node* node(std::string_view k) {
     used_.insert(std::string(k));
-    return t_.get(k);
+    return find(k);
   }
   void error(const toml::node& n, std::string_view key, const std::string& msg) {
     c_.error(n.source(), key_path(key) + ": " + msg);
   }
   void missing(std::string_view key, const std::string& what) {
-    c_.error(t_.source(), path_ + ": missing required key '" + std::string(key) + "' (" + what + ")");
+    c_.error(top().source(), path_ + ": missing required key '" + std::string(key) + "' (" + what + ")");
   }
   std::string key_path(std::string_view key) const { return path_.empty() ? std::string(key) : path_ + "." + std::string(key); }
 
@@ -179,26 +196,34 @@ class Reader {
     out = {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
     return true;
   }
+  // The sub-table `k`, merged over the layers (a layer that sets `k` to something else
+  // hides the tables below it).
   std::optional<Reader> sub(std::string_view k) {
-    const toml::node* n = node(k);
-    if (!n) return std::nullopt;
-    if (!n->is_table()) {
-      error(*n, k, "expected a table, found " + type_name(*n));
+    const toml::node* top = node(k);
+    if (!top) return std::nullopt;
+    if (!top->is_table()) {
+      error(*top, k, "expected a table, found " + type_name(*top));
       return std::nullopt;
     }
-    return Reader(c_, *n->as_table(), key_path(k));
+    Layers sub;
+    for (const toml::table* t : layers_) {
+      const toml::node* n = t->get(k);
+      if (!n) continue;
+      if (!n->is_table()) sub.clear();
+      else sub.push_back(n->as_table());
+    }
+    return Reader(c_, std::move(sub), key_path(k));
   }
   // Reports every key that was not read.
   void finish() {
-    for (auto&& [key, n] : t_) {
-      if (used_.count(std::string(key.str()))) continue;
-      c_.error(key.source(), "unknown key '" + std::string(key.str()) + "' in " + (path_.empty() ? "the machine" : path_));
-    }
+    for (const auto& [name, key] : keys())
+      if (!used_.count(name))
+        c_.error(key->source(), "unknown key '" + name + "' in " + (path_.empty() ? "the machine" : path_));
   }
 
  private:
   Ctx& c_;
-  const toml::table& t_;
+  Layers layers_;
   std::string path_;
   std::set<std::string> used_;
 };
@@ -367,7 +392,7 @@ void read_format(Reader r, AddressFormat& f) {
   r.boolean("leading_zero", f.leading_zero);
   r.boolean("trailing_zeros", f.trailing_zeros);
   r.integer("digits", f.digits, 0, 12);
-  if (const toml::node* n = r.table().get("scale"); n && n->is_number() && *n->value<double>() == 0)
+  if (const toml::node* n = r.find("scale"); n && n->is_number() && *n->value<double>() == 0)
     r.error(*n, "scale", "expected a non-zero number, found 0");
   else
     r.number("scale", f.scale, -1e6, 1e6);
@@ -375,12 +400,12 @@ void read_format(Reader r, AddressFormat& f) {
   r.finish();
 }
 
-Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, const std::vector<std::string>& known_passes,
+Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, const std::vector<std::string>& known_passes,
                       const std::string& source) {
   Machine m;
   m.name = name;
   m.source = source;
-  Reader r(c, t, name);
+  Reader r(c, std::move(layers), name);
   r.node("inherits");  // used while flattening
   int fam = r.choice("family", {"mill", "lathe"});
   if (!r.has("family")) r.missing("family", "\"mill\" or \"lathe\"");
@@ -389,14 +414,14 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
   if (u >= 0) m.units = ir::Units(u);
   set_defaults(m);
   r.string("description", m.description);
-  if (const toml::node* n = r.table().get("extension"); n && n->is_string() && (**n->as_string()).empty())
+  if (const toml::node* n = r.find("extension"); n && n->is_string() && (**n->as_string()).empty())
     r.error(*n, "extension", "expected a file extension such as \".nc\", found \"\"");
   else
     r.string("extension", m.extension);
   if (!m.extension.empty() && m.extension[0] != '.') m.extension = "." + m.extension;
   std::vector<std::string> pipeline;
   if (r.strings("pipeline", pipeline)) {
-    const toml::node* n = t.get("pipeline");
+    const toml::node* n = r.find("pipeline");
     for (size_t i = 0; i < pipeline.size(); ++i) {
       if (std::find(known_passes.begin(), known_passes.end(), pipeline[i]) == known_passes.end()) {
         std::string all;
@@ -427,8 +452,8 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
     s->integer("wrap_to", q.wrap_to, 0, 999999999);
     s->boolean("tool_change_only", q.tool_change_only);
     if (q.max < q.start) {
-      if (const toml::node* n = s->table().get("max")) s->error(*n, "max", "must not be less than start (" + std::to_string(q.start) + ")");
-      else if (const toml::node* n2 = s->table().get("start")) s->error(*n2, "start", "must not be more than max (" + std::to_string(q.max) + ")");
+      if (const toml::node* n = s->find("max")) s->error(*n, "max", "must not be less than start (" + std::to_string(q.start) + ")");
+      else if (const toml::node* n2 = s->find("start")) s->error(*n2, "start", "must not be more than max (" + std::to_string(q.max) + ")");
     }
     s->finish();
   }
@@ -448,10 +473,9 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
     s->finish();
   }
   if (auto s = r.sub("format")) {
-    for (auto&& [key, n] : s->table()) {
-      std::string k(key.str());
+    for (const auto& [k, key] : s->keys()) {
       if (k.size() != 1 || k[0] < 'A' || k[0] > 'Z') {
-        c.error(key.source(), s->key_path(k) + ": expected an address letter A-Z");
+        c.error(key->source(), s->key_path(k) + ": expected an address letter A-Z");
         s->node(k);
         continue;
       }
@@ -464,7 +488,7 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
     std::vector<std::string> planes;
     if (s->strings("planes", planes)) {
       a.xy = a.zx = a.yz = false;
-      const toml::node* n = s->table().get("planes");
+      const toml::node* n = s->find("planes");
       for (size_t i = 0; i < planes.size(); ++i) {
         if (planes[i] == "XY") a.xy = true;
         else if (planes[i] == "ZX") a.zx = true;
@@ -478,7 +502,7 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
     s->number("min_radius", a.min_radius, 0, 1e9);
     s->number("max_radius", a.max_radius, 0, 1e9);
     if (a.max_radius > 0 && a.max_radius < a.min_radius)
-      s->error(*s->table().get("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
+      s->error(*s->find("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
     int ctr = s->choice("center", {"incremental", "absolute", "radius"});
     if (ctr >= 0) a.center = ArcCenter(ctr);
     s->number("tolerance", a.tolerance, 0, 1e6, true);
@@ -563,17 +587,6 @@ Machine build_machine(Ctx& c, const std::string& name, const toml::table& t, con
   return m;
 }
 
-void merge_into(toml::table& base, const toml::table& over) {
-  for (auto&& [key, n] : over) {
-    toml::node* existing = base.get(key.str());
-    if (existing && existing->is_table() && n.is_table()) {
-      merge_into(*existing->as_table(), *n.as_table());
-      continue;
-    }
-    n.visit([&](auto&& v) { base.insert_or_assign(key, v); });
-  }
-}
-
 }  // namespace
 
 Machine default_machine(Family family, ir::Units units) {
@@ -640,7 +653,8 @@ bool MachineRegistry::load_file(const std::string& path, Diagnostics& d) {
   return load_text(path, ss.str(), d);
 }
 
-bool MachineRegistry::flatten(const std::string& name, toml::table& out, std::vector<std::string>& chain, Diagnostics& d) {
+bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
+                              Diagnostics& d) {
   auto it = machines_.find(name);
   if (it == machines_.end()) return false;
   Ctx c{d, &sources_};
@@ -662,9 +676,9 @@ bool MachineRegistry::flatten(const std::string& name, toml::table& out, std::ve
       c.error(inh->source(), name + ".inherits: no machine named '" + parent + "'");
       return false;
     }
-    if (!flatten(parent, out, chain, d)) return false;
+    if (!flatten(parent, layers, chain, d)) return false;
   }
-  merge_into(out, t);
+  layers.push_back(&t);
   return true;
 }
 
@@ -697,11 +711,11 @@ std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path,
     d.report_in(Severity::Error, "clpc", {}, "no machine named '" + name + "' (known: " + all + "; see 'clpc machines')");
     return std::nullopt;
   }
-  toml::table flat;
+  std::vector<const toml::table*> layers;
   std::vector<std::string> chain;
-  if (!flatten(name, flat, chain, d)) return std::nullopt;
+  if (!flatten(name, layers, chain, d)) return std::nullopt;
   Ctx c{d, &sources_};
-  Machine m = build_machine(c, name, flat, known_passes_, it->second.source->path);
+  Machine m = build_machine(c, name, std::move(layers), known_passes_, it->second.source->path);
   if (!c.ok) return std::nullopt;
   return m;
 }

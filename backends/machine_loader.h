@@ -47,7 +47,8 @@ class MachineRegistry {
     const toml::table* table;
   };
   bool add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names);
-  bool flatten(const std::string& name, toml::table& out, std::vector<std::string>& chain, Diagnostics& d);
+  bool flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
+               Diagnostics& d);
 
   std::vector<std::string> known_passes_;
   std::vector<std::unique_ptr<Source>> sources_;

@@ -1,6 +1,7 @@
 #include "ir/ir.h"
 
 #include <charconv>
+#include <cmath>
 
 #include "ir/params.h"
 
@@ -8,6 +9,7 @@ namespace clpc {
 
 std::string num_text(double v) {
   if (v == 0) return "0";  // also folds -0
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(int64_t(v));
   char buf[32];
   auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, ec == std::errc() ? end : buf);
