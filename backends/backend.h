@@ -39,6 +39,7 @@ class ProgramWriter : public Backend {
   virtual void start_program() {}
   virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
   virtual void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc);
+  virtual void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc);
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "backends/format.h"
+#include "ir/groove_model.h"
 
 namespace clpc::gcode {
 
@@ -27,8 +28,12 @@ class Interp {
  public:
   Interp(const Machine& m, const Options& opt) : m_(m), opt_(opt) {
     res_.units = m.units;
-    pos_ = Vec3(kNaN, kNaN, kNaN);
-    radius_tol_ = opt.arc_radius_tolerance > 0 ? opt.arc_radius_tolerance : std::abs(dequantize(1, m.format('X')));
+    pos_ = Vec3(kNaN, m.is_lathe() ? 0.0 : kNaN, kNaN);  // a lathe has no Y
+    // One increment of the coarser of the end point and centre words (on a diameter lathe X
+    // is finer in radius terms than I and K).
+    double inc = std::max({std::abs(dequantize(1, m.format('X'))), std::abs(dequantize(1, m.format('I'))),
+                           std::abs(dequantize(1, m.format('K')))});
+    radius_tol_ = opt.arc_radius_tolerance > 0 ? opt.arc_radius_tolerance : inc;
   }
 
   Result run(std::string_view text) {
@@ -155,6 +160,7 @@ class Interp {
       else if (is_g(g, 54.1) || is_g(g, 154)) new_offset = -1;  // P gives the register
       else if (is_g(g, 65)) g65 = true;
       else if (is_g(g, 80)) cycle_ = 0, cycle_on_ = false;
+      else if (lathe && (is_g(g, 74) || is_g(g, 75))) groove_ = int(std::round(g));
       else if (!lathe && (is_g(g, 73) || is_g(g, 74) || is_g(g, 76) || (g > 80.5 && g < 89.5 && is_g(g, std::round(g))))) {
         cycle_ = int(std::round(g));
         new_cycle = true;
@@ -255,6 +261,11 @@ class Interp {
       }
     }
 
+    if (groove_ != 0) {
+      lathe_groove(a, target, line);
+      groove_ = 0;
+      return;
+    }
     if (cycle_ != 0 && !g53 && !g28) {
       hole(a, new_cycle, target, line);
       return;
@@ -351,6 +362,43 @@ class Interp {
       if (ret != cyc_r_) seg(Segment::Kind::Rapid, z(ret));
     } else {
       seg(Segment::Kind::Rapid, z(ret));
+    }
+  }
+
+  // G74/G75, two blocks: "G75 R(e)" sets the pull-out; "G75 X Z P Q [R] F" runs the cycle
+  // from where the tool is, as groove::expand models a Fanuc doing it.
+  void lathe_groove(std::map<char, double>& a, const Vec3& target, int line) {
+    bool second = a.count('X') || a.count('Z') || a.count('U') || a.count('W');
+    if (!second) {
+      groove_retract_ = a.count('R') ? a['R'] : 0;
+      return;
+    }
+    if (std::isnan(pos_.x()) || std::isnan(pos_.z())) {
+      problem(line, "G" + std::to_string(groove_) + " from an unknown position");
+      return;
+    }
+    if (!(feed_ > 0)) problem(line, "groove cycle with no feed rate (F)");
+    groove::Params p;
+    p.face = groove_ == 74;
+    p.retract = groove_retract_;
+    p.x_amount = a.count('P') ? a['P'] : 0;
+    p.z_amount = a.count('Q') ? a['Q'] : 0;
+    p.relief = a.count('R') ? a['R'] : 0;
+    Vec3 start = pos_;
+    Vec3 end(std::isnan(target.x()) ? start.x() : target.x(), 0, std::isnan(target.z()) ? start.z() : target.z());
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, double(groove_)});
+    for (const groove::Step& st : groove::expand(start, end, p)) {
+      Segment s;
+      s.kind = st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid;
+      s.start = pos_;
+      s.end = st.to;
+      s.line = line;
+      s.tool = tool_;
+      s.feed = st.cut ? feed_ : 0;
+      s.from_cycle = true;
+      res_.segments.push_back(s);
+      pos_ = st.to;
     }
   }
 
@@ -485,6 +533,8 @@ class Interp {
   bool length_comp_ = false;
   int comp_ = 0;
   int cycle_ = 0;
+  int groove_ = 0;
+  double groove_retract_ = 0;
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
   double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;

@@ -65,7 +65,7 @@ struct Result {
 
 struct Options {
   // Start and end radius may differ by this much (output units) before the control alarms;
-  // 0 = one increment of the X address.
+  // 0 = one increment of the coarsest of X, I and K.
   double arc_radius_tolerance = 0;
 };
 

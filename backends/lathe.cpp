@@ -162,4 +162,48 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
   (void)op;
 }
 
+// Fanuc's two-block G74/G75: "G75 R(e);" then "G75 X Z P Q [R] F;". P and Q go out in least
+// input increments (their formats have no point); P is always the X amount and Q the Z
+// amount, as radius values, whichever of them is the peck.
+void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc) {
+  const ir::GrooveSpec& s = op.grooves.at(g.spec);
+  const CodeTemplate& code = s.face ? m_.codes.groove_face : m_.codes.groove_radial;
+  if (code.empty()) {
+    d_.error(loc, "machine '" + m_.name + "' has no " + (s.face ? "face" : "radial") + " groove cycle");
+    return;
+  }
+  if (!in_plane(g.start, loc) || !in_plane(g.end, loc)) return;
+  double feed = s.feed > 0 ? s.feed : feed_;
+  ir::FeedMode mode = s.feed > 0 ? s.feed_mode : feed_mode_;
+  if (!(feed > 0)) {
+    d_.error(loc, "groove cycle with no feed rate");
+    return;
+  }
+  e_.begin(loc);
+  absolute_code();
+  e_.code(code);
+  e_.word('R', s.retract * k_);
+  e_.end();
+  e_.begin(loc);
+  if (!feed_mode_known_ || written_feed_mode_ != mode) {
+    feed_mode_ = mode;
+    feed_mode_code();
+  }
+  e_.code(code);
+  e_.word('X', g.end.x() * k_);
+  e_.word('Z', g.end.z() * k_);
+  e_.word('P', s.x_amount * k_);
+  e_.word('Q', s.z_amount * k_);
+  if (s.relief > 0) e_.word('R', s.relief * k_);
+  e_.word('F', feed * k_);
+  e_.end();
+  feed_written_ = false;
+  motion_ = Motion::None;
+  // The cycle ends where it started.
+  e_.set_last('X', g.start.x() * k_);
+  e_.set_last('Z', g.start.z() * k_);
+  pos_ = g.start;
+  position_known_ = true;
+}
+
 }  // namespace clpc

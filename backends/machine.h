@@ -124,6 +124,7 @@ struct Codes {
   CodeTemplate cycle_cancel, cycle_return_initial, cycle_return_r;
   CodeTemplate cycle_dwell_word;  // the dwell word in a cycle block, e.g. "P{milliseconds}"
   CodeTemplate rigid_tap;         // a block before G84, e.g. "M29 S{speed}"
+  CodeTemplate groove_face, groove_radial;  // lathe: G74, G75 (two-block form)
 };
 
 struct CycleSettings {

@@ -167,6 +167,8 @@ std::string explain_machine(const Machine& m) {
   code("cycle_return_r", k.cycle_return_r);
   code("cycle_dwell_word", k.cycle_dwell_word);
   code("rigid_tap", k.rigid_tap);
+  code("groove_face", k.groove_face);
+  code("groove_radial", k.groove_radial);
   return o.str();
 }
 

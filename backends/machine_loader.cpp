@@ -347,7 +347,14 @@ void set_defaults(Machine& m) {
     k.safe_retract = tpl("G28 U0. W0.");
     m.safe_start = {tpl("G00 G18 G40 G80 G99")};
     m.finish = {tpl("M05"), tpl("M09"), tpl("G28 U0. W0."), tpl("M30")};
-    m.pipeline = {"arc-direction", "arc-legalise"};
+    m.pipeline = {"arc-direction", "arc-legalise", "groove-cycles"};
+    k.groove_face = tpl("G74");
+    k.groove_radial = tpl("G75");
+    // P and Q of G74/G75: least input increments, no point.
+    for (char c : {'P', 'Q'}) {
+      m.formats[size_t(c - 'A')].decimals = inch ? 4 : 3;
+      m.formats[size_t(c - 'A')].point = AddressFormat::Point::Never;
+    }
     m.arcs.xy = m.arcs.yz = false;
     m.arcs.helical = false;
   } else {
@@ -579,6 +586,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         {"cycle_return_initial", &k.cycle_return_initial, none}, {"cycle_return_r", &k.cycle_return_r, none},
         {"cycle_dwell_word", &k.cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
         {"rigid_tap", &k.rigid_tap, bit(Var::Speed)},
+        {"groove_face", &k.groove_face, none}, {"groove_radial", &k.groove_radial, none},
     };
     for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
     s->finish();

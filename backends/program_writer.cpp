@@ -119,6 +119,16 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           write_hole(op, x, loc);
           return;
         }
+        if constexpr (std::is_same_v<T, ir::GrooveMark>) return;
+        if constexpr (std::is_same_v<T, ir::GrooveOn>) {
+          d_.error(loc, "internal: a groove cycle record reached the backend (is 'groove-cycles' in the pipeline of a lathe?)");
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::Groove>) {
+          cancel_cycle(loc);
+          write_groove(op, x, loc);
+          return;
+        }
         if constexpr (std::is_same_v<T, ir::CycleOn> || std::is_same_v<T, ir::CycleOff>) {
           cancel_cycle(loc);  // a new cycle starts with all its words; OFF ends the run
           return;
@@ -178,6 +188,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
 
 void ProgramWriter::write_hole(const ir::Operation&, const ir::Hole&, SourceLoc loc) {
   d_.error(loc, "internal: machine '" + m_.name + "' writes no canned cycles (is 'drill-cycles' in its pipeline?)");
+}
+
+void ProgramWriter::write_groove(const ir::Operation&, const ir::Groove&, SourceLoc loc) {
+  d_.error(loc, "machine '" + m_.name + "' is not a lathe: it has no groove cycles");
 }
 
 void ProgramWriter::write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc) {

@@ -55,6 +55,7 @@ void Operation::clear() {
   text.clear();
   points.clear();
   cycles.clear();
+  grooves.clear();
   name.clear();
   continued = false;
   last_chunk = true;

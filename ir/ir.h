@@ -208,9 +208,38 @@ struct Hole {
   double initial = 0;  // where the tool starts the cycle, above the point (for G98 returns)
 };
 
+// --- lathe grooving (G74 face, G75 radial) ------------------------------------------------
+
+// Lathe data: x is the radius, z the axial position (the CL's X and Z; Y = 0).
+struct GrooveSpec {
+  bool face = false;       // G74: plunges along Z, shifts along X; else G75: plunges along X
+  double retract = 0;      // e: pull-out after each peck (first block R)
+  double x_amount = 0;     // Fanuc P: G75 peck depth / G74 shift, along X (radius)
+  double z_amount = 0;     // Fanuc Q: G75 shift / G74 peck depth, along Z
+  double relief = 0;       // Fanuc second-block R: relief at the bottom
+  double feed = 0;         // 0: the current feed
+  FeedMode feed_mode = FeedMode::PerRev;
+  bool from_record = false;  // written as CYCLE/FACE|RADIUS in the CL
+};
+
+struct GrooveOn {
+  uint32_t spec = 0;  // index in Operation::grooves
+};
+
+// One G74/G75 cycle: from `start` (where the tool is) to the far corner `end`.
+struct Groove {
+  Vec3 start, end;
+  uint32_t spec = 0;  // index in Operation::grooves
+};
+
+// Creo's "$$ GRV ..." and "$$ GRV END" comments around explicit groove motion.
+struct GrooveMark {
+  bool begin = true;
+};
+
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
                         Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex,
-                        CycleOn, CycleOff, Hole>;
+                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark>;
 
 struct Instr {
   SourceLoc loc;
@@ -229,6 +258,7 @@ struct Operation {
   std::string text;          // pool for TextRef
   std::vector<Vec3> points;  // pool for Arc via points
   std::vector<CycleSpec> cycles;  // pool for CycleOn and Hole
+  std::vector<GrooveSpec> grooves;  // pool for GrooveOn and Groove
 
   TextRef add_text(std::string_view s);
   std::string_view str(TextRef r) const { return std::string_view(text).substr(r.offset, r.size); }

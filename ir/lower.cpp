@@ -13,7 +13,22 @@ Lowerer::Lowerer(const ir::ProgramInfo& info, Diagnostics& diags, OperationSink&
 
 void Lowerer::record(const Record& r) {
   if (defining_sub_ >= 0 && record_subroutine(r)) return;
-  if (r.kind == Record::Kind::Comment) return;  // $$ comments carry nothing clpc uses
+  if (r.kind == Record::Kind::Comment) {
+    // Creo brackets explicit groove motion with "$$ GRV ..." and "$$ GRV END": kept for the
+    // groove-cycles pass. Other comments carry nothing clpc uses.
+    std::string_view t = r.text;
+    while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
+    if (t.size() >= 3 && iequals(t.substr(0, 3), "GRV") && (t.size() == 3 || t[3] == ',' || t[3] == ' ')) {
+      std::string_view rest = t.substr(3);
+      while (!rest.empty() && (rest.front() == ' ' || rest.front() == ',')) rest.remove_prefix(1);
+      bool end = rest.size() >= 3 && iequals(rest.substr(0, 3), "END");
+      if (!finished_) {
+        ensure_operation(r.loc);
+        push(r.loc, ir::GrooveMark{!end});
+      }
+    }
+    return;
+  }
   if (finished_) {
     if (!warned_after_fini_)
       d_.warning(r.loc, "records after FINI are ignored");

@@ -97,6 +97,20 @@ struct Printer {
     if (h.axis != Vec3::UnitZ()) o << " axis " << vec(h.axis);
     o << " initial " << num_text(h.initial);
   }
+  void operator()(const GrooveOn& g) {
+    const GrooveSpec& s = op.grooves.at(g.spec);
+    o << "groove-on " << (s.face ? "face" : "radial") << " retract " << num_text(s.retract) << " x " << num_text(s.x_amount)
+      << " z " << num_text(s.z_amount);
+    if (s.feed > 0) o << " feed " << num_text(s.feed) << (s.feed_mode == FeedMode::PerRev ? " /rev" : " /min");
+  }
+  void operator()(const Groove& g) {
+    const GrooveSpec& s = op.grooves.at(g.spec);
+    o << (s.face ? "groove G74" : "groove G75") << " from " << vec(g.start) << " to " << vec(g.end) << " retract "
+      << num_text(s.retract) << " x " << num_text(s.x_amount) << " z " << num_text(s.z_amount);
+    if (s.relief > 0) o << " relief " << num_text(s.relief);
+    if (s.feed > 0) o << " feed " << num_text(s.feed);
+  }
+  void operator()(const GrooveMark& m) { o << (m.begin ? "groove-section" : "groove-section-end"); }
   void operator()(const RotaryIndex& r) {
     o << "rotary-index " << r.axis << " " << num_text(r.angle) << (r.incremental ? " incremental" : " absolute");
     if (r.dir != ArcDir::Unknown) o << " " << dir_name(r.dir);

@@ -11,5 +11,6 @@ std::unique_ptr<Pass> make_arc_direction();
 std::unique_ptr<Pass> make_helix();
 std::unique_ptr<Pass> make_arc_legalise();
 std::unique_ptr<Pass> make_drill_cycles();
+std::unique_ptr<Pass> make_groove_cycles();
 
 }  // namespace clpc

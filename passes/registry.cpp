@@ -24,6 +24,11 @@ const std::vector<PassInfo>& all_passes() {
        "hole or expanded into plain moves; every cycle ends (a warning and an implicit cancel at the end of an "
        "operation without CYCLE/OFF)",
        make_drill_cycles},
+      {"groove-cycles", "collapse lathe groove motion into one G74 (face) or G75 (radial) cycle where the cycle reproduces it",
+       "expects: lathe data, groove records and marks as lowered. guarantees: groove records are gone; each collapse is "
+       "a move to the cycle's start and a groove whose G74/G75 expansion equals the motion it replaced; motion that "
+       "does not match stays as it was",
+       make_groove_cycles},
   };
   return passes;
 }

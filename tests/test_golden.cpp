@@ -56,3 +56,29 @@ TEST(Golden, EveryCaseMatches) {
     EXPECT_EQ(text, read_file(c.expected));
   }
 }
+
+// Whole programs from the corpus files the issues name (not copied here: read from
+// ../shared/corpus, with the expected output in tests/golden/corpus).
+TEST(Golden, CorpusPrograms) {
+  if (corpus_dir().empty()) GTEST_SKIP() << "no corpus at " << CLPC_CORPUS_DIR;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"nist/turn_op10.ncl.4", "fanuc-lathe"},       {"nist/b_turn_1.ncl.1", "fanuc-lathe"},
+      {"nist/b_turn_innr.ncl.4", "fanuc-lathe"},     {"nist/b_turn_groove2.ncl.1", "fanuc-lathe"},
+      {"creopost/bohren_1.ncl.8", "fanuc-mill"},     {"creopost/bohren_1.ncl.8", "haas-umc750"},
+      {"nist/holemaking_cycle.ncl", "fanuc-mill"},   {"nist/holemaking_cycle.ncl", "haas-umc750"},
+  };
+  bool update = std::getenv("CLPC_UPDATE_GOLDEN") != nullptr;
+  for (const auto& [file, name] : cases) {
+    SCOPED_TRACE(file + " for " + name);
+    std::string base = file.substr(file.rfind('/') + 1);
+    std::string expected = std::string(CLPC_SOURCE_DIR) + "/tests/golden/corpus/" + base + "." + name + ".nc";
+    Compiled out = compile_path(corpus_dir() + "/" + file, machine(name));
+    ASSERT_TRUE(out.ok) << out.diags;
+    if (update) {
+      write_file(expected, out.output);
+      continue;
+    }
+    ASSERT_TRUE(std::filesystem::exists(expected)) << "missing " << expected << " (CLPC_UPDATE_GOLDEN=1 makes it)";
+    EXPECT_EQ(out.output, read_file(expected));
+  }
+}
