@@ -333,7 +333,7 @@ void set_defaults(Machine& m) {
   k.coolant_flood = tpl("M08");
   k.coolant_mist = tpl("M07");
   k.coolant_off = tpl("M09");
-  k.dwell = tpl("G04 P{milliseconds}");
+  k.dwell = tpl("G04 P{milliseconds:1}");  // a plain whole number, whatever format.P says
   k.optional_stop = tpl("M01");
   k.stop = tpl("M00");
   k.comp_left = tpl("G41 D{register}");
@@ -382,7 +382,7 @@ void set_defaults(Machine& m) {
     k.cycle_cancel = tpl("G80");
     k.cycle_return_initial = tpl("G98");
     k.cycle_return_r = tpl("G99");
-    k.cycle_dwell_word = tpl("P{milliseconds}");
+    k.cycle_dwell_word = tpl("P{milliseconds:1}");
     m.safe_start = {tpl("G00 G17 G40 G49 G80 G90")};
     m.finish = {tpl("M05"), tpl("M09"), tpl("G91 G28 Z0."), tpl("G90"), tpl("M30")};
     m.pipeline = {"arc-direction", "helix", "arc-legalise"};
