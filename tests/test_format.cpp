@@ -192,11 +192,11 @@ TEST(Emitter, TemplateWidthsAndAddressFormats) {
   Harness h(m);
   CodeTemplate t, p;
   std::string why;
-  ASSERT_TRUE(parse_template("T{tool:2}{offset:2} G04 P{milliseconds}", t, why));
+  ASSERT_TRUE(parse_template("T{tool:2}{offset:2} G04 P{milliseconds:1} U{seconds}", t, why));
   h.e->begin({});
-  h.e->code(t, TemplateVars().with(Var::Tool, 3).with(Var::Offset, 13).with(Var::Milliseconds, 1500));
+  h.e->code(t, TemplateVars().with(Var::Tool, 3).with(Var::Offset, 13).with(Var::Milliseconds, 1500).with(Var::Seconds, 1.5));
   h.e->end();
-  EXPECT_EQ(h.text(), "T0313 G04 P1500\n");
+  EXPECT_EQ(h.text(), "T0313 G04 P1500 U1.5\n");
 }
 
 TEST(Emitter, TemplateErrors) {
