@@ -40,6 +40,8 @@ class ProgramWriter : public Backend {
   virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
   virtual void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc);
   virtual void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc);
+  virtual void write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc);
+  virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 

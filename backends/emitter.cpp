@@ -81,6 +81,10 @@ double Emitter::as_written(char letter, double value) const {
   return dequantize(q, m_.format(letter));
 }
 
+void Emitter::forget_linear() {
+  for (char l : {'X', 'Y', 'Z', 'U', 'V', 'W'}) forget(l);
+}
+
 void Emitter::forget_all() {
   for (bool& k : known_) k = false;
 }

@@ -40,6 +40,7 @@ class Emitter {
   void set_last(char letter, double value);  // e.g. after a move the emitter did not write
   void forget(char letter) { known_[size_t(letter - 'A')] = false; }
   void forget_all();
+  void forget_linear();  // X Y Z U V W: after something moved or reframed them
   // Rounds as the control would: the value it will take for `value` at this address.
   double as_written(char letter, double value) const;
 

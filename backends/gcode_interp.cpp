@@ -153,7 +153,10 @@ class Interp {
       else if (is_g(g, 41)) comp_ = 1;
       else if (is_g(g, 42)) comp_ = 2;
       else if (is_g(g, 43)) length_comp_ = true;
-      else if (is_g(g, 49)) length_comp_ = false;
+      else if (is_g(g, 49)) length_comp_ = false, tcp_ = false;
+      else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5)) tcp_ = true, length_comp_ = true;
+      else if (is_g(g, 254)) dwo_ = true;
+      else if (is_g(g, 255)) dwo_ = false;
       else if (is_g(g, 50) && lathe) { /* spindle clamp (with S) */ }
       else if (is_g(g, 53)) g53 = true;
       else if (g >= 54 - 1e-6 && g <= 59 + 1e-6 && is_g(g, std::round(g))) new_offset = int(std::round(g)) - 53;
@@ -434,6 +437,8 @@ class Interp {
     s.tool = tool_;
     s.work_offset = work_offset_;
     s.inverse_time = inverse_time_;
+    s.tcp = tcp_;
+    s.dwo = dwo_;
     bool moves_z = (a.count('Z') || a.count('W')) && !(std::abs(target.z() - pos_.z()) < 1e-12);
     if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && moves_z && !m_.codes.length_offset.empty())
       problem(line, "Z moves with no tool length compensation (G43) for the tool in the spindle");
@@ -531,6 +536,7 @@ class Interp {
   bool per_rev_ = false;
   bool css_ = false;
   bool length_comp_ = false;
+  bool tcp_ = false, dwo_ = false;
   int comp_ = 0;
   int cycle_ = 0;
   int groove_ = 0;

@@ -35,6 +35,8 @@ struct Segment {
   int tool = 0;
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
+  bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame
+  bool dwo = false;           // dynamic work offset on: X Y Z turned with the table about the part zero
 };
 
 struct Event {

@@ -29,7 +29,7 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   after_template(m_.codes.tool_change);
   tool_ = t.tool;
   motion_ = Motion::None;
-  e_.forget_all();
+  e_.forget_linear();
   feed_written_ = false;
 }
 

@@ -71,13 +71,24 @@ struct LatheSettings {
   double max_rpm = 0;       // spindle limit: caps the G50 S clamp written with surface speed (0 = none)
 };
 
+enum class Cyclic : uint8_t {
+  No,      // limited: min..max
+  Wind,    // continuous; angles accumulate past 360 (the control winds)
+  Modulo,  // continuous; angles written in [0, 360), the control takes the short way
+};
+
 struct RotaryAxis {
-  std::string name;          // B, C, A
-  ir::Vec3 axis = ir::Vec3::UnitZ();  // direction in machine coordinates (sign = positive rotation)
-  bool table = true;         // on the table side (true) or the head side
-  double min = -360, max = 360;
-  bool cyclic = false;       // continuous: any angle, wound as the machine says
-  ir::Vec3 center = ir::Vec3::Zero();  // a point on the axis, machine coordinates, output units
+  std::string name;                   // A, B or C: the address it is written with
+  ir::Vec3 axis = ir::Vec3::UnitZ();  // direction in machine coordinates, at all rotaries zero
+  bool table = true;                  // turns the part (true) or the tool (head)
+  double direction = 1;               // +1: a positive angle turns right-handed about `axis`
+  double min = -360, max = 360;       // limits (limited axes)
+  Cyclic cyclic = Cyclic::No;
+  ir::Vec3 center = ir::Vec3::Zero(); // a point on the axis; program frame, output units
+  double prefer = 0;                  // +1 / -1: the sign preferred when solutions tie
+  double rate = 0;                    // degrees per minute (inverse-time caps; 0: unknown)
+  std::string clamp, unclamp;         // codes (M10 / M11), empty if none
+  ir::Vec3 effective() const { return axis * direction; }
 };
 
 struct LinearLimits {
@@ -86,10 +97,22 @@ struct LinearLimits {
   bool set = false;
 };
 
+enum class Simultaneous : uint8_t { Tcp, Transform };  // 5-axis moves: TCPC, or clpc transforms
+enum class Indexed : uint8_t { Transform, Dwo, Tcp };    // 3+2: transform, Haas G254, or TCPC
+
 struct KinematicsSettings {
-  std::vector<RotaryAxis> rotaries;  // in chain order from the machine base
-  std::string tcp;                   // "" = none; else the code template name (tcp_on)
-  LinearLimits travel;               // X Y Z travel in machine coordinates (output units)
+  std::vector<RotaryAxis> rotaries;   // from the machine base outwards (table and head axes)
+  Simultaneous simultaneous = Simultaneous::Transform;
+  Indexed indexed = Indexed::Transform;
+  bool inverse_time = false;          // G93 for moves that turn a rotary axis
+  double max_inverse_time = 0;        // cap on F in G93 (1/min); 0: none
+  bool retract_on_limit = false;      // retract, rotate and re-engage where limits force a jump
+  double retract_distance = 0;        // output units, along the tool axis
+  double pivot = 0;                   // head machines: tip to head axes at zero, output units
+  LinearLimits travel;                // machine X Y Z travel (output units)
+  bool work_zero_set = false;
+  ir::Vec3 work_zero = ir::Vec3::Zero();  // machine position of the program zero (at all rotaries 0)
+  bool has_rotaries() const { return !rotaries.empty(); }
 };
 
 enum class OffsetTable : uint8_t { None, G10, G65Macro };
@@ -125,6 +148,8 @@ struct Codes {
   CodeTemplate cycle_dwell_word;  // the dwell word in a cycle block, e.g. "P{milliseconds}"
   CodeTemplate rigid_tap;         // a block before G84, e.g. "M29 S{speed}"
   CodeTemplate groove_face, groove_radial;  // lathe: G74, G75 (two-block form)
+  CodeTemplate tcp_on, tcp_off;              // tool centre point control: G00 G234 H{offset} / G49
+  CodeTemplate dwo_on, dwo_off;              // dynamic work offset (Haas G254 / G255)
 };
 
 struct CycleSettings {

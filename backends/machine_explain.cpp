@@ -104,6 +104,33 @@ std::string explain_machine(const Machine& m) {
   o << "extended = " << m.offsets.extended_count << "\ndefault = " << m.offsets.default_index
     << "\ntable = " << quote(tables[int(m.offsets.table)]) << "\n";
 
+  const KinematicsSettings& kin = m.kinematics;
+  if (kin.has_rotaries()) {
+    static const char* sims[] = {"tcp", "transform"};
+    static const char* inds[] = {"transform", "dwo", "tcp"};
+    o << "\n[" << m.name << ".kinematics]\n";
+    o << "simultaneous = " << quote(sims[int(kin.simultaneous)]) << "\nindexed = " << quote(inds[int(kin.indexed)])
+      << "\ninverse_time = " << b(kin.inverse_time) << "\nmax_inverse_time = " << num_text(kin.max_inverse_time)
+      << "\non_limit = " << quote(kin.retract_on_limit ? "retract" : "error")
+      << "\nretract_distance = " << num_text(kin.retract_distance) << "\npivot = " << num_text(kin.pivot) << "\n";
+    auto v3 = [](const ir::Vec3& v) { return "[" + num_text(v.x()) + ", " + num_text(v.y()) + ", " + num_text(v.z()) + "]"; };
+    if (kin.work_zero_set) o << "work_zero = " << v3(kin.work_zero) << "\n";
+    if (kin.travel.set) {
+      o << "travel = { ";
+      for (int i = 0; i < 3; ++i)
+        o << (i ? ", " : "") << "xyz"[i] << " = [" << num_text(kin.travel.min[i]) << ", " << num_text(kin.travel.max[i]) << "]";
+      o << " }\n";
+    }
+    static const char* cycs[] = {"no", "wind", "modulo"};
+    for (const RotaryAxis& a : kin.rotaries) {
+      o << "\n[[" << m.name << ".kinematics.axes]]\n";
+      o << "name = " << quote(a.name) << "\naxis = " << v3(a.axis) << "\nside = " << quote(a.table ? "table" : "head")
+        << "\ndirection = " << int(a.direction) << "\ncyclic = " << quote(cycs[int(a.cyclic)]) << "\nmin = " << num_text(a.min)
+        << "\nmax = " << num_text(a.max) << "\ncenter = " << v3(a.center) << "\nprefer = " << num_text(a.prefer)
+        << "\nrate = " << num_text(a.rate) << "\nclamp = " << quote(a.clamp) << "\nunclamp = " << quote(a.unclamp) << "\n";
+    }
+  }
+
   o << "\n[" << m.name << ".cycles]\n";
   o << "return = " << quote(m.cycles.return_initial ? "initial" : "r-plane") << "\ntap_feed = "
     << quote(m.cycles.tap_per_rev ? "per-rev" : "per-minute") << "\npeck_clearance = " << num_text(m.cycles.peck_clearance)
@@ -169,6 +196,10 @@ std::string explain_machine(const Machine& m) {
   code("rigid_tap", k.rigid_tap);
   code("groove_face", k.groove_face);
   code("groove_radial", k.groove_radial);
+  code("tcp_on", k.tcp_on);
+  code("tcp_off", k.tcp_off);
+  code("dwo_on", k.dwo_on);
+  code("dwo_off", k.dwo_off);
   return o.str();
 }
 

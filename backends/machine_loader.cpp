@@ -196,6 +196,20 @@ class Reader {
     out = {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
     return true;
   }
+  // An array of tables (not merged across layers: the top one wins).
+  std::optional<std::vector<Reader>> table_array(std::string_view k) {
+    const toml::node* n = node(k);
+    if (!n) return std::nullopt;
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) {
+      error(*n, k, "expected an array of tables ([[" + key_path(k) + "]])");
+      return std::nullopt;
+    }
+    std::vector<Reader> out;
+    for (size_t i = 0; i < a->size(); ++i)
+      out.emplace_back(c_, Layers{(*a)[i].as_table()}, key_path(k) + "[" + std::to_string(i) + "]");
+    return out;
+  }
   // The sub-table `k`, merged over the layers (a layer that sets `k` to something else
   // hides the tables below it).
   std::optional<Reader> sub(std::string_view k) {
@@ -535,6 +549,79 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     if (tb >= 0) o.table = OffsetTable(tb);
     s->finish();
   }
+  if (auto s = r.sub("kinematics")) {
+    KinematicsSettings& k = m.kinematics;
+    if (auto axes = s->table_array("axes")) {
+      if (axes->size() > 2) {
+        s->error(*s->find("axes"), "axes", "clpc handles at most two rotary axes, found " + std::to_string(axes->size()));
+      }
+      for (Reader& a : *axes) {
+        RotaryAxis ax;
+        a.string("name", ax.name);
+        if (!a.has("name")) a.missing("name", "the axis word: A, B or C");
+        else if (ax.name != "A" && ax.name != "B" && ax.name != "C")
+          a.error(*a.find("name"), "name", "expected \"A\", \"B\" or \"C\", found \"" + ax.name + "\"");
+        if (a.vec3("axis", ax.axis)) {
+          if (ax.axis.norm() < 1e-9) a.error(*a.find("axis"), "axis", "must not be zero");
+          else ax.axis.normalize();
+        } else if (!a.has("axis")) {
+          a.missing("axis", "the direction the axis turns about, [x, y, z]");
+        }
+        int side = a.choice("side", {"table", "head"});
+        if (side >= 0) ax.table = side == 0;
+        int dir = 0;
+        a.integer("direction", dir, -1, 1);
+        if (dir == 0 && a.has("direction")) a.error(*a.find("direction"), "direction", "expected 1 or -1, found 0");
+        if (dir != 0) ax.direction = dir;
+        int cyc = a.choice("cyclic", {"no", "wind", "modulo"});
+        if (cyc >= 0) ax.cyclic = Cyclic(cyc);
+        a.number("min", ax.min, -1e6, 1e6);
+        a.number("max", ax.max, -1e6, 1e6);
+        if (ax.max <= ax.min && ax.cyclic == Cyclic::No)
+          a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
+        a.vec3("center", ax.center);
+        double prefer = 0;
+        a.number("prefer", prefer, -1, 1);
+        ax.prefer = prefer;
+        a.number("rate", ax.rate, 0, 1e9);
+        a.string("clamp", ax.clamp);
+        a.string("unclamp", ax.unclamp);
+        a.finish();
+        k.rotaries.push_back(ax);
+      }
+    }
+    int sim = s->choice("simultaneous", {"tcp", "transform"});
+    if (sim >= 0) k.simultaneous = Simultaneous(sim);
+    int ind = s->choice("indexed", {"transform", "dwo", "tcp"});
+    if (ind >= 0) k.indexed = Indexed(ind);
+    s->boolean("inverse_time", k.inverse_time);
+    s->number("max_inverse_time", k.max_inverse_time, 0, 1e9);
+    int lim = s->choice("on_limit", {"error", "retract"});
+    if (lim >= 0) k.retract_on_limit = lim == 1;
+    s->number("retract_distance", k.retract_distance, 0, 1e6);
+    s->number("pivot", k.pivot, 0, 1e6);
+    if (auto t = s->sub("travel")) {
+      for (int i = 0; i < 3; ++i) {
+        const char* key = i == 0 ? "x" : i == 1 ? "y" : "z";
+        const toml::node* n = t->node(key);
+        if (!n) continue;
+        const toml::array* arr = n->as_array();
+        if (!arr || arr->size() != 2 || !(*arr)[0].is_number() || !(*arr)[1].is_number() ||
+            *(*arr)[0].value<double>() >= *(*arr)[1].value<double>()) {
+          t->error(*n, key, "expected [min, max] with min < max");
+          continue;
+        }
+        k.travel.min[i] = *(*arr)[0].value<double>();
+        k.travel.max[i] = *(*arr)[1].value<double>();
+        k.travel.set = true;
+      }
+      t->finish();
+    }
+    k.work_zero_set = s->vec3("work_zero", k.work_zero);
+    if (k.retract_on_limit && !(k.retract_distance > 0))
+      s->error(*s->find("on_limit"), "on_limit", "\"retract\" needs retract_distance greater than zero");
+    s->finish();
+  }
   if (auto s = r.sub("cycles")) {
     int ret = s->choice("return", {"initial", "r-plane"});
     if (ret >= 0) m.cycles.return_initial = ret == 0;
@@ -587,6 +674,8 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         {"cycle_dwell_word", &k.cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
         {"rigid_tap", &k.rigid_tap, bit(Var::Speed)},
         {"groove_face", &k.groove_face, none}, {"groove_radial", &k.groove_radial, none},
+        {"tcp_on", &k.tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &k.tcp_off, none},
+        {"dwo_on", &k.dwo_on, none}, {"dwo_off", &k.dwo_off, none},
     };
     for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
     s->finish();

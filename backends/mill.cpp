@@ -31,7 +31,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   need_length_offset_ = !m_.codes.length_offset.empty();
   need_work_offset_ = true;
   motion_ = Motion::None;
-  e_.forget_all();
+  e_.forget_linear();
   feed_written_ = false;
   spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
 }
@@ -69,6 +69,7 @@ void MillBackend::comp_code() {
 
 bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
   if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;
+  if (m_.kinematics.has_rotaries()) return true;  // the kinematics pass gave the rotary positions
   d_.error(loc, "tool axis (" + num_text(axis.x()) + ", " + num_text(axis.y()) + ", " + num_text(axis.z()) +
                     ") is not the spindle axis, and machine '" + m_.name + "' has no rotary axes to tilt it");
   return false;
@@ -85,19 +86,33 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!check_axis(mv.axis, loc)) return;
+  if (m_.kinematics.has_rotaries() && !mv.has_rotary) {
+    d_.error(loc, "internal: a move without rotary positions on a five-axis machine (is 'kinematics' in the pipeline?)");
+    return;
+  }
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
+  bool rotates = false;
+  if (mv.has_rotary)
+    for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
+      double last;
+      const char l = m_.kinematics.rotaries[i].name[0];
+      if (!e_.last(l, last) || e_.as_written(l, mv.rotary[i]) != last) rotates = true;
+    }
+  if (rotates) unclamp(loc);
   if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
     d_.warning(loc, "cutting move with the spindle stopped", "spindle stopped");
 
   if (need_length_offset_ && rapid) {
-    // Position in X Y with the work offset, then bring Z down with the length offset.
+    // Position in X Y (and the rotaries) with the work offset, then bring Z down with the
+    // length offset.
     e_.begin(loc);
     absolute_code();
     work_offset_code();
     motion_code(Motion::Rapid);
     e_.modal_word('X', o.x());
     e_.modal_word('Y', o.y());
+    if (mv.has_rotary) rotary_words(mv.rotary, true);
     e_.end();
     e_.begin(loc);
     e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
@@ -109,7 +124,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
 
-  bool any = changed('X', o.x()) || changed('Y', o.y()) || changed('Z', o.z());
+  bool any = changed('X', o.x()) || changed('Y', o.y()) || changed('Z', o.z()) || rotates;
   if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
@@ -122,15 +137,128 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
     need_length_offset_ = false;
   }
-  if (!rapid) feed_mode_code();
-  motion_code(rapid ? Motion::Rapid : Motion::Linear);
+  if (!rapid && mv.inverse_time > 0) {
+    inverse_time_words(mv, loc);
+    motion_code(Motion::Linear);
+  } else {
+    if (!rapid) feed_mode_code();
+    motion_code(rapid ? Motion::Rapid : Motion::Linear);
+  }
   e_.modal_word('X', o.x());
   e_.modal_word('Y', o.y());
   e_.modal_word('Z', o.z());
-  if (!rapid) feed_word(loc);
+  if (mv.has_rotary) rotary_words(mv.rotary, true);
+  if (!rapid) {
+    if (mv.inverse_time > 0) e_.word('F', mv.inverse_time);
+    else feed_word(loc);
+  }
   e_.end();
   pos_ = mv.point;
   position_known_ = true;
+}
+
+// G93 for this block (F follows the coordinates); the next ordinary feed switches back.
+void MillBackend::inverse_time_words(const ir::Move& m, SourceLoc loc) {
+  if (m_.codes.inverse_time.empty()) {
+    d_.error(loc, "machine '" + m_.name + "' has no inverse-time feed code (codes.inverse_time)");
+    return;
+  }
+  if (!feed_mode_known_ || written_feed_mode_ != ir::FeedMode::InverseTime) {
+    e_.code(m_.codes.inverse_time);
+    written_feed_mode_ = ir::FeedMode::InverseTime;
+    feed_mode_known_ = true;
+    feed_written_ = false;
+  }
+}
+
+void MillBackend::rotary_words(const std::array<double, 2>& a, bool modal) {
+  const auto& r = m_.kinematics.rotaries;
+  for (size_t i = 0; i < r.size(); ++i) {
+    char l = r[i].name[0];
+    if (modal) e_.modal_word(l, a[i]);
+    else e_.word(l, a[i]);
+  }
+}
+
+void MillBackend::unclamp(SourceLoc loc) {
+  if (!clamped_) return;
+  e_.begin(loc);
+  for (const RotaryAxis& r : m_.kinematics.rotaries)
+    if (!r.unclamp.empty()) e_.text(r.unclamp);
+  e_.end();
+  clamped_ = false;
+}
+
+void MillBackend::clamp(SourceLoc loc) {
+  if (clamped_) return;
+  e_.begin(loc);
+  for (const RotaryAxis& r : m_.kinematics.rotaries)
+    if (!r.clamp.empty()) e_.text(r.clamp);
+  if (!e_.block_empty()) {
+    e_.end();
+    clamped_ = true;
+  }
+}
+
+// 3+2: the rotaries go to their angles in a rapid of their own, then clamp.
+void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc) {
+  bool moves = false;
+  for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
+    double last;
+    char l = m_.kinematics.rotaries[i].name[0];
+    if (!e_.last(l, last) || e_.as_written(l, r.rotary[i]) != last) moves = true;
+  }
+  if (moves) {
+    unclamp(loc);
+    e_.begin(loc);
+    absolute_code();
+    motion_code(Motion::Rapid);
+    rotary_words(r.rotary, true);
+    e_.end();
+  }
+  if (r.clamp) clamp(loc);
+}
+
+void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
+  const Codes& k = m_.codes;
+  switch (m.kind) {
+    case ir::ModeKind::TcpOn:
+      if (k.tcp_on.empty()) {
+        d_.error(loc, "machine '" + m_.name + "' has no tool centre point control code (codes.tcp_on)");
+        return;
+      }
+      e_.begin(loc);
+      absolute_code();
+      work_offset_code();
+      e_.code(k.tcp_on, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+      e_.end();
+      after_template(k.tcp_on);
+      need_length_offset_ = false;  // TCPC takes the length offset with it
+      tcp_on_ = true;
+      break;
+    case ir::ModeKind::TcpOff:
+      e_.begin(loc);
+      e_.code(k.tcp_off);
+      e_.end();
+      after_template(k.tcp_off);
+      tcp_on_ = false;
+      need_length_offset_ = tool_ >= 0 && !k.length_offset.empty();
+      break;
+    case ir::ModeKind::DwoOn:
+    case ir::ModeKind::DwoOff: {
+      const CodeTemplate& t = m.kind == ir::ModeKind::DwoOn ? k.dwo_on : k.dwo_off;
+      if (t.empty()) {
+        d_.error(loc, "machine '" + m_.name + "' has no dynamic work offset codes (codes.dwo_on, dwo_off)");
+        return;
+      }
+      e_.begin(loc);
+      if (m.kind == ir::ModeKind::DwoOn) work_offset_code();  // the offset G254 turns with the table
+      e_.code(t);
+      e_.end();
+      after_template(t);
+      break;
+    }
+  }
 }
 
 void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {

@@ -14,6 +14,13 @@ class MillBackend : public ProgramWriter {
   void write_tool_change(const ir::ToolChange& t, SourceLoc loc) override;
   void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc) override;
   void cancel_cycle(SourceLoc loc) override;
+  void write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc) override;
+  void write_mode(const ir::MachineMode& m, SourceLoc loc) override;
+
+  void rotary_words(const std::array<double, 2>& a, bool modal);
+  void unclamp(SourceLoc loc);
+  void clamp(SourceLoc loc);
+  void inverse_time_words(const ir::Move& m, SourceLoc loc);
 
   void work_offset_code();
   void motion_code(Motion mo);
@@ -29,6 +36,8 @@ class MillBackend : public ProgramWriter {
   };
   bool cycle_active_ = false;
   ActiveCycle cycle_;
+  bool clamped_ = false;
+  bool tcp_on_ = false;
 };
 
 }  // namespace clpc

@@ -94,8 +94,15 @@ void ProgramWriter::after_template(const CodeTemplate& t) {
     motion_ = Motion::None;
     plane_ = Plane::None;
     feed_mode_known_ = false;
-    e_.forget_all();
     feed_written_ = false;
+    // The linear axes may mean something else now (a machine-coordinate move, a new frame);
+    // rotary axes move only if the template names them.
+    e_.forget_linear();
+    for (const CodeTemplate::Word& w : t.words)
+      if (!w.empty() && w[0].var < 0 && !w[0].literal.empty()) {
+        char l = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+        if (l == 'A' || l == 'B' || l == 'C') e_.forget(l);
+      }
   }
 }
 
@@ -120,6 +127,16 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           return;
         }
         if constexpr (std::is_same_v<T, ir::GrooveMark>) return;
+        if constexpr (std::is_same_v<T, ir::RotaryPosition>) {
+          cancel_cycle(loc);
+          write_rotary_position(x, loc);
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::MachineMode>) {
+          cancel_cycle(loc);
+          write_mode(x, loc);
+          return;
+        }
         if constexpr (std::is_same_v<T, ir::GrooveOn>) {
           d_.error(loc, "internal: a groove cycle record reached the backend (is 'groove-cycles' in the pipeline of a lathe?)");
           return;
@@ -188,6 +205,14 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
 
 void ProgramWriter::write_hole(const ir::Operation&, const ir::Hole&, SourceLoc loc) {
   d_.error(loc, "internal: machine '" + m_.name + "' writes no canned cycles (is 'drill-cycles' in its pipeline?)");
+}
+
+void ProgramWriter::write_rotary_position(const ir::RotaryPosition&, SourceLoc loc) {
+  d_.error(loc, "internal: machine '" + m_.name + "' has no rotary axes");
+}
+
+void ProgramWriter::write_mode(const ir::MachineMode&, SourceLoc loc) {
+  d_.error(loc, "internal: machine '" + m_.name + "' has no five-axis modes");
 }
 
 void ProgramWriter::write_groove(const ir::Operation&, const ir::Groove&, SourceLoc loc) {

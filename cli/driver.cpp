@@ -109,6 +109,8 @@ CompileResult compile_file(const std::string& input, const std::string& output, 
       throw FatalError{};
     }
     if (!info.units_given) d.warning({}, info.units_reason + " (use --input-units to say)");
+    if (info.lathe && !machine.is_lathe() && opt.emit == Emit::Gcode)
+      d.warning({}, "the CL data is for a lathe (MACHIN/TURN) but machine '" + machine.name + "' is a mill");
     if (opt.emit != Emit::Nothing && !out.open(output, why)) {
       err << "clpc: error: " << why << "\n";
       res.errors = 1;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -48,10 +49,13 @@ enum class MoveKind : uint8_t {
 };
 
 struct Move {
-  Vec3 point;     // tool tip
-  Vec3 axis;      // tool axis (unit), as last given
+  Vec3 point;     // tool tip (after the kinematics pass: what the control is given)
+  Vec3 axis;      // tool axis (unit), as last given, in the part frame
   MoveKind kind = MoveKind::Feed;
   bool axis_written = false;  // this record wrote i,j,k
+  bool has_rotary = false;    // set by the kinematics pass: the rotary positions to write
+  std::array<double, 2> rotary{0, 0};
+  double inverse_time = 0;    // set by the kinematics pass: F in G93 (1/min); 0 = the feed rate
 };
 
 // Sense of rotation about Arc::axis: Ccw is the right-hand rule (counter-clockwise seen from
@@ -80,6 +84,8 @@ struct Arc {
   uint32_t via_begin = 0;         // intermediate points (Creo) in Operation::points
   uint32_t via_count = 0;
   double sweep = 0;               // degrees (> 0) once the direction is decided
+  bool has_rotary = false;        // set by the kinematics pass: the rotaries (fixed) during the arc
+  std::array<double, 2> rotary{0, 0};
 };
 
 struct ToolChange {
@@ -237,9 +243,23 @@ struct GrooveMark {
   bool begin = true;
 };
 
+// --- five-axis (made by the kinematics pass) ------------------------------------------------
+
+// Position the rotary axes (3+2, or a rotation with the tool retracted), clamped after.
+struct RotaryPosition {
+  std::array<double, 2> rotary{0, 0};
+  bool clamp = true;
+};
+
+// Switches of the control's modes around the moves that need them.
+enum class ModeKind : uint8_t { TcpOn, TcpOff, DwoOn, DwoOff };
+struct MachineMode {
+  ModeKind kind = ModeKind::TcpOn;
+};
+
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
                         Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex,
-                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark>;
+                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark, RotaryPosition, MachineMode>;
 
 struct Instr {
   SourceLoc loc;

@@ -34,6 +34,15 @@ struct Printer {
   void operator()(const Move& m) {
     o << (m.kind == MoveKind::Rapid ? "rapid " : m.kind == MoveKind::Feed ? "feed " : "from ") << vec(m.point);
     if (m.axis_written || m.axis != Vec3::UnitZ()) o << " axis " << vec(m.axis);
+    if (m.has_rotary) o << " rotary (" << num_text(m.rotary[0]) << ", " << num_text(m.rotary[1]) << ")";
+    if (m.inverse_time > 0) o << " inverse-time " << num_text(m.inverse_time);
+  }
+  void operator()(const RotaryPosition& r) {
+    o << "rotary-position (" << num_text(r.rotary[0]) << ", " << num_text(r.rotary[1]) << ")" << (r.clamp ? " clamp" : "");
+  }
+  void operator()(const MachineMode& m) {
+    static const char* names[] = {"tcp-on", "tcp-off", "dwo-on", "dwo-off"};
+    o << names[int(m.kind)];
   }
   void operator()(const Arc& a) {
     o << "arc " << dir_name(a.dir) << " to " << vec(a.end) << " center " << vec(a.center) << " axis " << vec(a.axis)

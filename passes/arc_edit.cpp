@@ -30,6 +30,8 @@ void linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Inst
     m.point = i == n ? a.end : arcgeo::point_at(a, double(i) / n);
     m.axis = a.tool_axis;
     m.kind = ir::MoveKind::Feed;
+    m.has_rotary = a.has_rotary;
+    m.rotary = a.rotary;
     out.push_back(ir::Instr{loc, m});
   }
 }

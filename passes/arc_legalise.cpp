@@ -46,6 +46,8 @@ class ArcLegalise : public Pass {
         m.point = a->end;
         m.axis = a->tool_axis;
         m.kind = ir::MoveKind::Feed;
+        m.has_rotary = a->has_rotary;
+        m.rotary = a->rotary;
         out.push_back(ir::Instr{in.loc, m});
         return true;
       }
@@ -54,6 +56,8 @@ class ArcLegalise : public Pass {
           ir::Move m;
           m.point = a->end;
           m.axis = a->tool_axis;
+          m.has_rotary = a->has_rotary;
+          m.rotary = a->rotary;
           out.push_back(ir::Instr{in.loc, m});
         }
         return true;

@@ -29,6 +29,17 @@ const std::vector<PassInfo>& all_passes() {
        "a move to the cycle's start and a groove whose G74/G75 expansion equals the motion it replaced; motion that "
        "does not match stays as it was",
        make_groove_cycles},
+      {"kinematics", "turn tool axes into rotary positions and points into what the control is given (five-axis, 3+2)",
+       "expects: legal arcs, holes, tool axes in the part frame. guarantees (machines with rotaries): every move has "
+       "its rotary positions within limits, chosen for the least travel and continuity; indexed operations position "
+       "once and cut 3-axis in the tilted frame; holes along Z or expanded; TCPC / dynamic work offset modes switched "
+       "around the moves that need them; no-solution and forced jumps are errors (or retract-rotate-re-engage)",
+       make_kinematics},
+      {"limits", "check every rotary and linear position against the machine's travel",
+       "expects: the kinematics pass's output. guarantees: an error naming the CL record for any rotary beyond its "
+       "limits, or linear position beyond kinematics.travel (absolute with kinematics.work_zero, else the program's "
+       "extent)",
+       make_limits},
   };
   return passes;
 }

@@ -94,14 +94,17 @@ Parsed parse_text(const std::string& text) {
   return p;
 }
 
-Lowered lower_text(const std::string& text, const std::vector<std::string>& passes, const Machine* m) {
+Lowered lower_text(const std::string& text, const std::vector<std::string>& passes, const Machine* m,
+                   std::optional<ir::Units> units) {
   Lowered l;
   SourceFile src;
   src.open_memory("test.cls", text);
   Diagnostics d(nullptr);
   d.set_keep(true);
   d.set_source(&src);
-  l.info = prescan_program(src);
+  PrescanOptions po;
+  po.units = units;
+  l.info = prescan_program(src, po);
   Machine generic = default_machine(Family::Mill, ir::Units::Mm);
   PassContext ctx{l.info, m ? *m : generic, d};
   PassManager pm(ctx, passes, {}, nullptr, true);

@@ -50,7 +50,7 @@ struct Lowered {
   ir::ProgramInfo info;
 };
 Lowered lower_text(const std::string& text, const std::vector<std::string>& passes = {},
-                   const Machine* machine = nullptr);
+                   const Machine* machine = nullptr, std::optional<ir::Units> units = std::nullopt);
 
 // A built-in machine (or one from extra TOML text).
 Machine machine(const std::string& name, const std::string& extra_toml = {});

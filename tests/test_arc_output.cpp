@@ -38,12 +38,17 @@ struct ArcStats {
 
 void check_file(const std::string& file, const Machine& m, ArcStats& st) {
   SCOPED_TRACE(file + " on " + m.name);
-  Compiled c = compile_path(file, m);
+  CompileOptions opt;
+  // helical.ncl.1's numbers are millimetres (see test_corpus.cpp): the Haas cannot hold them
+  // as the inches the file claims.
+  bool mm = m.name == "haas-umc750" && file.find("helical.ncl.1") != std::string::npos;
+  if (mm) opt.input_units = ir::Units::Mm;
+  Compiled c = compile_path(file, m, opt);
   ASSERT_TRUE(c.ok) << c.diags;
   gcode::Result g = gcode::interpret(c.output, m);
   for (const auto& p : g.problems) ADD_FAILURE() << "line " << p.line << ": " << p.message;
 
-  Lowered l = lower_text(read_file(file), {"arc-direction"}, &m);
+  Lowered l = lower_text(read_file(file), {"arc-direction"}, &m, mm ? std::optional<ir::Units>(ir::Units::Mm) : std::nullopt);
   std::vector<ir::Arc> arcs;
   for (const auto& op : l.ops)
     for (const auto& in : op.body)
@@ -65,19 +70,23 @@ void check_file(const std::string& file, const Machine& m, ArcStats& st) {
     double dr = std::abs(s.start_radius - s.end_radius);
     st.worst_radius = std::max(st.worst_radius, dr);
     EXPECT_LE(dr, unit * (1 + 1e-6)) << "G-code line " << s.line;
-    // The CL arc this piece belongs to: the next one (in order) holding both its ends.
+    // The CL arc this piece belongs to: the next one (in order) holding its ends; of those, the
+    // first whose path its midpoint is on (consecutive arcs may share a circle and its ends).
     ir::Vec3 mid = emitted_midpoint(s);
     bool found = false;
+    double nearest = 1e300;
     for (size_t i = next; i < arcs.size() && !found; ++i) {
-      if (distance_to_arc(arcs[i], s.start) <= tol && distance_to_arc(arcs[i], s.end) <= tol) {
-        double d = distance_to_arc(arcs[i], mid);
+      if (distance_to_arc(arcs[i], s.start) > tol || distance_to_arc(arcs[i], s.end) > tol) continue;
+      double d = distance_to_arc(arcs[i], mid);
+      nearest = std::min(nearest, d);
+      if (d <= tol) {
         st.worst_mid = std::max(st.worst_mid, d);
-        EXPECT_LE(d, tol) << "G-code line " << s.line << ": midpoint off the CL arc";
         next = i;
         found = true;
       }
     }
-    EXPECT_TRUE(found) << "G-code line " << s.line << ": arc matches no CL arc";
+    if (!found && nearest < 1e300) st.worst_mid = std::max(st.worst_mid, nearest);
+    EXPECT_TRUE(found) << "G-code line " << s.line << ": arc matches no CL arc (nearest midpoint " << nearest << ")";
   }
 }
 

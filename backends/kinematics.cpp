@@ -1,0 +1,178 @@
+#include "backends/kinematics.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace clpc::kin {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFreeTol = 1e-7;  // a perpendicular part this small: the axis is singular
+
+double norm180(double deg) {
+  deg = std::fmod(deg, 360.0);
+  if (deg <= -180) deg += 360;
+  if (deg > 180) deg -= 360;
+  return deg;
+}
+
+// Signed angle (degrees) turning u to v about the unit axis n, both projected off n; NaN when
+// either projection vanishes.
+double signed_angle(const Vec3& u, const Vec3& v, const Vec3& n) {
+  Vec3 a = u - u.dot(n) * n, b = v - v.dot(n) * n;
+  if (a.norm() < kFreeTol || b.norm() < kFreeTol) return std::nan("");
+  return std::atan2(n.dot(a.cross(b)), a.dot(b)) * 180 / kPi;
+}
+
+// R(u1, t1) R(u2, t2) p = q, for unit u1, u2, p, q.
+std::vector<Solution> solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, const Vec3& q) {
+  std::vector<Solution> out;
+  double c12 = u1.dot(u2);
+  double A = q.dot(u2) - c12 * q.dot(u1);
+  double B = q.dot(u1.cross(u2));
+  double C = c12 * q.dot(u1);
+  double D = u2.dot(p) - C;
+  double R = std::hypot(A, B);
+  std::vector<double> t1s;
+  bool t1_free = false;
+  if (R < 1e-12) {
+    if (std::abs(D) > 1e-9) return out;
+    t1s.push_back(0);
+    t1_free = true;
+  } else {
+    double c = D / R;
+    if (std::abs(c) > 1 + 1e-9) return out;
+    c = std::clamp(c, -1.0, 1.0);
+    double phi = std::atan2(B, A) * 180 / kPi;
+    double d = std::acos(c) * 180 / kPi;
+    t1s.push_back(phi + d);
+    if (d > 1e-9) t1s.push_back(phi - d);
+  }
+  for (double t1 : t1s) {
+    Vec3 w = rotation(u1, -t1) * q;
+    Solution s;
+    s.a[0] = norm180(t1);
+    s.free[0] = t1_free;
+    double t2 = signed_angle(p, w, u2);
+    if (std::isnan(t2)) {
+      s.free[1] = true;
+      t2 = 0;
+    }
+    s.a[1] = norm180(t2);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<Solution> solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
+  std::vector<Solution> out;
+  if (std::abs(u.dot(p) - u.dot(q)) > 1e-7) return out;
+  Solution s;
+  double t = signed_angle(p, q, u);
+  if (std::isnan(t)) {
+    s.free[0] = true;
+    t = 0;
+  }
+  s.a[0] = norm180(t);
+  out.push_back(s);
+  return out;
+}
+
+}  // namespace
+
+Mat3 rotation(const Vec3& axis, double degrees) {
+  return Eigen::AngleAxisd(degrees * kPi / 180, axis.normalized()).toRotationMatrix();
+}
+
+Vec3 table_point(const KinematicsSettings& k, const Angles& a, const Vec3& p) {
+  Vec3 x = p;
+  for (int i = int(k.rotaries.size()) - 1; i >= 0; --i) {
+    const RotaryAxis& r = k.rotaries[size_t(i)];
+    if (!r.table) continue;
+    x = r.center + rotation(r.effective(), a[size_t(i)]) * (x - r.center);
+  }
+  return x;
+}
+
+Mat3 table_rotation(const KinematicsSettings& k, const Angles& a) {
+  Mat3 m = Mat3::Identity();
+  for (size_t i = 0; i < k.rotaries.size(); ++i)
+    if (k.rotaries[i].table) m = m * rotation(k.rotaries[i].effective(), a[i]);
+  return m;
+}
+
+Vec3 head_axis(const KinematicsSettings& k, const Angles& a) {
+  Mat3 m = Mat3::Identity();
+  for (size_t i = 0; i < k.rotaries.size(); ++i)
+    if (!k.rotaries[i].table) m = m * rotation(k.rotaries[i].effective(), a[i]);
+  return m * Vec3::UnitZ();
+}
+
+Vec3 tool_axis_in_part(const KinematicsSettings& k, const Angles& a) {
+  return table_rotation(k, a).transpose() * head_axis(k, a);
+}
+
+namespace {
+
+// Where the tip goes when the head axes turn, relative to the programmed point.
+Vec3 head_offset(const KinematicsSettings& k, const Angles& a, double pivot) {
+  // Innermost head axis first: the tip, at the programmed point, swings about each axis.
+  Vec3 tip = Vec3::Zero();
+  for (int i = int(k.rotaries.size()) - 1; i >= 0; --i) {
+    const RotaryAxis& r = k.rotaries[size_t(i)];
+    if (r.table) continue;
+    Vec3 c = r.center + Vec3::UnitZ() * pivot;
+    tip = c + rotation(r.effective(), a[size_t(i)]) * (tip - c);
+  }
+  return tip;
+}
+
+}  // namespace
+
+Vec3 machine_point(const KinematicsSettings& k, const Angles& a, const Vec3& tip, double pivot) {
+  return table_point(k, a, tip) - head_offset(k, a, pivot);
+}
+
+Vec3 part_tip(const KinematicsSettings& k, const Angles& a, const Vec3& machine, double pivot) {
+  Vec3 tip_m = machine + head_offset(k, a, pivot);
+  // Undo the table axes, outermost first.
+  Vec3 x = tip_m;
+  for (size_t i = 0; i < k.rotaries.size(); ++i) {
+    const RotaryAxis& r = k.rotaries[i];
+    if (!r.table) continue;
+    x = r.center + rotation(r.effective(), -a[i]) * (x - r.center);
+  }
+  return x;
+}
+
+std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
+  const auto& r = k.rotaries;
+  Vec3 v = axis.normalized(), z = Vec3::UnitZ();
+  if (r.size() == 1) {
+    // Table: R v = z. Head: R z = v.
+    return r[0].table ? solve_one(r[0].effective(), v, z) : solve_one(r[0].effective(), z, v);
+  }
+  if (r.size() != 2) return {};
+  bool t0 = r[0].table, t1 = r[1].table;
+  if (t0 && t1) return solve_two(r[0].effective(), r[1].effective(), v, z);
+  if (!t0 && !t1) return solve_two(r[0].effective(), r[1].effective(), z, v);
+  // One head and one table axis: R_T v = R_H z, i.e. R_H(-t) R_T v = z.
+  size_t h = t0 ? 1 : 0, t = t0 ? 0 : 1;
+  std::vector<Solution> s = solve_two(-r[h].effective(), r[t].effective(), v, z);
+  for (Solution& x : s) {
+    Solution y;
+    y.a[h] = x.a[0];
+    y.free[h] = x.free[0];
+    y.a[t] = x.a[1];
+    y.free[t] = x.free[1];
+    x = y;
+  }
+  return s;
+}
+
+double angle_between(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / kPi;
+}
+
+}  // namespace clpc::kin

@@ -1,0 +1,54 @@
+// The kinematic model of a machine's rotary axes (from its description's [kinematics]):
+// forward transforms and every inverse solution of a tool axis. Pure math, shared by the
+// kinematics and offset-table passes, the G-code interpreter and the tests.
+//
+// A machine has up to two rotary axes, each on the table side (it turns the part) or the head
+// side (it turns the tool), listed from the machine base outwards. A table axis turns the part
+// by `direction` x angle about `axis` through `center`; a head axis turns the tool likewise.
+// Coordinates are the program's frame at all rotaries zero, in output units; the tool points
+// along +Z when the head axes are at zero.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "backends/machine.h"
+
+namespace clpc::kin {
+
+using ir::Mat3;
+using ir::Vec3;
+
+constexpr int kMaxRotaries = 2;
+using Angles = std::array<double, kMaxRotaries>;  // degrees, as the machine's axis words
+
+Mat3 rotation(const Vec3& axis, double degrees);
+
+// Part to machine: where a part point is after the table axes turn (head axes ignored).
+Vec3 table_point(const KinematicsSettings& k, const Angles& a, const Vec3& p);
+Mat3 table_rotation(const KinematicsSettings& k, const Angles& a);
+// The tool axis in machine coordinates (head axes).
+Vec3 head_axis(const KinematicsSettings& k, const Angles& a);
+// The tool axis the rotaries give, seen from the part.
+Vec3 tool_axis_in_part(const KinematicsSettings& k, const Angles& a);
+
+// Where the programmed point must be, without tool-centre-point control, for the tool tip to
+// be at part point `tip`: the table axes move the part; head axes swing the tip about their
+// centres, `pivot` = the distance from the tip to the head axes' centres along the tool at zero.
+Vec3 machine_point(const KinematicsSettings& k, const Angles& a, const Vec3& tip, double pivot);
+// The inverse: the tool tip in part coordinates for a programmed machine point.
+Vec3 part_tip(const KinematicsSettings& k, const Angles& a, const Vec3& machine, double pivot);
+
+struct Solution {
+  Angles a{0, 0};
+  bool free[kMaxRotaries] = {false, false};  // singular: any value of this axis will do
+};
+
+// Every solution (angles in (-180, 180]) turning the tool onto `axis` (unit, part frame).
+// Empty when no rotary angle can (a 4-axis machine and an axis off its cone).
+std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis);
+
+// Angular distance between two unit vectors, in degrees.
+double angle_between(const Vec3& a, const Vec3& b);
+
+}  // namespace clpc::kin

@@ -1,0 +1,586 @@
+// kinematics (five-axis): tool axes become rotary positions, points become what the control
+// is given.
+//
+// For each tool axis the model gives every rotary solution (backends/kinematics.cpp); the pass
+// takes, of those within the limits, the one with the least rotary travel from where the
+// machine is (the machine's preferred sign breaks ties; the first one prefers it). Continuous
+// axes are wound or kept modulo 360 as the machine says; at the vertical singularity the free
+// axis keeps its position. When the continuing solution is out of limits and only a jump to
+// another would do, that is an error naming the CL record, or, where the machine enables it,
+// a retract along the tool axis, a rotation and a re-engage.
+//
+// Operations with one tool axis are indexed (3+2): the rotaries are positioned once and
+// clamped, and the points are cut 3-axis in the tilted frame: transformed through the chain
+// (indexed = "transform"), turned about the part origin for Haas dynamic work offsets
+// (indexed = "dwo", G254), or left to TCPC. Other operations are simultaneous: with TCPC the
+// points stay in the part frame with the rotaries beside them; without, each point goes
+// through the chain, and moves are split where the rotation would take the tip off the CL
+// segment by more than the tolerance. Inverse-time feeds (G93) where the machine asks.
+//
+// Contract. Expects: legal arcs, holes from drill-cycles, moves with tool axes in the part
+// frame. Guarantees (machines with rotaries): every move has its rotary positions; rotaries
+// within limits; holes along the machine's Z or expanded into moves; the control modes are
+// switched around the moves that need them. Machines without rotaries: unchanged.
+#include <cmath>
+#include <optional>
+
+#include "backends/kinematics.h"
+#include "passes/arc_edit.h"
+#include "passes/cycle_expand.h"
+#include "ir/params.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+using ir::Vec3;
+
+inline ir::Mat3 Mat3Identity() { return ir::Mat3::Identity(); }
+
+std::string vec_text(const Vec3& v) {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%.6g, %.6g, %.6g)", v.x(), v.y(), v.z());
+  return b;
+}
+
+class Kinematics : public Pass {
+ public:
+  void begin(PassContext& ctx) override {
+    k_ = ctx.machine.kinematics;
+    // The model works in program units: scale the machine's lengths.
+    const double f = ctx.from_output();
+    for (RotaryAxis& r : k_.rotaries) r.center *= f;
+    k_.pivot *= f;
+    k_.retract_distance *= f;
+  }
+
+  void run(ir::Operation& op, PassContext& ctx) override {
+    if (!k_.has_rotaries()) return;
+    d_ = &ctx.diags;
+    ctx_ = &ctx;
+    std::vector<ir::Instr> out;
+    out.reserve(op.body.size() + 8);
+    // One tool axis for all the motion: an indexed (3+2) operation.
+    std::optional<Vec3> axis;
+    bool indexed = true, positioned = false;
+    for (const ir::Instr& in : op.body) {
+      if (std::holds_alternative<ir::RotaryPosition>(in.op)) positioned = true;
+      const Vec3* a = nullptr;
+      if (auto* m = std::get_if<ir::Move>(&in.op); m && m->kind != ir::MoveKind::From) a = &m->axis;
+      else if (auto* arc = std::get_if<ir::Arc>(&in.op)) a = &arc->tool_axis;
+      else if (auto* h = std::get_if<ir::Hole>(&in.op)) a = &h->axis;
+      if (!a) continue;
+      if (!axis) axis = *a;
+      else if ((*axis - *a).norm() > 1e-9) indexed = false;
+    }
+    if (positioned) {
+      // The offset table positioned the rotaries and put the points in its frame already.
+      for (ir::Instr& in : op.body) {
+        if (auto* r = std::get_if<ir::RotaryPosition>(&in.op)) set_current(r->rotary);
+        else if (auto* m = std::get_if<ir::Move>(&in.op)) stamp(*m);
+        out.push_back(std::move(in));
+      }
+      op.body.swap(out);
+      return;
+    }
+    mode_indexed_ = indexed && axis.has_value();
+    for (ir::Instr& in : op.body) {
+      if (auto* tc = std::get_if<ir::ToolChange>(&in.op)) {
+        const ir::ToolInfo* t = ctx.info.tool(tc->tool);
+        tool_length_ = t ? t->length : 0;
+        modes_off(out, in.loc);  // a tool change needs the modes off
+        out.push_back(std::move(in));
+        continue;
+      }
+      if (auto* f = std::get_if<ir::Feed>(&in.op)) {
+        feed_ = *f;
+        feed_known_ = true;
+      }
+      if (auto* s = std::get_if<ir::Spindle>(&in.op)) spindle_ = *s;
+      if (std::holds_alternative<ir::RotaryIndex>(in.op)) {
+        d_->error(in.loc, "ROTATE (rotary indexing between subroutine calls) is not supported: have the CAM system "
+                          "write the rotated tool path (e.g. as MULTAX tool axes)");
+        continue;
+      }
+      if (auto* m = std::get_if<ir::Move>(&in.op)) {
+        if (m->kind == ir::MoveKind::From) {
+          prev_tip_ = m->point;
+          prev_axis_ = m->axis;
+          have_prev_ = true;
+          out.push_back(std::move(in));
+          continue;
+        }
+        motion(*m, in.loc, out);
+        continue;
+      }
+      if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+        arc(*a, in.loc, out);
+        continue;
+      }
+      if (auto* h = std::get_if<ir::Hole>(&in.op)) {
+        hole(op, *h, in.loc, out);
+        continue;
+      }
+      if (std::holds_alternative<ir::CycleOn>(in.op) || std::holds_alternative<ir::CycleOff>(in.op)) {
+        out.push_back(std::move(in));
+        continue;
+      }
+      out.push_back(std::move(in));
+    }
+    if (op.last_chunk) modes_off(out, op.body.empty() ? op.loc : op.body.back().loc);
+    op.body.swap(out);
+  }
+
+ private:
+  // --- choosing among solutions --------------------------------------------------------------
+
+  double distance(size_t i, double a, double b) const {
+    double d = std::abs(a - b);
+    if (k_.rotaries[i].cyclic == Cyclic::Modulo) d = std::min(d, 360 - std::fmod(d, 360.0));
+    return d;
+  }
+
+  bool in_limits(size_t i, double v) const {
+    const RotaryAxis& r = k_.rotaries[i];
+    return r.cyclic != Cyclic::No || (v >= r.min - 1e-9 && v <= r.max + 1e-9);
+  }
+
+  // Values axis i may take for the solution angle `base`: nearest the current one for
+  // continuous axes, every turn within limits (and one each side) for limited ones.
+  std::vector<double> representatives(size_t i, double base) const {
+    const RotaryAxis& r = k_.rotaries[i];
+    std::vector<double> v;
+    if (r.cyclic == Cyclic::Modulo) {
+      double m = std::fmod(base, 360.0);
+      v.push_back(m < 0 ? m + 360 : m);
+    } else if (r.cyclic == Cyclic::Wind) {
+      double c = have_cur_ ? cur_[i] : 0;
+      v.push_back(base + 360 * std::round((c - base) / 360));
+    } else {
+      for (int n = -4; n <= 4; ++n) v.push_back(base + 360 * n);
+    }
+    return v;
+  }
+
+  struct Choice {
+    kin::Angles a{0, 0};
+    bool found = false;
+    bool jump = false;  // the continuing solution is out of limits: this one is a jump
+  };
+
+  // The tool direction at which the inner rotary axis is free (vertical, for a B/C trunnion),
+  // if the machine has one.
+  std::optional<Vec3> singular_direction() const {
+    if (k_.rotaries.size() != 2) return std::nullopt;
+    Vec3 s = kin::tool_axis_in_part(k_, {0, 0});
+    const RotaryAxis& inner = k_.rotaries[1];
+    Vec3 u = inner.table ? inner.effective() : kin::rotation(k_.rotaries[0].effective(), 0) * inner.effective();
+    if (std::abs(std::abs(s.dot(u.normalized())) - 1) > 1e-9) return std::nullopt;
+    return s;
+  }
+
+  bool at_singularity() const {
+    auto s = singular_direction();
+    return have_cur_ && s && kin::angle_between(kin::tool_axis_in_part(k_, cur_), *s) < 1e-6;
+  }
+
+  Choice choose(const Vec3& axis) const {
+    Choice best, any;
+    double best_cost = 1e300, any_cost = 1e300;
+    // At the singularity the free axis may turn without moving the tool: there the machine's
+    // preferred sign comes first, the travel second.
+    const bool singular = at_singularity();
+    std::vector<kin::Solution> sols = kin::solve(k_, axis);
+    const size_t n = k_.rotaries.size();
+    for (const kin::Solution& s : sols) {
+      std::vector<std::vector<double>> vals(n);
+      for (size_t i = 0; i < n; ++i) {
+        if (s.free[i]) vals[i] = {have_cur_ ? cur_[i] : 0.0};
+        else vals[i] = representatives(i, s.a[i]);
+      }
+      auto consider = [&](const kin::Angles& a) {
+        double cost = 0, pref = 0;
+        bool ok = true;
+        for (size_t i = 0; i < n; ++i) {
+          cost += have_cur_ ? distance(i, a[i], cur_[i]) : std::abs(a[i]);
+          if (k_.rotaries[i].prefer != 0 && a[i] * k_.rotaries[i].prefer < -1e-9) pref += 1;
+          ok = ok && in_limits(i, a[i]);
+        }
+        double total = cost + pref * (singular ? 1e6 : 1e-6);  // elsewhere the sign only breaks ties
+        if (total < any_cost) {
+          any_cost = total;
+          any.a = a;
+          any.found = true;
+        }
+        if (ok && total < best_cost) {
+          best_cost = total;
+          best.a = a;
+          best.found = true;
+        }
+      };
+      kin::Angles a{0, 0};
+      if (n == 1) {
+        for (double x : vals[0]) consider({x, 0});
+      } else {
+        for (double x : vals[0])
+          for (double y : vals[1]) {
+            a = {x, y};
+            consider(a);
+          }
+      }
+    }
+    best.jump = best.found && have_cur_ && any_cost < best_cost - 1e-6 && any_cost < 90;
+    return best;
+  }
+
+  // Where the machine is now.
+  void set_current(const std::array<double, 2>& a) {
+    cur_ = a;
+    have_cur_ = true;
+  }
+
+  void stamp(ir::Move& m) {
+    m.has_rotary = true;
+    m.rotary = cur_;
+  }
+
+  double pivot() const { return k_.pivot + tool_length_; }
+
+  // The point the control is given for tip p at angles a, per mode.
+  Vec3 output_point(const kin::Angles& a, const Vec3& p, bool simultaneous) const {
+    if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return p;
+    if (!simultaneous && k_.indexed == Indexed::Dwo) return kin::table_rotation(k_, a) * p;  // identity at no rotation
+    return kin::machine_point(k_, a, p, pivot());
+  }
+  Vec3 output_axis(const kin::Angles& a, const Vec3& axis, bool simultaneous) const {
+    if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return axis;
+    return kin::table_rotation(k_, a) * axis;
+  }
+  bool tcp(bool simultaneous) const {
+    return simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp;
+  }
+
+  // --- control modes -------------------------------------------------------------------------
+
+  void modes_off(std::vector<ir::Instr>& out, SourceLoc loc) {
+    if (tcp_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
+    if (dwo_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
+    tcp_on_ = dwo_on_ = false;
+    indexed_at_.reset();
+  }
+
+  // Before a move in the given mode: the right control modes, and for indexed work the
+  // rotaries positioned (once) for `axis`.
+  bool prepare(bool simultaneous, const Vec3& axis, SourceLoc loc, std::vector<ir::Instr>& out) {
+    bool want_tcp = tcp(simultaneous);
+    bool want_dwo = !simultaneous && k_.indexed == Indexed::Dwo;
+    if (!simultaneous) {
+      bool same = indexed_at_ && (*indexed_at_ - axis).norm() <= 1e-9;
+      if (!same) {
+        Choice c = choose(axis);
+        if (!c.found) return no_solution(axis, loc);
+        if (c.jump && !k_.retract_on_limit) return jump_error(c, axis, loc);
+        // Rotaries move only with the modes that forbid it off.
+        if (dwo_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
+        if (tcp_on_ && !want_tcp) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
+        dwo_on_ = false;
+        tcp_on_ = tcp_on_ && want_tcp;
+        set_current(c.a);
+        out.push_back({loc, ir::RotaryPosition{c.a, true}});
+        indexed_at_ = axis;
+      }
+    } else {
+      indexed_at_.reset();
+      if (dwo_on_) {
+        out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
+        dwo_on_ = false;
+      }
+    }
+    if (want_tcp && !tcp_on_) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOn}});
+      tcp_on_ = true;
+    }
+    if (!want_tcp && tcp_on_) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
+      tcp_on_ = false;
+    }
+    // A dynamic work offset at no rotation would change nothing.
+    if (want_dwo && (kin::table_rotation(k_, cur_) - Mat3Identity()).cwiseAbs().maxCoeff() < 1e-12) want_dwo = false;
+    if (want_dwo && !dwo_on_) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOn}});
+      dwo_on_ = true;
+    }
+    return true;
+  }
+
+  bool no_solution(const Vec3& axis, SourceLoc loc) {
+    d_->error(loc, "no position of the rotary axes of machine '" + ctx_->machine.name + "' within their limits turns the tool to " +
+                       vec_text(axis));
+    return false;
+  }
+
+  bool jump_error(const Choice& c, const Vec3& axis, SourceLoc loc) {
+    std::string from, to;
+    for (size_t i = 0; i < k_.rotaries.size(); ++i) {
+      from += k_.rotaries[i].name + num_text(cur_[i]) + " ";
+      to += k_.rotaries[i].name + num_text(c.a[i]) + " ";
+    }
+    d_->error(loc, "tool axis " + vec_text(axis) + ": continuing from " + from + "leaves the rotary limits; the only way on is a jump to " +
+                       to + "(set kinematics.on_limit = \"retract\" to retract, rotate and re-engage)");
+    return false;
+  }
+
+  // --- motion --------------------------------------------------------------------------------
+
+  void motion(ir::Move m, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const bool simultaneous = !mode_indexed_;
+    if (!prepare(simultaneous, m.axis, loc, out)) return;
+    kin::Angles a = cur_;
+    if (simultaneous) cross_singularity(m, loc, out);
+    if (simultaneous) {
+      Choice c = choose(m.axis);
+      if (!c.found) {
+        no_solution(m.axis, loc);
+        return;
+      }
+      if (c.jump) {
+        if (!k_.retract_on_limit) {
+          jump_error(c, m.axis, loc);
+          return;
+        }
+        retract_rotate(c.a, m, loc, out);
+      }
+      a = c.a;
+    }
+    // Transform mode: split the move where the rotation takes the tip off the CL segment.
+    if (simultaneous && !tcp(true) && have_prev_ && m.kind == ir::MoveKind::Feed)
+      subdivide(prev_tip_, prev_axis_, cur_, m.point, m.axis, a, loc, out, 0);
+    emit(m, a, simultaneous, loc, out);
+  }
+
+  // Where the CL tool axis passes exactly through the singular direction between the last
+  // point and this one, a point goes there (the tool tip on the CL segment, the axis singular):
+  // the free axis can then turn to the preferred branch without tilting the tool at all.
+  void cross_singularity(const ir::Move& m, SourceLoc loc, std::vector<ir::Instr>& out) {
+    auto s = singular_direction();
+    if (!s || !have_prev_ || !have_cur_ || m.kind != ir::MoveKind::Feed) return;
+    const Vec3 a0 = prev_axis_, a1 = m.axis;
+    double total = kin::angle_between(a0, a1);
+    if (total < 1e-9) return;
+    // The great circle from a0 to a1 passes through s when s lies in their plane, between them.
+    Vec3 n = a0.cross(a1).normalized();
+    if (std::abs(n.dot(*s)) > 1e-9) return;
+    double t = kin::angle_between(a0, *s) / total;
+    if (!(t > 1e-9 && t < 1 - 1e-9) || std::abs(kin::angle_between(a0, *s) + kin::angle_between(*s, a1) - total) > 1e-9)
+      return;
+    Choice here = choose(*s);
+    if (!here.found) return;
+    ir::Move mid;
+    mid.point = prev_tip_ + t * (m.point - prev_tip_);
+    mid.axis = *s;
+    mid.kind = ir::MoveKind::Feed;
+    emit(mid, here.a, true, loc, out);
+    // Turn the free axis to the branch the rest of the move takes, on the spot.
+    Choice next = choose(m.axis);
+    if (next.found && std::abs(next.a[1] - cur_[1]) > 1e-9) {
+      kin::Angles turn = cur_;
+      turn[1] = next.a[1];
+      emit(mid, turn, true, loc, out);
+    }
+  }
+
+  void emit(ir::Move m, const kin::Angles& a, bool simultaneous, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const Vec3 tip = m.point, axis = m.axis;
+    bool rotates = have_cur_ && (std::abs(a[0] - cur_[0]) > 1e-9 || std::abs(a[1] - cur_[1]) > 1e-9);
+    m.point = output_point(a, tip, simultaneous);
+    m.axis = output_axis(a, axis, simultaneous);
+    m.has_rotary = true;
+    m.rotary = a;
+    if (k_.inverse_time && simultaneous && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
+        feed_.mode == ir::FeedMode::PerMinute && have_prev_)
+      m.inverse_time = inverse_time(prev_tip_, tip, a);
+    set_current(a);
+    prev_tip_ = tip;
+    prev_axis_ = axis;
+    have_prev_ = true;
+    out.push_back({loc, m});
+  }
+
+  // F in G93: the move takes as long as the CL feed along the CL path says, and no less than
+  // the machine's axes allow; capped at the machine's maximum.
+  double inverse_time(const Vec3& from, const Vec3& to, const kin::Angles& a) const {
+    double minutes = (to - from).norm() / feed_.value;
+    const double out_per_prog = 1 / ctx_->from_output();
+    if (ctx_->machine.max_feed > 0) {
+      Vec3 m0 = output_point(cur_, from, true), m1 = output_point(a, to, true);
+      minutes = std::max(minutes, (m1 - m0).norm() * out_per_prog / ctx_->machine.max_feed);
+    }
+    for (size_t i = 0; i < k_.rotaries.size(); ++i)
+      if (k_.rotaries[i].rate > 0) minutes = std::max(minutes, std::abs(a[i] - cur_[i]) / k_.rotaries[i].rate);
+    double f = minutes > 0 ? 1 / minutes : 1e9;
+    if (k_.max_inverse_time > 0) f = std::min(f, k_.max_inverse_time);
+    return f;
+  }
+
+  // Between CL points (p0, a0) and (p1, a1), without TCPC, the control interpolates machine
+  // coordinates and rotary angles linearly; where the tip it then cuts leaves the CL segment by
+  // more than the tolerance, a point (on the segment, with the tool axis halfway) goes between.
+  void subdivide(const Vec3& p0, const Vec3& ax0, const kin::Angles& t0, const Vec3& p1, const Vec3& ax1,
+                 const kin::Angles& t1, SourceLoc loc, std::vector<ir::Instr>& out, int depth) {
+    if (depth > 12) return;
+    Vec3 m0 = kin::machine_point(k_, t0, p0, pivot()), m1 = kin::machine_point(k_, t1, p1, pivot());
+    double worst = 0;
+    for (double t : {0.25, 0.5, 0.75}) {
+      kin::Angles ta{t0[0] + t * (t1[0] - t0[0]), t0[1] + t * (t1[1] - t0[1])};
+      Vec3 tip = kin::part_tip(k_, ta, m0 + t * (m1 - m0), pivot());
+      Vec3 seg = p1 - p0;
+      double len2 = seg.squaredNorm();
+      double s = len2 > 0 ? std::clamp((tip - p0).dot(seg) / len2, 0.0, 1.0) : 0;
+      worst = std::max(worst, (p0 + s * seg - tip).norm());
+    }
+    if (worst <= ctx_->tolerance()) return;
+    Vec3 pm = (p0 + p1) / 2;
+    Vec3 am = (ax0 + ax1).normalized();
+    if (!std::isfinite(am.x())) am = ax0;
+    // The angles halfway, continuing from t0.
+    kin::Angles save = cur_;
+    bool save_have = have_cur_;
+    cur_ = t0;
+    have_cur_ = true;
+    Choice c = choose(am);
+    cur_ = save;
+    have_cur_ = save_have;
+    if (!c.found) return;
+    subdivide(p0, ax0, t0, pm, am, c.a, loc, out, depth + 1);
+    ir::Move mid;
+    mid.point = pm;
+    mid.axis = am;
+    mid.kind = ir::MoveKind::Feed;
+    emit(mid, c.a, true, loc, out);
+    subdivide(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
+  }
+
+  // Retract along the current tool axis, turn to `a` there, come back along the new axis.
+  void retract_rotate(const kin::Angles& a, const ir::Move& to, SourceLoc loc, std::vector<ir::Instr>& out) {
+    if (!have_prev_) return;
+    d_->warning(loc, "the rotary axes must jump here: retracting, rotating and re-engaging", "retract rotate");
+    ir::Move up;
+    up.point = prev_tip_ + prev_axis_ * k_.retract_distance;
+    up.axis = prev_axis_;
+    up.kind = ir::MoveKind::Rapid;
+    emit(up, cur_, true, loc, out);
+    if (tcp_on_) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
+      tcp_on_ = false;
+    }
+    set_current(a);
+    out.push_back({loc, ir::RotaryPosition{a, false}});
+    if (tcp(true)) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOn}});
+      tcp_on_ = true;
+    }
+    ir::Move over;
+    over.point = to.point + to.axis * k_.retract_distance;
+    over.axis = to.axis;
+    over.kind = ir::MoveKind::Rapid;
+    have_prev_ = false;  // no subdivision across the jump
+    emit(over, a, true, loc, out);
+  }
+
+  void arc(ir::Arc a, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const bool simultaneous = !mode_indexed_;
+    if (tcp(simultaneous)) {
+      // Under TCPC the control is given part-frame points: lines within tolerance are safe
+      // whatever the tool's tilt.
+      std::vector<ir::Instr> lines;
+      arcedit::linearise(a, ctx_->tolerance(), loc, lines);
+      for (ir::Instr& in : lines) motion(std::get<ir::Move>(in.op), in.loc, out);
+      return;
+    }
+    if (!prepare(simultaneous, a.tool_axis, loc, out)) return;
+    if (simultaneous) {
+      Choice c = choose(a.tool_axis);
+      if (!c.found) {
+        no_solution(a.tool_axis, loc);
+        return;
+      }
+      if (std::abs(c.a[0] - cur_[0]) > 1e-9 || std::abs(c.a[1] - cur_[1]) > 1e-9) {
+        // The rotaries must turn before the arc: a move to its start with the arc's axis.
+        ir::Move m;
+        m.point = a.start;
+        m.axis = a.tool_axis;
+        m.kind = ir::MoveKind::Feed;
+        emit(m, c.a, true, loc, out);
+      }
+    }
+    // A rigid motion keeps an arc an arc: move its points and turn its axes.
+    const Vec3 end_in_part = a.end, axis_in_part = a.tool_axis;
+    const kin::Angles t = cur_;
+    a.start = output_point(t, a.start, simultaneous);
+    a.end = output_point(t, a.end, simultaneous);
+    a.center = output_point(t, a.center, simultaneous);
+    a.axis = output_axis(t, a.axis, simultaneous);
+    a.tool_axis = output_axis(t, a.tool_axis, simultaneous);
+    a.has_rotary = true;
+    a.rotary = t;
+    prev_tip_ = end_in_part;
+    prev_axis_ = axis_in_part;
+    have_prev_ = true;
+    out.push_back({loc, a});
+  }
+
+  void hole(const ir::Operation& op, ir::Hole h, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const bool simultaneous = !mode_indexed_;
+    const ir::CycleSpec& c = op.cycles.at(h.spec);
+    // A canned cycle drills along the machine's Z: only where the tilted frame puts it there.
+    bool keep = !simultaneous && !tcp(false);
+    if (keep) {
+      if (!prepare(false, h.axis, loc, out)) return;
+      Vec3 axis = output_axis(cur_, h.axis, false);
+      if ((axis - Vec3::UnitZ()).norm() > 1e-9) keep = false;
+      else {
+        h.point = output_point(cur_, h.point, false);
+        h.axis = axis;
+        out.push_back({loc, h});
+        have_prev_ = false;
+        return;
+      }
+    }
+    std::vector<ir::Instr> moves;
+    ExpandContext x{ctx_->machine.cycles.peck_clearance * ctx_->from_output(), feed_.value, feed_.mode, feed_known_,
+                    ctx_->machine.cycles.return_initial, spindle_.speed, spindle_.dir};
+    if (!expand_hole(h, c, x, loc, moves, *d_)) return;
+    for (ir::Instr& in : moves) {
+      if (auto* m = std::get_if<ir::Move>(&in.op)) motion(*m, in.loc, out);
+      else {
+        if (auto* f = std::get_if<ir::Feed>(&in.op)) {
+          feed_ = *f;
+          feed_known_ = true;
+        }
+        out.push_back(std::move(in));
+      }
+    }
+  }
+
+  KinematicsSettings k_;
+  Diagnostics* d_ = nullptr;
+  PassContext* ctx_ = nullptr;
+  kin::Angles cur_{0, 0};
+  bool have_cur_ = false;
+  bool mode_indexed_ = false;
+  std::optional<Vec3> indexed_at_;
+  bool tcp_on_ = false, dwo_on_ = false;
+  double tool_length_ = 0;
+  ir::Feed feed_;
+  bool feed_known_ = false;
+  ir::Spindle spindle_;
+  Vec3 prev_tip_ = Vec3::Zero(), prev_axis_ = Vec3::UnitZ();
+  bool have_prev_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_kinematics() { return std::make_unique<Kinematics>(); }
+
+}  // namespace clpc

@@ -1,0 +1,146 @@
+// limits: every rotary and linear position against the machine's travel; an error names the
+// CL record that went too far.
+//
+// Rotary positions are checked against each limited axis's min and max. Linear positions are
+// checked in machine coordinates (the tool tip moved through the table axes, as the control
+// will have it): against kinematics.travel absolutely when kinematics.work_zero says where the
+// program zero is on the machine; otherwise the program's extent along each axis must fit the
+// travel wherever the part is set up.
+//
+// Contract. Expects: the output of the kinematics pass (rotary positions on moves, control
+// modes marked). Guarantees: nothing reaches the backend that the machine cannot reach, as far
+// as its description tells.
+#include <cmath>
+
+#include "backends/kinematics.h"
+#include "ir/params.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+class Limits : public Pass {
+ public:
+  void begin(PassContext& ctx) override {
+    k_ = ctx.machine.kinematics;
+    const double f = ctx.from_output();
+    for (RotaryAxis& r : k_.rotaries) r.center *= f;
+    k_.pivot *= f;
+  }
+
+  void run(ir::Operation& op, PassContext& ctx) override {
+    const double to_out = 1 / ctx.from_output();
+    for (const ir::Instr& in : op.body) {
+      if (auto* m = std::get_if<ir::MachineMode>(&in.op)) {
+        if (m->kind == ir::ModeKind::TcpOn) tcp_ = true;
+        if (m->kind == ir::ModeKind::TcpOff) tcp_ = false;
+        if (m->kind == ir::ModeKind::DwoOn) dwo_ = true;
+        if (m->kind == ir::ModeKind::DwoOff) dwo_ = false;
+      } else if (auto* t = std::get_if<ir::ToolChange>(&in.op)) {
+        const ir::ToolInfo* tool = ctx.info.tool(t->tool);
+        tool_length_ = tool ? tool->length : 0;
+      } else if (auto* r = std::get_if<ir::RotaryPosition>(&in.op)) {
+        rot_ = r->rotary;
+        rotary(in.loc, ctx);
+      } else if (auto* mv = std::get_if<ir::Move>(&in.op)) {
+        if (mv->kind == ir::MoveKind::From) continue;
+        if (mv->has_rotary) {
+          rot_ = mv->rotary;
+          rotary(in.loc, ctx);
+        }
+        linear(mv->point, in.loc, ctx, to_out);
+      } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+        linear(a->end, in.loc, ctx, to_out);
+        // The arc's extreme points in its plane: the centre plus or minus the radius along
+        // each machine axis the arc reaches.
+        for (int i = 0; i < 3; ++i) {
+          ir::Vec3 dir = ir::Vec3::Unit(i) - ir::Vec3::Unit(i).dot(a->axis) * a->axis;
+          if (dir.norm() < 1e-9) continue;
+          for (double s : {-1.0, 1.0}) {
+            ir::Vec3 p = a->center + s * a->radius * dir.normalized();
+            if (a->sweep >= 360 - 1e-9 || on_arc(*a, p)) linear(p, in.loc, ctx, to_out);
+          }
+        }
+      } else if (auto* h = std::get_if<ir::Hole>(&in.op)) {
+        const ir::CycleSpec& c = op.cycles.at(h->spec);
+        linear(h->point - h->axis * c.depth, in.loc, ctx, to_out);
+        linear(h->point + h->axis * std::max(h->initial, c.clearance), in.loc, ctx, to_out);
+      } else if (auto* g = std::get_if<ir::Groove>(&in.op)) {
+        linear(g->end, in.loc, ctx, to_out);
+      }
+    }
+  }
+
+ private:
+  static bool on_arc(const ir::Arc& a, const ir::Vec3& p) {
+    ir::Vec3 rs = a.start - a.center, rp = p - a.center;
+    rs -= rs.dot(a.axis) * a.axis;
+    rp -= rp.dot(a.axis) * a.axis;
+    double ang = std::atan2(a.axis.dot(rs.cross(rp)), rs.dot(rp)) * 180 / 3.14159265358979323846;
+    if (ang < 0) ang += 360;
+    if (a.dir == ir::ArcDir::Cw) ang = ang == 0 ? 0 : 360 - ang;
+    return ang <= a.sweep + 1e-9;
+  }
+
+  void rotary(SourceLoc loc, PassContext& ctx) {
+    for (size_t i = 0; i < k_.rotaries.size(); ++i) {
+      const RotaryAxis& r = k_.rotaries[i];
+      if (r.cyclic != Cyclic::No) continue;
+      double v = rot_[i];
+      if (v < r.min - 1e-6 || v > r.max + 1e-6)
+        ctx.diags.error(loc, r.name + num_text(std::round(v * 1000) / 1000) + " is beyond machine '" + ctx.machine.name +
+                                 "''s limit (" + r.name + " " + num_text(r.min) + " to " + num_text(r.max) + ")");
+    }
+  }
+
+  // The tool tip's machine position for the point the control is given, in output units.
+  ir::Vec3 machine_position(const ir::Vec3& given, double to_out) const {
+    if (!k_.has_rotaries()) return given * to_out;
+    kin::Angles a = rot_;
+    ir::Vec3 part = given;
+    if (dwo_) part = kin::table_rotation(k_, a).transpose() * given;
+    if (tcp_ || dwo_) return kin::machine_point(k_, a, part, k_.pivot + tool_length_) * to_out;
+    return given * to_out;
+  }
+
+  void linear(const ir::Vec3& given, SourceLoc loc, PassContext& ctx, double to_out) {
+    const KinematicsSettings& k = ctx.machine.kinematics;
+    if (!k.travel.set) return;
+    ir::Vec3 p = machine_position(given, to_out);
+    const char* names = "XYZ";
+    const char* unit = ctx.machine.units == ir::Units::Inch ? " in" : " mm";
+    for (int i = 0; i < 3; ++i) {
+      if (k.work_zero_set) {
+        double v = k.work_zero[i] + p[i];
+        if (v < k.travel.min[i] - 1e-9 || v > k.travel.max[i] + 1e-9)
+          ctx.diags.error(loc, std::string(1, names[i]) + " reaches " + num_text(std::round(v * 1e4) / 1e4) +
+                                   unit + " in machine coordinates, beyond the travel (" + num_text(k.travel.min[i]) + " to " +
+                                   num_text(k.travel.max[i]) + ")");
+        continue;
+      }
+      lo_[i] = std::min(lo_[i], p[i]);
+      hi_[i] = std::max(hi_[i], p[i]);
+      double span = hi_[i] - lo_[i], travel = k.travel.max[i] - k.travel.min[i];
+      if (!reported_[i] && span > travel + 1e-9) {
+        reported_[i] = true;
+        ctx.diags.error(loc, std::string("the program's ") + names[i] + " positions now span " +
+                                 num_text(std::round(span * 1e4) / 1e4) + unit + ", more than the machine's " + num_text(travel) +
+                                 unit + " of travel: it cannot fit wherever the part is set up");
+      }
+    }
+  }
+
+  KinematicsSettings k_;
+  kin::Angles rot_{0, 0};
+  bool tcp_ = false, dwo_ = false;
+  double tool_length_ = 0;
+  double lo_[3] = {1e300, 1e300, 1e300}, hi_[3] = {-1e300, -1e300, -1e300};
+  bool reported_[3] = {false, false, false};
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_limits() { return std::make_unique<Limits>(); }
+
+}  // namespace clpc
