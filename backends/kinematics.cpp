@@ -47,7 +47,8 @@ std::vector<Solution> solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, c
     double phi = std::atan2(B, A) * 180 / kPi;
     double d = std::acos(c) * 180 / kPi;
     t1s.push_back(phi + d);
-    if (d > 1e-9) t1s.push_back(phi - d);
+    // The second root, unless it is the same angle (d = 0 or 180).
+    if (d > 1e-9 && std::abs(norm180(2 * d)) > 1e-9) t1s.push_back(phi - d);
   }
   for (double t1 : t1s) {
     Vec3 w = rotation(u1, -t1) * q;

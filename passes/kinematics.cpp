@@ -188,9 +188,10 @@ class Kinematics : public Pass {
   Choice choose(const Vec3& axis) const {
     Choice best, any;
     double best_cost = 1e300, any_cost = 1e300;
-    // At the singularity the free axis may turn without moving the tool: there the machine's
-    // preferred sign comes first, the travel second.
-    const bool singular = at_singularity();
+    // At the singularity the free axis may turn without moving the tool, and for the first
+    // position there is no path to continue: there the machine's preferred sign comes first,
+    // the travel second.
+    const bool singular = at_singularity() || !have_cur_;
     std::vector<kin::Solution> sols = kin::solve(k_, axis);
     const size_t n = k_.rotaries.size();
     for (const kin::Solution& s : sols) {
@@ -203,7 +204,7 @@ class Kinematics : public Pass {
         double cost = 0, pref = 0;
         bool ok = true;
         for (size_t i = 0; i < n; ++i) {
-          cost += have_cur_ ? distance(i, a[i], cur_[i]) : std::abs(a[i]);
+          cost += distance(i, a[i], have_cur_ ? cur_[i] : 0.0);  // from home for the first
           if (k_.rotaries[i].prefer != 0 && a[i] * k_.rotaries[i].prefer < -1e-9) pref += 1;
           ok = ok && in_limits(i, a[i]);
         }
@@ -322,9 +323,10 @@ class Kinematics : public Pass {
 
   bool jump_error(const Choice& c, const Vec3& axis, SourceLoc loc) {
     std::string from, to;
+    auto deg = [](double v) { return num_text(std::round(v * 1e4) / 1e4); };
     for (size_t i = 0; i < k_.rotaries.size(); ++i) {
-      from += k_.rotaries[i].name + num_text(cur_[i]) + " ";
-      to += k_.rotaries[i].name + num_text(c.a[i]) + " ";
+      from += k_.rotaries[i].name + deg(cur_[i]) + " ";
+      to += k_.rotaries[i].name + deg(c.a[i]) + " ";
     }
     d_->error(loc, "tool axis " + vec_text(axis) + ": continuing from " + from + "leaves the rotary limits; the only way on is a jump to " +
                        to + "(set kinematics.on_limit = \"retract\" to retract, rotate and re-engage)");
@@ -350,6 +352,15 @@ class Kinematics : public Pass {
           return;
         }
         retract_rotate(c.a, m, loc, out);
+      } else if (at_singularity() && have_prev_ && std::abs(c.a[1] - cur_[1]) > 1e-9) {
+        // Leaving the singularity on another branch: turn the free axis first, on the spot.
+        ir::Move turn;
+        turn.point = prev_tip_;
+        turn.axis = prev_axis_;
+        turn.kind = ir::MoveKind::Feed;
+        kin::Angles t = cur_;
+        t[1] = c.a[1];
+        emit(turn, t, true, loc, out);
       }
       a = c.a;
     }
