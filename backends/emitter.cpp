@@ -89,35 +89,61 @@ void Emitter::forget_all() {
   for (bool& k : known_) k = false;
 }
 
+void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, std::string& word) {
+  char letter = 0;
+  for (const CodeTemplate::Piece& p : w) {
+    if (p.var < 0) {
+      word += p.literal;
+      continue;
+    }
+    double x = (v.set >> unsigned(p.var)) & 1u ? v.value[size_t(p.var)] : 0.0;
+    if (p.width > 0) {
+      append_int(std::llround(x), p.width, word);
+      continue;
+    }
+    if (!word.empty()) letter = word[0];
+    if (letter >= 'a' && letter <= 'z') letter = char(letter - 32);
+    if (letter >= 'A' && letter <= 'Z') {
+      int64_t q;
+      if (!quantize(x, m_.format(letter), q)) {
+        d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(x));
+        continue;
+      }
+      append_quantized(q, m_.format(letter), word);
+    } else {
+      word += num_text(x);
+    }
+  }
+}
+
 void Emitter::code(const CodeTemplate& t, const TemplateVars& v) {
   for (const CodeTemplate::Word& w : t.words) {
     std::string word;
-    char letter = 0;
-    for (const CodeTemplate::Piece& p : w) {
-      if (p.var < 0) {
-        word += p.literal;
-        continue;
-      }
-      double x = (v.set >> unsigned(p.var)) & 1u ? v.value[size_t(p.var)] : 0.0;
-      if (p.width > 0) {
-        append_int(std::llround(x), p.width, word);
-        continue;
-      }
-      if (!word.empty()) letter = word[0];
-      if (letter >= 'a' && letter <= 'z') letter = char(letter - 32);
-      if (letter >= 'A' && letter <= 'Z') {
-        int64_t q;
-        if (!quantize(x, m_.format(letter), q)) {
-          d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(x));
-          continue;
-        }
-        append_quantized(q, m_.format(letter), word);
-      } else {
-        word += num_text(x);
-      }
-    }
+    render_word(w, v, word);
     add_word_text(word);
   }
+}
+
+std::string Emitter::render(const CodeTemplate& t, const TemplateVars& v) {
+  std::string out;
+  for (const CodeTemplate::Word& w : t.words) {
+    if (!out.empty()) out += m_.separator;
+    render_word(w, v, out);
+  }
+  return out;
+}
+
+bool Emitter::argument(char letter, double value, const AddressFormat& f) {
+  int64_t q;
+  if (!quantize(value, f, q)) {
+    d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(value));
+    return false;
+  }
+  if (words_ > 0) block_.append(m_.separator);
+  block_.push_back(letter);
+  append_quantized(q, f, block_);
+  ++words_;
+  return true;
 }
 
 void Emitter::trailing_comment(std::string_view c) {

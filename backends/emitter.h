@@ -28,6 +28,11 @@ class Emitter {
   // Writes `letter` only when its rounded value differs from the last one written (or the
   // machine does not suppress coordinates). Returns true if written.
   bool modal_word(char letter, double value);
+  // Writes `letter` in format `f`, leaving the modal memory alone: a value that is no
+  // position (a G10 or G65 argument).
+  bool argument(char letter, double value, const AddressFormat& f);
+  // The text `t` renders to, for comments.
+  std::string render(const CodeTemplate& t, const TemplateVars& v = {});
   void text(std::string_view w);
   void trailing_comment(std::string_view c);
   // Ends the block; an empty block writes nothing. tool_change marks blocks that get a
@@ -53,6 +58,7 @@ class Emitter {
 
  private:
   void add_word_text(std::string_view w);
+  void render_word(const CodeTemplate::Word& w, const TemplateVars& v, std::string& out);
   void add_quantized(char letter, int64_t q);
 
   const Machine& m_;

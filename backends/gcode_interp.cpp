@@ -43,7 +43,9 @@ class Interp {
       size_t nl = text.find('\n', at);
       std::string_view l = text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at);
       ++line;
-      block(l, line);
+      // After M30 / M02 the main program is over; what follows (subprograms such as the
+      // offset macro) runs only when called.
+      if (!res_.ended) block(l, line);
       if (nl == std::string_view::npos) break;
       at = nl + 1;
     }
@@ -232,7 +234,7 @@ class Interp {
       return;
     }
     if (g65) {
-      problem(line, "G65 macro call: the reader knows no macro here");
+      macro_call(a, point, line);
       return;
     }
 
@@ -424,6 +426,42 @@ class Interp {
       return;
     }
     e.v = Vec3(a.count('X') ? a['X'] : 0, a.count('Y') ? a['Y'] : 0, a.count('Z') ? a['Z'] : 0);
+    res_.events.push_back(e);
+  }
+
+  // G65: the one macro the reader knows is the seed paper's work-offset macro (docs/offsets.md),
+  // under the number the machine description gives it, as a control knows the macros in its
+  // memory; #503 is the description's reference height. Its arithmetic, evaluated here from
+  // the published text rather than from clpc's offset code.
+  void macro_call(std::map<char, double>& a, std::map<char, bool>& point, int line) {
+    const OffsetSettings& o = m_.offsets;
+    if (!a.count('P') || std::lround(a['P']) != o.macro) {
+      problem(line, "G65 calls a macro the reader does not know (it knows the offset macro, P" + std::to_string(o.macro) + ")");
+      return;
+    }
+    for (char c : {'A', 'B', 'C', 'X', 'Y', 'Z'}) {
+      if (!a.count(c)) {
+        problem(line, std::string("G65 P") + std::to_string(o.macro) + " without its " + c + " argument");
+        return;
+      }
+      if (!point[c]) problem(line, std::string("G65 argument ") + c + " without a decimal point");
+    }
+    const double deg = 3.14159265358979323846 / 180;
+    const double n1 = a['A'], n2 = a['B'], n3 = a['C'], n24 = a['X'], n25 = a['Y'], n26 = a['Z'];
+    const double n503 = o.reference_height;
+    const double n16 = n26 + n503;
+    const double n104 = n24 * std::cos(-n3 * deg) - n25 * std::sin(-n3 * deg);
+    const double n105 = n24 * std::cos(-n1 * deg) * std::sin(-n3 * deg) + n25 * std::cos(-n1 * deg) * std::cos(-n3 * deg) -
+                        n16 * std::sin(-n1 * deg);
+    const double n106 = n24 * std::sin(-n1 * deg) * std::sin(-n3 * deg) + n25 * std::sin(-n1 * deg) * std::cos(-n3 * deg) +
+                        n16 * std::cos(-n1 * deg);
+    Event e{Event::Kind::OffsetSet, line};
+    e.reg = int(std::lround(n2));
+    if (e.reg < 1 || e.reg > 6) {
+      problem(line, "the offset macro's G10 L2 P#2 takes registers 1-6, not " + fmt(n2));
+      return;
+    }
+    e.v = Vec3(n104, n105, n106);
     res_.events.push_back(e);
   }
 

@@ -172,6 +172,75 @@ std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
   return s;
 }
 
+namespace {
+
+double axis_distance(const RotaryAxis& r, double a, double b) {
+  double d = std::abs(a - b);
+  if (r.cyclic == Cyclic::Modulo) d = std::min(d, 360 - std::fmod(d, 360.0));
+  return d;
+}
+
+bool axis_in_limits(const RotaryAxis& r, double v) {
+  return r.cyclic != Cyclic::No || (v >= r.min - 1e-9 && v <= r.max + 1e-9);
+}
+
+std::vector<double> representatives(const RotaryAxis& r, double base, double current) {
+  std::vector<double> v;
+  if (r.cyclic == Cyclic::Modulo) {
+    double m = std::fmod(base, 360.0);
+    v.push_back(m < 0 ? m + 360 : m);
+  } else if (r.cyclic == Cyclic::Wind) {
+    v.push_back(base + 360 * std::round((current - base) / 360));
+  } else {
+    for (int n = -4; n <= 4; ++n) v.push_back(base + 360 * n);
+  }
+  return v;
+}
+
+}  // namespace
+
+Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* current, bool sign_first) {
+  Choice best, any;
+  double best_cost = 1e300, any_cost = 1e300;
+  const size_t n = k.rotaries.size();
+  for (const Solution& s : solve(k, axis)) {
+    std::vector<std::vector<double>> vals(n);
+    for (size_t i = 0; i < n; ++i) {
+      double cur = current ? (*current)[i] : 0.0;
+      vals[i] = s.free[i] ? std::vector<double>{cur} : representatives(k.rotaries[i], s.a[i], cur);
+    }
+    auto consider = [&](const Angles& a) {
+      double cost = 0, pref = 0;
+      bool ok = true;
+      for (size_t i = 0; i < n; ++i) {
+        const RotaryAxis& r = k.rotaries[i];
+        cost += axis_distance(r, a[i], current ? (*current)[i] : 0.0);
+        if (r.prefer != 0 && a[i] * r.prefer < -1e-9) pref += 1;
+        ok = ok && axis_in_limits(r, a[i]);
+      }
+      double total = cost + pref * (sign_first ? 1e6 : 1e-6);
+      if (total < any_cost) {
+        any_cost = total;
+        any.a = a;
+        any.found = true;
+      }
+      if (ok && total < best_cost) {
+        best_cost = total;
+        best.a = a;
+        best.found = true;
+      }
+    };
+    if (n == 1) {
+      for (double x : vals[0]) consider({x, 0});
+    } else if (n == 2) {
+      for (double x : vals[0])
+        for (double y : vals[1]) consider({x, y});
+    }
+  }
+  best.jump = best.found && current && any_cost < best_cost - 1e-6 && any_cost < 90;
+  return best;
+}
+
 double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / kPi;
 }

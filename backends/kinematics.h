@@ -48,6 +48,19 @@ struct Solution {
 // Empty when no rotary angle can (a 4-axis machine and an axis off its cone).
 std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis);
 
+// The position to take for `axis`: of the solutions within limits (each angle at every turn a
+// limited axis allows, the turn nearest `current` for a winding axis, [0, 360) for a modulo
+// one), the least rotary travel from `current` (from zero when null), the axes' preferred sign
+// breaking ties — or coming first, with `sign_first` (the first position, the singularity). A
+// free (singular) axis stays where it is. `jump`: a cheaper solution exists only beyond the
+// limits, so following the path means jumping to this one.
+struct Choice {
+  Angles a{0, 0};
+  bool found = false;
+  bool jump = false;
+};
+Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* current, bool sign_first);
+
 // Angular distance between two unit vectors, in degrees.
 double angle_between(const Vec3& a, const Vec3& b);
 

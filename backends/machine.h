@@ -121,7 +121,11 @@ struct OffsetSettings {
   int standard_first = 54, standard_last = 59;  // G54..G59
   int extended_count = 0;                       // G154 P1..Pn / G54.1 P1..Pn
   int default_index = 1;                        // register used without SET: 1 = G54
-  OffsetTable table = OffsetTable::None;
+  OffsetTable table = OffsetTable::None;        // how the program sets the registers it uses
+  bool per_frame = false;        // one register per distinct MSYS / CSYS frame, not only SET ones
+  double reference_height = 0;   // output units: the reference base above the table centre (#503)
+  long macro = 2013;             // g65-macro: the macro's program number
+  bool macro_program = false;    // g65-macro: append the macro program after the main one
 };
 
 // Every code the backends write, as templates (backends/code_template.h).
@@ -140,6 +144,8 @@ struct Codes {
   CodeTemplate optional_stop, stop;
   CodeTemplate comp_left, comp_right, comp_off;
   CodeTemplate work_offset, work_offset_extended;
+  CodeTemplate offset_set, offset_set_extended;  // "G90 G10 L2 P{number}" (+ X Y Z), "G90 G10 L20 P{number}"
+  CodeTemplate macro_call;                       // "G65 P{number}" (+ B X Y Z A C)
   CodeTemplate safe_retract;
   // Canned cycles; an empty code means the machine lacks the cycle (holes become moves).
   CodeTemplate cycle_drill, cycle_dwell, cycle_peck, cycle_chip_break, cycle_tap, cycle_tap_left, cycle_bore,

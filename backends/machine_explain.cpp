@@ -102,7 +102,9 @@ std::string explain_machine(const Machine& m) {
   static const char* tables[] = {"none", "g10", "g65-macro"};
   o << "\n[" << m.name << ".offsets]\n";
   o << "extended = " << m.offsets.extended_count << "\ndefault = " << m.offsets.default_index
-    << "\ntable = " << quote(tables[int(m.offsets.table)]) << "\n";
+    << "\ntable = " << quote(tables[int(m.offsets.table)]) << "\nper_frame = " << (m.offsets.per_frame ? "true" : "false")
+    << "\nreference_height = " << num_text(m.offsets.reference_height) << "\nmacro = " << m.offsets.macro
+    << "\nmacro_program = " << (m.offsets.macro_program ? "true" : "false") << "\n";
 
   const KinematicsSettings& kin = m.kinematics;
   if (kin.has_rotaries()) {
@@ -177,6 +179,9 @@ std::string explain_machine(const Machine& m) {
   code("comp_off", k.comp_off);
   code("work_offset", k.work_offset);
   code("work_offset_extended", k.work_offset_extended);
+  code("offset_set", k.offset_set);
+  code("offset_set_extended", k.offset_set_extended);
+  code("macro_call", k.macro_call);
   code("safe_retract", k.safe_retract);
   code("cycle_drill", k.cycle_drill);
   code("cycle_dwell", k.cycle_dwell);

@@ -381,6 +381,9 @@ void set_defaults(Machine& m) {
     k.length_cancel = tpl("G49");
     k.work_offset = tpl("G{number}");
     k.work_offset_extended = tpl("G54.1 P{number}");
+    k.offset_set = tpl("G90 G10 L2 P{number}");
+    k.offset_set_extended = tpl("G90 G10 L20 P{number}");
+    k.macro_call = tpl("G65 P{number}");
     k.safe_retract = tpl("G91 G28 Z0.");
     k.cycle_drill = tpl("G81");
     k.cycle_dwell = tpl("G82");
@@ -547,6 +550,10 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->integer("default", o.default_index, 1, 306);
     int tb = s->choice("table", {"none", "g10", "g65-macro"});
     if (tb >= 0) o.table = OffsetTable(tb);
+    s->boolean("per_frame", o.per_frame);
+    s->number("reference_height", o.reference_height, -1e5, 1e5);
+    s->integer("macro", o.macro, 1, 99999999);
+    s->boolean("macro_program", o.macro_program);
     s->finish();
   }
   if (auto s = r.sub("kinematics")) {
@@ -663,6 +670,9 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         {"comp_off", &k.comp_off, none},
         {"work_offset", &k.work_offset, bit(Var::Number)},
         {"work_offset_extended", &k.work_offset_extended, bit(Var::Number)},
+        {"offset_set", &k.offset_set, bit(Var::Number)},
+        {"offset_set_extended", &k.offset_set_extended, bit(Var::Number)},
+        {"macro_call", &k.macro_call, bit(Var::Number)},
         {"safe_retract", &k.safe_retract, none},
         {"cycle_drill", &k.cycle_drill, none}, {"cycle_dwell", &k.cycle_dwell, none},
         {"cycle_peck", &k.cycle_peck, none}, {"cycle_chip_break", &k.cycle_chip_break, none},

@@ -36,14 +36,16 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
 }
 
+std::pair<const CodeTemplate*, TemplateVars> MillBackend::offset_select(int index) const {
+  int standard = m_.offsets.standard_last - m_.offsets.standard_first + 1;
+  if (index <= standard) return {&m_.codes.work_offset, TemplateVars().with(Var::Number, m_.offsets.standard_first + index - 1)};
+  return {&m_.codes.work_offset_extended, TemplateVars().with(Var::Number, index - standard)};
+}
+
 void MillBackend::work_offset_code() {
   if (!need_work_offset_) return;
-  int index = work_offset_ > 0 ? work_offset_ : m_.offsets.default_index;
-  int standard = m_.offsets.standard_last - m_.offsets.standard_first + 1;
-  if (index <= standard)
-    e_.code(m_.codes.work_offset, TemplateVars().with(Var::Number, m_.offsets.standard_first + index - 1));
-  else
-    e_.code(m_.codes.work_offset_extended, TemplateVars().with(Var::Number, index - standard));
+  auto [code, vars] = offset_select(work_offset_ > 0 ? work_offset_ : m_.offsets.default_index);
+  e_.code(*code, vars);
   need_work_offset_ = false;
 }
 

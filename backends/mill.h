@@ -22,7 +22,15 @@ class MillBackend : public ProgramWriter {
   void clamp(SourceLoc loc);
   void inverse_time_words(const ir::Move& m, SourceLoc loc);
 
+  void start_program() override;
+  void after_finish() override;
+
   void work_offset_code();
+  // The code selecting work-offset register `index` (1 = G54 ...) and its number word.
+  std::pair<const CodeTemplate*, TemplateVars> offset_select(int index) const;
+  // The offset table (backends/mill_offsets.cpp).
+  void write_offset_table();
+  void write_offset_macro();
   void motion_code(Motion mo);
   void comp_code();
   bool check_axis(const ir::Vec3& axis, SourceLoc loc);

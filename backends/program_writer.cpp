@@ -68,6 +68,7 @@ void ProgramWriter::end() {
     if (coolant_ == ir::CoolantKind::Off && t.text == m_.codes.coolant_off.text) continue;
     blocks({t}, {});
   }
+  after_finish();
   for (const std::string& l : m_.program_end) e_.line(l);
 }
 
@@ -192,8 +193,14 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
           e_.comment("CL: " + std::string(op.str(x.text)));
         } else if constexpr (std::is_same_v<T, ir::SelectOffset>) {
-          if (x.reg != work_offset_) need_work_offset_ = true;
-          work_offset_ = x.reg;
+          int standard = m_.offsets.standard_last - m_.offsets.standard_first + 1;
+          if (x.index > standard + m_.offsets.extended_count) {
+            d_.error(loc, "work-offset register " + std::to_string(x.reg) + " is beyond machine '" + m_.name + "''s " +
+                              std::to_string(standard + m_.offsets.extended_count) + " registers");
+            return;
+          }
+          if (x.index != work_offset_) need_work_offset_ = true;
+          work_offset_ = x.index;
         } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
           // Frames are for the passes (offset table, kinematics); nothing to write here.
         } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {

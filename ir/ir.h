@@ -150,9 +150,12 @@ struct Passthrough {
   TextRef text;
 };
 
-// SET/..,n: the work-offset register (54..59, or extended) for the motion that follows.
+// SET/..,n: the work-offset register (54..59, or 101.. for extended) for the motion that
+// follows. `index` is the machine's register (1 = G54 ... 6 = G59, 7 = the first extended
+// one), set by lowering from `reg` or by the offset-table pass.
 struct SelectOffset {
   int reg = 0;
+  int index = 0;
 };
 
 enum class FrameSource : uint8_t { Msys, Csys, Camera };
@@ -296,6 +299,30 @@ struct ToolInfo {
   SourceLoc first_use;
 };
 
+// A frame a CL record gives (MSYS, CSYS, $$-> CSYS, CAMERA), with the SET register it pairs
+// with, in the order the file gives them (the pre-scan).
+struct FrameUse {
+  Frame frame;
+  FrameSource source = FrameSource::Csys;
+  SourceLoc loc;
+  int set_register = 0;      // SET/..,n paired with it (0: none)
+  bool no_record = false;    // an operation with no frame record: the base frame
+};
+
+// One entry of the work-offset table (the offset-table pass).
+struct WorkOffset {
+  int index = 0;             // machine register: 1 = G54 ... 6 = G59, 7.. extended
+  int set_register = 0;      // the CL's SET register, or 0 when clpc chose it
+  bool base = false;         // the frame of operations with no frame record
+  Frame frame;
+  FrameSource source = FrameSource::Csys;
+  SourceLoc loc;
+  bool has_rotary = false;
+  std::array<double, 2> rotary{0, 0};  // the rotaries' positions for this frame
+  Vec3 machine = Vec3::Zero();  // the frame origin in machine coordinates there (output units)
+  double seed_a = 0, seed_c = 0;  // the seed paper's A = |atan2(r32, r33)|, C = atan2(r21, r11)
+};
+
 struct ProgramInfo {
   std::string part_name;
   std::string source_name;     // input file name, for the header
@@ -307,6 +334,8 @@ struct ProgramInfo {
   // Operations that name a tool but load none by number (NX TOOL PATH without LOAD/TOOL):
   // the line of their TOOL PATH record and the number the pre-scan gave the tool.
   std::vector<std::pair<uint32_t, int>> named_tool_ops;
+  std::vector<FrameUse> frames;        // every frame record, in file order (the pre-scan)
+  std::vector<WorkOffset> offsets;     // the work-offset table (the offset-table pass)
 
   const ToolInfo* tool(int number) const;
   int tool_number_for_name(std::string_view name) const;  // 0 if unknown

@@ -82,7 +82,7 @@ struct Printer {
   void operator()(const Comment& c) { o << "comment \"" << op.str(c.text) << "\""; }
   void operator()(const Insert& c) { o << "insert \"" << op.str(c.text) << "\""; }
   void operator()(const Passthrough& c) { o << "passthrough \"" << op.str(c.text) << "\""; }
-  void operator()(const SelectOffset& s) { o << "work-offset " << s.reg; }
+  void operator()(const SelectOffset& s) { o << "work-offset " << s.reg << " (register " << s.index << ")"; }
   void operator()(const SetFrame& f) {
     static const char* names[] = {"msys", "csys", "camera"};
     o << "frame " << names[int(f.source)] << " origin " << vec(f.frame.origin) << " x " << vec(f.frame.rotation.col(0))

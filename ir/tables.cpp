@@ -4,6 +4,7 @@
 #include <set>
 
 #include "grammar/parse.h"
+#include "ir/frame_records.h"
 #include "ir/tool_records.h"
 
 namespace clpc {
@@ -19,6 +20,32 @@ class TableBuilder : public RecordSink {
   void record(const Record& r) override {
     if (r.kind != Record::Kind::Statement) return;
     switch (r.id) {
+      case MajorId::Msys: case MajorId::Csys: case MajorId::Camera: {
+        ir::FrameUse u;
+        if (!read_frame(r, nullptr, u.frame, u.source)) break;
+        u.loc = r.loc;
+        u.set_register = pending_set_;
+        pending_set_ = 0;
+        frame_ = u;
+        frame_seen_ = true;
+        info_.frames.push_back(u);
+        last_frame_unpaired_ = u.set_register == 0;
+        break;
+      }
+      case MajorId::Set: {
+        // SET pairs with the frame record next to it in its operation, before or after; one
+        // with none there selects its register for the frame in force (passes/offset_table.cpp).
+        int reg = read_set_register(r, nullptr);
+        if (reg <= 0) break;
+        if (last_frame_unpaired_ && !info_.frames.empty()) {
+          info_.frames.back().set_register = reg;
+          last_frame_unpaired_ = false;
+        } else {
+          pending_set_ = reg;
+          pending_set_loc_ = r.loc;
+        }
+        break;
+      }
       case MajorId::ToolPath: {
         end_op();
         in_op_ = true;
@@ -122,6 +149,20 @@ class TableBuilder : public RecordSink {
     }
   }
   void end_op() {
+    // Frames and registers are modal: an operation without a frame record works in the frame
+    // in force, the base frame before any.
+    if (pending_set_) {
+      ir::FrameUse u = frame_;
+      u.loc = pending_set_loc_;
+      u.set_register = pending_set_;
+      info_.frames.push_back(u);
+    } else if (in_op_ && !frame_seen_) {
+      ir::FrameUse u = frame_;
+      u.loc = op_loc_;
+      info_.frames.push_back(u);
+    }
+    last_frame_unpaired_ = false;
+    pending_set_ = 0;
     if (in_op_ && explicit_ < 0 && !op_name_.empty()) {
       ir::ToolInfo* found = nullptr;
       for (auto& t : info_.tools)
@@ -152,6 +193,17 @@ class TableBuilder : public RecordSink {
   ToolGeometry pending_;
   std::optional<ir::Units> units_, feed_units_;
   std::vector<std::pair<uint32_t, std::string>> named_ops_;
+  int pending_set_ = 0;
+  SourceLoc pending_set_loc_;
+  ir::FrameUse frame_ = base_frame();  // the frame in force
+  bool frame_seen_ = false;
+  bool last_frame_unpaired_ = false;
+
+  static ir::FrameUse base_frame() {
+    ir::FrameUse u;
+    u.no_record = true;
+    return u;
+  }
 };
 
 }  // namespace
@@ -161,7 +213,8 @@ ir::ProgramInfo prescan_program(SourceFile& src, const PrescanOptions& opt) {
   for (MajorId id : {MajorId::ToolPath, MajorId::Featno, MajorId::EndOfPath, MajorId::End,
                      MajorId::Loadtl, MajorId::Load, MajorId::Turret, MajorId::Tldata,
                      MajorId::Cutter, MajorId::Units, MajorId::Unit, MajorId::Fedrat,
-                     MajorId::Partno, MajorId::Machin})
+                     MajorId::Partno, MajorId::Machin, MajorId::Msys, MajorId::Csys, MajorId::Camera,
+                     MajorId::Set})
     want.add(id);
   TableBuilder b(opt);
   prescan_cl(src, b, want);

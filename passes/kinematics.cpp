@@ -63,9 +63,12 @@ class Kinematics : public Pass {
     out.reserve(op.body.size() + 8);
     // One tool axis for all the motion: an indexed (3+2) operation.
     std::optional<Vec3> axis;
-    bool indexed = true, positioned = false;
+    bool indexed = true;
+    // The offset table positions 3+2 operations itself (the first chunk holds its
+    // RotaryPosition); the later chunks of such an operation are positioned too.
+    if (!op.continued) positioned_ = false;
     for (const ir::Instr& in : op.body) {
-      if (std::holds_alternative<ir::RotaryPosition>(in.op)) positioned = true;
+      if (std::holds_alternative<ir::RotaryPosition>(in.op)) positioned_ = true;
       const Vec3* a = nullptr;
       if (auto* m = std::get_if<ir::Move>(&in.op); m && m->kind != ir::MoveKind::From) a = &m->axis;
       else if (auto* arc = std::get_if<ir::Arc>(&in.op)) a = &arc->tool_axis;
@@ -74,11 +77,20 @@ class Kinematics : public Pass {
       if (!axis) axis = *a;
       else if ((*axis - *a).norm() > 1e-9) indexed = false;
     }
-    if (positioned) {
-      // The offset table positioned the rotaries and put the points in its frame already.
+    if (positioned_) {
+      // The offset table positioned the rotaries and put the points in its frame already;
+      // the control modes of the operation before are switched off first.
+      if (!op.continued) modes_off(out, op.loc);
       for (ir::Instr& in : op.body) {
         if (auto* r = std::get_if<ir::RotaryPosition>(&in.op)) set_current(r->rotary);
-        else if (auto* m = std::get_if<ir::Move>(&in.op)) stamp(*m);
+        else if (auto* tc = std::get_if<ir::ToolChange>(&in.op)) {
+          const ir::ToolInfo* t = ctx.info.tool(tc->tool);
+          tool_length_ = t ? t->length : 0;
+        } else if (auto* m = std::get_if<ir::Move>(&in.op)) stamp(*m);
+        else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+          a->has_rotary = true;
+          a->rotary = cur_;
+        }
         out.push_back(std::move(in));
       }
       op.body.swap(out);
@@ -135,39 +147,7 @@ class Kinematics : public Pass {
  private:
   // --- choosing among solutions --------------------------------------------------------------
 
-  double distance(size_t i, double a, double b) const {
-    double d = std::abs(a - b);
-    if (k_.rotaries[i].cyclic == Cyclic::Modulo) d = std::min(d, 360 - std::fmod(d, 360.0));
-    return d;
-  }
-
-  bool in_limits(size_t i, double v) const {
-    const RotaryAxis& r = k_.rotaries[i];
-    return r.cyclic != Cyclic::No || (v >= r.min - 1e-9 && v <= r.max + 1e-9);
-  }
-
-  // Values axis i may take for the solution angle `base`: nearest the current one for
-  // continuous axes, every turn within limits (and one each side) for limited ones.
-  std::vector<double> representatives(size_t i, double base) const {
-    const RotaryAxis& r = k_.rotaries[i];
-    std::vector<double> v;
-    if (r.cyclic == Cyclic::Modulo) {
-      double m = std::fmod(base, 360.0);
-      v.push_back(m < 0 ? m + 360 : m);
-    } else if (r.cyclic == Cyclic::Wind) {
-      double c = have_cur_ ? cur_[i] : 0;
-      v.push_back(base + 360 * std::round((c - base) / 360));
-    } else {
-      for (int n = -4; n <= 4; ++n) v.push_back(base + 360 * n);
-    }
-    return v;
-  }
-
-  struct Choice {
-    kin::Angles a{0, 0};
-    bool found = false;
-    bool jump = false;  // the continuing solution is out of limits: this one is a jump
-  };
+  using Choice = kin::Choice;
 
   // The tool direction at which the inner rotary axis is free (vertical, for a B/C trunnion),
   // if the machine has one.
@@ -185,54 +165,10 @@ class Kinematics : public Pass {
     return have_cur_ && s && kin::angle_between(kin::tool_axis_in_part(k_, cur_), *s) < 1e-6;
   }
 
+  // At the singularity the free axis may turn without moving the tool, and for the first
+  // position there is no path to continue: there the machine's preferred sign comes first.
   Choice choose(const Vec3& axis) const {
-    Choice best, any;
-    double best_cost = 1e300, any_cost = 1e300;
-    // At the singularity the free axis may turn without moving the tool, and for the first
-    // position there is no path to continue: there the machine's preferred sign comes first,
-    // the travel second.
-    const bool singular = at_singularity() || !have_cur_;
-    std::vector<kin::Solution> sols = kin::solve(k_, axis);
-    const size_t n = k_.rotaries.size();
-    for (const kin::Solution& s : sols) {
-      std::vector<std::vector<double>> vals(n);
-      for (size_t i = 0; i < n; ++i) {
-        if (s.free[i]) vals[i] = {have_cur_ ? cur_[i] : 0.0};
-        else vals[i] = representatives(i, s.a[i]);
-      }
-      auto consider = [&](const kin::Angles& a) {
-        double cost = 0, pref = 0;
-        bool ok = true;
-        for (size_t i = 0; i < n; ++i) {
-          cost += distance(i, a[i], have_cur_ ? cur_[i] : 0.0);  // from home for the first
-          if (k_.rotaries[i].prefer != 0 && a[i] * k_.rotaries[i].prefer < -1e-9) pref += 1;
-          ok = ok && in_limits(i, a[i]);
-        }
-        double total = cost + pref * (singular ? 1e6 : 1e-6);  // elsewhere the sign only breaks ties
-        if (total < any_cost) {
-          any_cost = total;
-          any.a = a;
-          any.found = true;
-        }
-        if (ok && total < best_cost) {
-          best_cost = total;
-          best.a = a;
-          best.found = true;
-        }
-      };
-      kin::Angles a{0, 0};
-      if (n == 1) {
-        for (double x : vals[0]) consider({x, 0});
-      } else {
-        for (double x : vals[0])
-          for (double y : vals[1]) {
-            a = {x, y};
-            consider(a);
-          }
-      }
-    }
-    best.jump = best.found && have_cur_ && any_cost < best_cost - 1e-6 && any_cost < 90;
-    return best;
+    return kin::choose(k_, axis, have_cur_ ? &cur_ : nullptr, at_singularity() || !have_cur_);
   }
 
   // Where the machine is now.
@@ -582,6 +518,7 @@ class Kinematics : public Pass {
   bool mode_indexed_ = false;
   std::optional<Vec3> indexed_at_;
   bool tcp_on_ = false, dwo_on_ = false;
+  bool positioned_ = false;  // this operation was positioned by the offset table
   double tool_length_ = 0;
   ir::Feed feed_;
   bool feed_known_ = false;

@@ -14,7 +14,7 @@
 namespace clpc {
 
 struct PassContext {
-  const ir::ProgramInfo& info;
+  ir::ProgramInfo& info;  // passes may fill the program-wide tables (the offset table)
   const Machine& machine;
   Diagnostics& diags;
   // Output units -> program units: machine tolerances are in output units, the IR is in

@@ -12,6 +12,7 @@ std::unique_ptr<Pass> make_helix();
 std::unique_ptr<Pass> make_arc_legalise();
 std::unique_ptr<Pass> make_drill_cycles();
 std::unique_ptr<Pass> make_groove_cycles();
+std::unique_ptr<Pass> make_offset_table();
 std::unique_ptr<Pass> make_kinematics();
 std::unique_ptr<Pass> make_limits();
 

@@ -29,6 +29,13 @@ const std::vector<PassInfo>& all_passes() {
        "a move to the cycle's start and a groove whose G74/G75 expansion equals the motion it replaced; motion that "
        "does not match stays as it was",
        make_groove_cycles},
+      {"offset-table", "gather SET/CAMERA (and per-frame MSYS/CSYS) frames into a work-offset table; select each operation's register and "
+       "position its 3+2 work",
+       "expects: frame and SET records as lowered, the pre-scan's frame list. guarantees: ProgramInfo::offsets holds one "
+       "entry per distinct frame (equal frames share a register; SET registers kept, others in order of first use; "
+       "running out is an error); each operation selects its register; 3+2 operations have their rotaries positioned "
+       "and their points in the frame's coordinates",
+       make_offset_table},
       {"kinematics", "turn tool axes into rotary positions and points into what the control is given (five-axis, 3+2)",
        "expects: legal arcs, holes, tool axes in the part frame. guarantees (machines with rotaries): every move has "
        "its rotary positions within limits, chosen for the least travel and continuity; indexed operations position "

@@ -152,7 +152,7 @@ TEST(Lower, Frames) {
 }
 
 TEST(Lower, SetWorkOffsetAndMode) {
-  EXPECT_THAT(instrs("SET/MODE,ABSOL\nSET/OFSETL,55\n"), ElementsAre("work-offset 55"));
+  EXPECT_THAT(instrs("SET/MODE,ABSOL\nSET/OFSETL,55\n"), ElementsAre("work-offset 55 (register 2)"));
 }
 
 TEST(Lower, RotateAndSubroutines) {

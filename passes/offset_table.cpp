@@ -1,0 +1,310 @@
+// offset-table: every work offset the CL defines, gathered before the program is written, and
+// each operation's motion put into its offset's frame.
+//
+// The pre-scan gives every frame record in file order (ir/tables.cpp): SET registers with the
+// CAMERA (or CSYS, MSYS) frame next to them, and — when the machine asks for one offset per
+// frame (offsets.per_frame) — the frames of NX MSYS, Creo $$-> CSYS and APT CSYS, and the base
+// frame of operations with none. Equal frames share a register; a SET keeps its register;
+// other frames get registers in order of first use, from the machine's default one, skipping
+// those SETs take; running out is an error. Each frame's rotary position comes from the
+// kinematic solver (the tool along the frame's Z), and its machine offset is where its origin
+// is then (offsets.reference_height: the seed's #503, the reference base's height above the
+// table centre, which lies at the machine origin).
+//
+// In an operation whose tool axis is its frame's Z (3+2 work), the motion is put into the
+// frame: p' = T (p - o), with T the table's rotation there (a machine without rotaries: the
+// frame's own axes), the register selected and the rotaries positioned. Operations in the
+// base frame just select its register. Other five-axis operations are left to the kinematics
+// pass.
+//
+// Contract. Expects: frame and SET records as lowered; the pre-scan's frame list. Guarantees:
+// ProgramInfo::offsets holds the table (the backend writes it at the head of the program as the
+// machine's offsets.table says); every operation with a table entry selects its register;
+// 3+2 operations are positioned and in their frame's coordinates.
+#include <cmath>
+#include <set>
+
+#include "backends/kinematics.h"
+#include "ir/frame_records.h"
+#include "ir/params.h"
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+using ir::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+
+class OffsetTablePass : public Pass {
+ public:
+  void begin(PassContext& ctx) override {
+    const OffsetSettings& s = ctx.machine.offsets;
+    k_ = ctx.machine.kinematics;
+    const double f = ctx.from_output();
+    for (RotaryAxis& r : k_.rotaries) r.center *= f;
+    auto& table = ctx.info.offsets;
+    table.clear();
+    bool any_set = false;
+    for (const ir::FrameUse& u : ctx.info.frames) any_set = any_set || u.set_register != 0;
+    if (!s.per_frame && !any_set) return;
+    for (const RotaryAxis& r : k_.rotaries)
+      if (!r.table) {
+        ctx.diags.error({}, "work offsets per frame need rotary axes on the table side; machine '" + ctx.machine.name +
+                                "' turns its head");
+        return;
+      }
+    std::set<int> used;
+    for (const ir::FrameUse& u : ctx.info.frames)
+      if (u.set_register) used.insert(register_index(u.set_register));
+    const int standard = s.standard_last - s.standard_first + 1;
+    const int max_index = standard + s.extended_count;
+    const double h = s.reference_height * f;  // program units
+    const double to_out = 1 / f;
+    for (const ir::FrameUse& u : ctx.info.frames) {
+      if (!s.per_frame && u.set_register == 0) continue;
+      if (find(table, u.frame, u.set_register)) continue;
+      if (u.set_register) {
+        bool clash = false;
+        for (const ir::WorkOffset& w : table)
+          if (w.set_register == u.set_register) {
+            ctx.diags.error(u.loc, "SET/" + std::to_string(u.set_register) + " is given a second frame; its register holds the frame of line " +
+                                       std::to_string(w.loc.line) + " already (one register, one offset)");
+            clash = true;
+            break;
+          }
+        if (clash) continue;
+      }
+      int index = u.set_register ? register_index(u.set_register) : 0;
+      if (!index) {
+        index = s.default_index;
+        while (used.count(index)) ++index;
+        used.insert(index);
+      }
+      if (index > max_index) {
+        ctx.diags.error(u.loc, "work-offset table: this frame needs a register beyond machine '" + ctx.machine.name + "''s " +
+                                   std::to_string(max_index) + " (" + std::to_string(table.size()) + " frames before it)");
+        continue;
+      }
+      ir::WorkOffset w;
+      w.index = index;
+      w.set_register = u.set_register;
+      w.base = u.no_record;
+      w.frame = u.frame;
+      w.source = u.source;
+      w.loc = u.loc;
+      const ir::Mat3& R = u.frame.rotation;
+      w.seed_a = std::abs(std::atan2(R(2, 1), R(2, 2))) * 180 / kPi;
+      w.seed_c = std::atan2(R(1, 0), R(0, 0)) * 180 / kPi;
+      Vec3 z = R.col(2);
+      if (k_.has_rotaries()) {
+        kin::Choice c = kin::choose(k_, z, nullptr, true);
+        if (!c.found) {
+          ctx.diags.error(u.loc, "work-offset table: no position of machine '" + ctx.machine.name +
+                                     "''s rotary axes within their limits turns this frame's Z (" + num_text(z.x()) + ", " +
+                                     num_text(z.y()) + ", " + num_text(z.z()) + ") to the spindle");
+          continue;
+        }
+        w.has_rotary = true;
+        w.rotary = c.a;
+        w.machine = kin::table_point(k_, c.a, u.frame.origin + Vec3(0, 0, h)) * to_out;
+        if (s.table == OffsetTable::G65Macro) check_seed(ctx, w);
+      } else {
+        if ((R - ir::Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-9 && s.table != OffsetTable::None) {
+          ctx.diags.error(u.loc, "work-offset table: machine '" + ctx.machine.name +
+                                     "' has no rotary axes to turn this frame up; with offsets.table = \"none\" each frame "
+                                     "is a setup of its own, its offset set on the machine");
+          continue;
+        }
+        w.machine = (u.frame.origin + Vec3(0, 0, h)) * to_out;
+      }
+      if (s.table == OffsetTable::G65Macro && index > standard) {
+        ctx.diags.error(u.loc, "work-offset table: the seed's macro sets G54-G59 only (G10 L2 P1-P6); this frame needs register " +
+                                   std::to_string(index));
+        continue;
+      }
+      table.push_back(w);
+    }
+  }
+
+  void run(ir::Operation& op, PassContext& ctx) override {
+    const auto& table = ctx.info.offsets;
+    if (table.empty()) return;
+    // Frames and registers are modal, across operations; SET pairs with the frame record next
+    // to it in its operation, as in the pre-scan (ir/tables.cpp).
+    std::vector<ir::Instr> out;
+    out.reserve(op.body.size() + 4);
+    for (size_t i = 0; i < op.body.size(); ++i) {
+      ir::Instr& in = op.body[i];
+      if (auto* f = std::get_if<ir::SetFrame>(&in.op)) {
+        frame_ = f->frame;
+        source_ = f->source;
+        reg_ = pending_;
+        pending_ = 0;
+        unpaired_ = reg_ == 0;
+        active_ = false;
+        out.push_back(std::move(in));
+        continue;
+      }
+      if (auto* s = std::get_if<ir::SelectOffset>(&in.op)) {
+        if (unpaired_) {
+          reg_ = s->reg;
+          unpaired_ = false;
+        } else if (frame_record_ahead(op, i)) {
+          pending_ = s->reg;
+        } else {
+          reg_ = s->reg;
+        }
+        active_ = false;
+        continue;  // written again with its entry, at the first motion
+      }
+      if (std::holds_alternative<ir::ToolChange>(in.op)) unpaired_ = false;
+      bool motion = (std::holds_alternative<ir::Move>(in.op) && std::get<ir::Move>(in.op).kind != ir::MoveKind::From) ||
+                    std::holds_alternative<ir::Arc>(in.op) || std::holds_alternative<ir::Hole>(in.op);
+      if (motion && !active_) activate(op, i, in.loc, out, ctx);
+      if (transform_ && motion) {
+        apply(in);
+        if (!along_z(in)) {
+          // Only a later chunk of a very long operation can get here: the first decided 3+2.
+          ctx.diags.error(in.loc, "this operation's tool axis leaves its frame's Z after the first " +
+                                      std::to_string(op.body.size()) + " records; split the operation in the CAM system");
+          transform_ = false;
+        }
+      }
+      out.push_back(std::move(in));
+    }
+    if (op.last_chunk) {
+      // The next operation decides 3+2 afresh, in the frame in force.
+      active_ = false;
+      transform_ = false;
+      unpaired_ = false;
+      pending_ = 0;
+    }
+    op.body.swap(out);
+  }
+
+ private:
+  const ir::WorkOffset* find(const std::vector<ir::WorkOffset>& table, const ir::Frame& f, int reg) const {
+    for (const ir::WorkOffset& w : table)
+      if (w.frame.same_as(f, 1e-6, 1e-9) && (reg == 0 || w.set_register == reg)) return &w;
+    return nullptr;
+  }
+
+  // The seed's macro turns the part by its own A and C: warn where they are not the angles the
+  // rotaries go to (frames not of the form Rz(C) Rx(A) with A >= 0, or a machine without an A/C
+  // table).
+  void check_seed(PassContext& ctx, const ir::WorkOffset& w) {
+    const auto& r = k_.rotaries;
+    bool ac = r.size() == 2 && r[0].name == "A" && r[1].name == "C";
+    bool same = ac && std::abs(w.rotary[0] - w.seed_a) < 1e-6 && std::abs(std::remainder(w.rotary[1] - w.seed_c, 360.0)) < 1e-6;
+    if (!same)
+      ctx.diags.warning(w.loc, "the seed's G65 macro computes this offset for A" + num_text(std::round(w.seed_a * 1e4) / 1e4) + " C" +
+                                   num_text(std::round(w.seed_c * 1e4) / 1e4) + " (an A/C table), not for where the rotaries go; "
+                                   "offsets.table = \"g10\" computes it for the machine",
+                        "seed macro angles");
+  }
+
+  static bool frame_record_ahead(const ir::Operation& op, size_t i) {
+    for (size_t j = i + 1; j < op.body.size(); ++j) {
+      const ir::Op& o = op.body[j].op;
+      if (std::holds_alternative<ir::SetFrame>(o)) return true;
+      if (std::holds_alternative<ir::Move>(o) || std::holds_alternative<ir::Arc>(o) || std::holds_alternative<ir::Hole>(o))
+        return false;
+    }
+    return false;
+  }
+
+  // At an operation's first motion (or the first after a frame or register change): select
+  // the register, and if all the motion from here to the operation's end is along the frame's
+  // Z, position the rotaries and put the points in the frame.
+  void activate(const ir::Operation& op, size_t from, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
+    active_ = true;
+    transform_ = false;
+    const ir::WorkOffset* w = find(ctx.info.offsets, frame_, reg_);
+    if (!w) {
+      if (ctx.machine.offsets.per_frame) {
+        ctx.diags.error(loc, "work-offset table: no register for the frame this motion is in (motion before the first "
+                             "frame record of a file without TOOL PATH or FEATNO records?)");
+      } else if (reg_) {
+        out.push_back({loc, ir::SelectOffset{reg_, register_index(reg_)}});
+      }
+      return;
+    }
+    out.push_back({loc, ir::SelectOffset{w->set_register, w->index}});
+    // The frame's Z in the model; MSYS points (and tool axes) are already in the frame.
+    const bool local = source_ == ir::FrameSource::Msys;
+    const Vec3 z_model = frame_.rotation.col(2);
+    indexed_ = true;
+    for (size_t j = from; j < op.body.size(); ++j) {
+      const ir::Instr& in = op.body[j];
+      if (std::holds_alternative<ir::SetFrame>(in.op)) break;  // the next frame decides for itself
+      const Vec3* a = nullptr;
+      if (auto* m = std::get_if<ir::Move>(&in.op); m && m->kind != ir::MoveKind::From) a = &m->axis;
+      else if (auto* arc = std::get_if<ir::Arc>(&in.op)) a = &arc->tool_axis;
+      else if (auto* h = std::get_if<ir::Hole>(&in.op)) a = &h->axis;
+      if (!a) continue;
+      Vec3 am = local ? Vec3(frame_.rotation * *a) : *a;
+      if ((am - z_model).norm() > 1e-9) indexed_ = false;
+    }
+    if (!indexed_) {
+      if (!frame_.is_identity(1e-9))
+        ctx.diags.warning(loc, "this operation's tool axis is not its frame's Z: it is written in the base frame, for the "
+                               "kinematics pass", "not 3+2");
+      return;
+    }
+    transform_ = true;
+    local_ = local;
+    if (w->has_rotary) {
+      out.push_back({loc, ir::RotaryPosition{w->rotary, true}});
+      T_ = kin::table_rotation(k_, w->rotary);
+    } else {
+      T_ = frame_.rotation.transpose();
+    }
+  }
+
+  Vec3 point(const Vec3& p) const {
+    Vec3 model = local_ ? Vec3(frame_.rotation * p + frame_.origin) : p;
+    return T_ * (model - frame_.origin);
+  }
+  Vec3 dir(const Vec3& v) const { return T_ * (local_ ? Vec3(frame_.rotation * v) : v); }
+
+  void apply(ir::Instr& in) const {
+    if (auto* m = std::get_if<ir::Move>(&in.op)) {
+      m->point = point(m->point);
+      m->axis = dir(m->axis);
+    } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+      a->start = point(a->start);
+      a->end = point(a->end);
+      a->center = point(a->center);
+      a->axis = dir(a->axis);
+      a->tool_axis = dir(a->tool_axis);
+    } else if (auto* h = std::get_if<ir::Hole>(&in.op)) {
+      h->point = point(h->point);
+      h->axis = dir(h->axis);
+    }
+  }
+
+  static bool along_z(const ir::Instr& in) {
+    const Vec3* a = nullptr;
+    if (auto* m = std::get_if<ir::Move>(&in.op)) a = &m->axis;
+    else if (auto* arc = std::get_if<ir::Arc>(&in.op)) a = &arc->tool_axis;
+    else if (auto* h = std::get_if<ir::Hole>(&in.op)) a = &h->axis;
+    return !a || (*a - Vec3::UnitZ()).norm() <= 1e-6;
+  }
+
+  KinematicsSettings k_;
+  ir::Frame frame_;
+  ir::FrameSource source_ = ir::FrameSource::Csys;
+  int reg_ = 0;       // the SET register in force (0: none)
+  int pending_ = 0;   // a SET waiting for the frame record after it
+  bool unpaired_ = false;  // the last frame record has no SET yet
+  bool active_ = false, indexed_ = false, transform_ = false, local_ = false;
+  ir::Mat3 T_ = ir::Mat3::Identity();
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_offset_table() { return std::make_unique<OffsetTablePass>(); }
+
+}  // namespace clpc
