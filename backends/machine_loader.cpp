@@ -381,9 +381,9 @@ void set_defaults(Machine& m) {
     k.length_cancel = tpl("G49");
     k.work_offset = tpl("G{number}");
     k.work_offset_extended = tpl("G54.1 P{number}");
-    k.offset_set = tpl("G90 G10 L2 P{number}");
-    k.offset_set_extended = tpl("G90 G10 L20 P{number}");
-    k.macro_call = tpl("G65 P{number}");
+    k.offset_set = tpl("G90 G10 L2 P{number:1}");
+    k.offset_set_extended = tpl("G90 G10 L20 P{number:1}");
+    k.macro_call = tpl("G65 P{number:1}");
     k.safe_retract = tpl("G91 G28 Z0.");
     k.cycle_drill = tpl("G81");
     k.cycle_dwell = tpl("G82");

@@ -19,7 +19,7 @@ MillBackend::MillBackend(const Machine& m, OutputFile& out, Diagnostics& d) : Pr
 
 void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   if (t.tool == tool_) return;  // already in the spindle
-  if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
+  if (tool_ >= 0) retract(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
   length_offset_ = t.length_offset > 0 ? t.length_offset : t.tool;
@@ -34,6 +34,16 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   e_.forget_linear();
   feed_written_ = false;
   spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
+}
+
+void MillBackend::retract(SourceLoc loc) {
+  blocks({m_.codes.safe_retract}, loc);
+  at_safe_height_ = true;
+}
+
+void MillBackend::moved() {
+  position_known_ = true;
+  at_safe_height_ = false;
 }
 
 std::pair<const CodeTemplate*, TemplateVars> MillBackend::offset_select(int index) const {
@@ -105,9 +115,9 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
     d_.warning(loc, "cutting move with the spindle stopped", "spindle stopped");
 
-  if (need_length_offset_ && rapid) {
-    // Position in X Y (and the rotaries) with the work offset, then bring Z down with the
-    // length offset.
+  if (rapid && (need_length_offset_ || (at_safe_height_ && tool_ >= 0))) {
+    // From the safe height: position in X Y (and the rotaries) with the work offset, then
+    // bring Z down (with the length offset after a tool change).
     e_.begin(loc);
     absolute_code();
     work_offset_code();
@@ -117,12 +127,13 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     if (mv.has_rotary) rotary_words(mv.rotary, true);
     e_.end();
     e_.begin(loc);
-    e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+    if (need_length_offset_)
+      e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
     e_.word('Z', o.z());
     e_.end();
     need_length_offset_ = false;
     pos_ = mv.point;
-    position_known_ = true;
+    moved();
     return;
   }
 
@@ -156,7 +167,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
   e_.end();
   pos_ = mv.point;
-  position_known_ = true;
+  moved();
 }
 
 // G93 for this block (F follows the coordinates); the next ordinary feed switches back.
@@ -211,6 +222,9 @@ void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc l
     if (!e_.last(l, last) || e_.as_written(l, r.rotary[i]) != last) moves = true;
   }
   if (moves) {
+    // Turning the table for the next orientation with the tool down at the part is how
+    // fixtures get hit: retract first (a rotation within a path, clamp = false, has its own).
+    if (r.clamp && !at_safe_height_ && tool_ >= 0) retract(loc);
     unclamp(loc);
     e_.begin(loc);
     absolute_code();
@@ -449,7 +463,7 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
   e_.set_last('Y', o.y());
   e_.set_last('Z', o.z() + ret * k_);
   pos_ = h.point + h.axis * ret;
-  position_known_ = true;
+  moved();
 }
 
 }  // namespace clpc

@@ -26,6 +26,8 @@ class MillBackend : public ProgramWriter {
   void after_finish() override;
 
   void work_offset_code();
+  void retract(SourceLoc loc);  // codes.safe_retract
+  void moved();                 // after a block that moved the tool
   // The code selecting work-offset register `index` (1 = G54 ...) and its number word.
   std::pair<const CodeTemplate*, TemplateVars> offset_select(int index) const;
   // The offset table (backends/mill_offsets.cpp).
@@ -46,6 +48,7 @@ class MillBackend : public ProgramWriter {
   ActiveCycle cycle_;
   bool clamped_ = false;
   bool tcp_on_ = false;
+  bool at_safe_height_ = true;  // nothing moved since the last safe retract
 };
 
 }  // namespace clpc

@@ -199,7 +199,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
                               std::to_string(standard + m_.offsets.extended_count) + " registers");
             return;
           }
-          if (x.index != work_offset_) need_work_offset_ = true;
+          if (x.index != work_offset_) {
+            need_work_offset_ = true;
+            e_.forget_linear();  // the same X Y Z is another place in another offset
+          }
           work_offset_ = x.index;
         } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
           // Frames are for the passes (offset table, kinematics); nothing to write here.

@@ -135,6 +135,7 @@ class OffsetTablePass : public Pass {
     // to it in its operation, as in the pre-scan (ir/tables.cpp).
     std::vector<ir::Instr> out;
     out.reserve(op.body.size() + 4);
+    setup_end_ = 0;
     for (size_t i = 0; i < op.body.size(); ++i) {
       ir::Instr& in = op.body[i];
       if (auto* f = std::get_if<ir::SetFrame>(&in.op)) {
@@ -159,9 +160,12 @@ class OffsetTablePass : public Pass {
         active_ = false;
         continue;  // written again with its entry, at the first motion
       }
-      if (std::holds_alternative<ir::ToolChange>(in.op)) unpaired_ = false;
-      bool motion = (std::holds_alternative<ir::Move>(in.op) && std::get<ir::Move>(in.op).kind != ir::MoveKind::From) ||
-                    std::holds_alternative<ir::Arc>(in.op) || std::holds_alternative<ir::Hole>(in.op);
+      const bool motion = (std::holds_alternative<ir::Move>(in.op) && std::get<ir::Move>(in.op).kind != ir::MoveKind::From) ||
+                          std::holds_alternative<ir::Arc>(in.op) || std::holds_alternative<ir::Hole>(in.op);
+      if (std::holds_alternative<ir::ToolChange>(in.op)) {
+        unpaired_ = false;
+        setup_end_ = out.size() + 1;
+      }
       if (motion && !active_) activate(op, i, in.loc, out, ctx);
       if (transform_ && motion) {
         apply(in);
@@ -173,6 +177,7 @@ class OffsetTablePass : public Pass {
         }
       }
       out.push_back(std::move(in));
+      if (motion) setup_end_ = out.size();
     }
     if (op.last_chunk) {
       // The next operation decides 3+2 afresh, in the frame in force.
@@ -231,7 +236,10 @@ class OffsetTablePass : public Pass {
       }
       return;
     }
-    out.push_back({loc, ir::SelectOffset{w->set_register, w->index}});
+    // Selected and positioned before the spindle and coolant of the operation start: the
+    // table turns with the tool stopped and dry, as posts do after a tool change.
+    auto at = out.begin() + std::ptrdiff_t(std::min(setup_end_, out.size()));
+    at = out.insert(at, {loc, ir::SelectOffset{w->set_register, w->index}}) + 1;
     // The frame's Z in the model; MSYS points (and tool axes) are already in the frame.
     const bool local = source_ == ir::FrameSource::Msys;
     const Vec3 z_model = frame_.rotation.col(2);
@@ -256,7 +264,7 @@ class OffsetTablePass : public Pass {
     transform_ = true;
     local_ = local;
     if (w->has_rotary) {
-      out.push_back({loc, ir::RotaryPosition{w->rotary, true}});
+      out.insert(at, {loc, ir::RotaryPosition{w->rotary, true}});
       T_ = kin::table_rotation(k_, w->rotary);
     } else {
       T_ = frame_.rotation.transpose();
@@ -298,6 +306,7 @@ class OffsetTablePass : public Pass {
   ir::FrameSource source_ = ir::FrameSource::Csys;
   int reg_ = 0;       // the SET register in force (0: none)
   int pending_ = 0;   // a SET waiting for the frame record after it
+  size_t setup_end_ = 0;  // in this chunk's output: after its tool change or last motion
   bool unpaired_ = false;  // the last frame record has no SET yet
   bool active_ = false, indexed_ = false, transform_ = false, local_ = false;
   ir::Mat3 T_ = ir::Mat3::Identity();

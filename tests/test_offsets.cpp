@@ -1,0 +1,376 @@
+// The work-offset table (offset-table pass, G10 / G65 writing): the seed's macro against
+// clpc's own G10 offsets, a three-frame part in all three strategies (golden files, registers,
+// read back to the CL path), per-frame offsets of the corpus 3+2 files, and the errors.
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <regex>
+
+#include "backends/gcode_interp.h"
+#include "backends/kinematics.h"
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ir::Vec3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
+
+// The example A/C trunnion and its g10 / none variants.
+std::string ac_toml() { return read_file(src("examples/ac_trunnion.toml")) + "\n" + read_file(src("tests/offsets/machines.toml")); }
+
+// The words of a block as letter -> value ("G90 G10 L2 P1 X0. Y28.284" -> L 2, P 1, X 0, Y 28.284;
+// G codes are not kept).
+std::map<char, double> words(const std::string& block) {
+  std::map<char, double> w;
+  static const std::regex word("([A-Z])(-?[0-9.]+)");
+  for (std::sregex_iterator it(block.begin(), block.end(), word), end; it != end; ++it) {
+    char l = (*it)[1].str()[0];
+    if (l != 'G' && l != 'N') w[l] = std::stod((*it)[2].str());
+  }
+  return w;
+}
+
+std::vector<std::string> lines_with(const std::string& text, const std::string& what) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);)
+    if (l.find(what) != std::string::npos && l[0] != '(') out.push_back(l);  // blocks, not comments
+  return out;
+}
+
+// The seed paper's macro O2013, as plain arithmetic on its G65 arguments (CL_FORMATS.md).
+Vec3 seed_macro(const std::map<char, double>& g65, double n503) {
+  const double n1 = g65.at('A') * kPi / 180, n3 = g65.at('C') * kPi / 180;
+  const double n24 = g65.at('X'), n25 = g65.at('Y'), n26 = g65.at('Z');
+  const double n16 = n26 + n503;
+  return {n24 * std::cos(-n3) - n25 * std::sin(-n3),
+          n24 * std::cos(-n1) * std::sin(-n3) + n25 * std::cos(-n1) * std::cos(-n3) - n16 * std::sin(-n1),
+          n24 * std::sin(-n1) * std::sin(-n3) + n25 * std::sin(-n1) * std::cos(-n3) + n16 * std::cos(-n1)};
+}
+
+ir::Mat3 rz(double deg) {
+  double c = std::cos(deg * kPi / 180), s = std::sin(deg * kPi / 180);
+  ir::Mat3 m;
+  m << c, -s, 0, s, c, 0, 0, 0, 1;
+  return m;
+}
+ir::Mat3 rx(double deg) {
+  double c = std::cos(deg * kPi / 180), s = std::sin(deg * kPi / 180);
+  ir::Mat3 m;
+  m << 1, 0, 0, 0, c, -s, 0, s, c;
+  return m;
+}
+
+std::string camera(const ir::Mat3& r, const Vec3& o) {
+  char b[512];
+  std::snprintf(b, sizeof b, "CAMERA/%.12f,%.12f,%.12f,%.9f,%.12f,%.12f,%.12f,%.9f, $\n%.12f,%.12f,%.12f,%.9f\n", r(0, 0), r(0, 1),
+                r(0, 2), o.x(), r(1, 0), r(1, 1), r(1, 2), o.y(), r(2, 0), r(2, 1), r(2, 2), o.z());
+  return b;
+}
+
+// The CL GOTO points of a file, outside canned cycles (whose GOTOs are hole tops, not points
+// the tool is driven to).
+std::vector<Vec3> cl_points(const std::string& path) {
+  std::vector<Vec3> out;
+  std::istringstream in(read_file(path));
+  bool cycle = false;
+  for (std::string l; std::getline(in, l);) {
+    if (l.rfind("CYCLE/", 0) == 0) cycle = l != "CYCLE/OFF";
+    if (l.rfind("GOTO/", 0) != 0 || cycle) continue;
+    double x, y, z;
+    if (std::sscanf(l.c_str() + 5, "%lf,%lf,%lf", &x, &y, &z) == 3) out.emplace_back(x, y, z);
+  }
+  return out;
+}
+
+// Where each block of a program drives the tool tip in the part (CL) frame, through the
+// offsets the program set (or `given`), the rotary positions and the machine's table axes:
+// machine = offset + point, part = T(angles)^-1 machine - reference height along Z.
+struct Readback {
+  std::vector<Vec3> ends;
+  std::map<int, Vec3> offsets;
+  int problems = 0;
+  std::string first_problem;
+};
+Readback read_back(const std::string& program, const Machine& m, const std::map<int, Vec3>& given = {}) {
+  gcode::Result r = gcode::interpret(program, m);
+  Readback b;
+  b.problems = int(r.problems.size());
+  if (!r.problems.empty()) b.first_problem = std::to_string(r.problems[0].line) + ": " + r.problems[0].message;
+  b.offsets = given;
+  for (const gcode::Event& e : r.events)
+    if (e.kind == gcode::Event::Kind::OffsetSet) b.offsets[e.reg] = e.v;
+  const KinematicsSettings& k = m.kinematics;
+  const double h = m.offsets.reference_height;
+  for (const gcode::Segment& s : r.segments) {
+    if (std::isnan(s.end.x()) || std::isnan(s.end.z())) continue;
+    kin::Angles a{0, 0};
+    for (size_t i = 0; i < k.rotaries.size(); ++i) a[i] = s.rotary[size_t(k.rotaries[i].name[0] - 'A')];
+    Vec3 machine = b.offsets.count(s.work_offset) ? Vec3(b.offsets[s.work_offset] + s.end) : Vec3(s.end);
+    b.ends.push_back(kin::table_rotation(k, a).transpose() * machine - Vec3(0, 0, h));
+  }
+  return b;
+}
+
+// Every CL point is reached, in order, within `tol`.
+void expect_follows(const std::vector<Vec3>& cl, const std::vector<Vec3>& ends, double tol) {
+  size_t j = 0;
+  for (size_t i = 0; i < cl.size(); ++i) {
+    while (j < ends.size() && (ends[j] - cl[i]).norm() > tol) ++j;
+    ASSERT_LT(j, ends.size()) << "CL point " << i << " (" << cl[i].transpose() << ") is never reached";
+  }
+}
+
+// The program without sequence numbers (which shift with the head's length).
+std::string without_n(const std::string& text) {
+  return std::regex_replace(text, std::regex("(^|\n)N[0-9]+ "), "$1");
+}
+
+std::string after(const std::string& text, const std::string& marker) {
+  size_t at = text.find(marker);
+  return at == std::string::npos ? std::string() : text.substr(at);
+}
+
+}  // namespace
+
+// --- the seed's macro against clpc's G10 --------------------------------------------------
+
+// 1000 random frames R = Rz(C) Rx(A) (A in [1, 110] on the side the machine prefers), origins
+// and registers: the G10 offsets clpc writes equal what the seed's macro computes from the G65
+// arguments clpc writes, to 1e-6 (both written with nine decimals, so rounding stays below it).
+TEST(SeedMacro, G10EqualsTheMacroForRandomFrames) {
+  const std::string fine = ac_toml() +
+                           "\n[fine-macro]\ninherits = \"ac-trunnion\"\n[fine-macro.offsets]\nreference_height = 123.456\n"
+                           "[fine-macro.format]\nX = { decimals = 9 }\nY = { decimals = 9 }\nZ = { decimals = 9 }\n"
+                           "A = { decimals = 9 }\nB = { decimals = 9 }\nC = { decimals = 9 }\n"
+                           "[fine-g10]\ninherits = \"fine-macro\"\n[fine-g10.offsets]\ntable = \"g10\"\n";
+  const Machine macro = machine("fine-macro", fine), g10 = machine("fine-g10", fine);
+  std::mt19937 rng(2013);
+  std::uniform_real_distribution<double> ua(1, 110), uc(-179.9, 179.9), uo(-200, 200);
+  int frames = 0;
+  double worst = 0;
+  while (frames < 1000) {
+    std::vector<int> regs = {54, 55, 56, 57, 58, 59};
+    std::shuffle(regs.begin(), regs.end(), rng);
+    const int n = std::min(6, 1000 - frames) - int(rng() % 2);  // 5 or 6 registers a program
+    std::string cl = "UNITS/MM\n";
+    for (int i = 0; i < n; ++i) {
+      const double a = ua(rng), c = uc(rng);
+      const ir::Mat3 r = rz(c) * rx(a);
+      const Vec3 o(uo(rng), uo(rng), uo(rng));
+      const Vec3 z = r.col(2), p = o + 10 * z;
+      char go[160];
+      std::snprintf(go, sizeof go, "GOTO/%.6f,%.6f,%.6f,%.9f,%.9f,%.9f\n", p.x(), p.y(), p.z(), z.x(), z.y(), z.z());
+      cl += "TOOL PATH/OP" + std::to_string(i) + ",TOOL,EM10\nLOAD/TOOL,1\nSET/" + std::to_string(regs[size_t(i)]) + "\n" +
+            camera(r, o) + "SPINDL/RPM,1000,CLW\nRAPID\n" + go + "END-OF-PATH\n";
+    }
+    Compiled cm = compile_text(cl, macro), cg = compile_text(cl, g10);
+    ASSERT_TRUE(cm.ok) << cm.diags;
+    ASSERT_TRUE(cg.ok) << cg.diags;
+    EXPECT_EQ(cm.diags.find("seed macro"), std::string::npos) << cm.diags;  // the angles are the machine's
+    auto calls = lines_with(cm.output, "G65 P2013"), sets = lines_with(cg.output, "G10 L2");
+    ASSERT_EQ(calls.size(), size_t(n));
+    ASSERT_EQ(sets.size(), size_t(n));
+    std::map<int, Vec3> by_register;
+    for (const std::string& s : sets) {
+      auto w = words(s);
+      by_register[int(w['P'])] = {w['X'], w['Y'], w['Z']};
+    }
+    for (const std::string& c : calls) {
+      auto w = words(c);
+      ASSERT_TRUE(by_register.count(int(w['B']))) << c;
+      Vec3 d = seed_macro(w, 123.456) - by_register[int(w['B'])];
+      worst = std::max(worst, d.cwiseAbs().maxCoeff());
+      EXPECT_LT(d.cwiseAbs().maxCoeff(), 1e-6) << c;
+    }
+    frames += n;
+  }
+  std::printf("1000 frames: worst |G10 - macro| = %.3g mm\n", worst);
+}
+
+// The reader evaluates the macro from the G65 call and gets the offsets the G10 program sets.
+TEST(SeedMacro, ReaderEvaluatesTheMacro) {
+  const std::string t = ac_toml();
+  const std::string cls = src("tests/offsets/three_frames.cls");
+  Compiled cm = compile_path(cls, machine("ac-trunnion", t)), cg = compile_path(cls, machine("ac-trunnion-g10", t));
+  ASSERT_TRUE(cm.ok && cg.ok) << cm.diags << cg.diags;
+  Readback bm = read_back(cm.output, machine("ac-trunnion", t)), bg = read_back(cg.output, machine("ac-trunnion-g10", t));
+  EXPECT_EQ(bm.problems, 0) << bm.first_problem;
+  EXPECT_EQ(bg.problems, 0) << bg.first_problem;
+  ASSERT_EQ(bm.offsets.size(), 3u);
+  ASSERT_EQ(bg.offsets.size(), 3u);
+  for (auto& [reg, v] : bg.offsets) EXPECT_LT((bm.offsets[reg] - v).norm(), 2e-3) << "register " << reg;
+  // G56 (A90 C180, origin 0 40 -20, #503 = 100): Rx(-90) Rz(-180) (0, 40, 80) = (0, 80, 40).
+  EXPECT_LT((bg.offsets[3] - Vec3(0, 80, 40)).norm(), 1e-9);
+}
+
+// --- a part in three frames, each used more than once --------------------------------------
+
+TEST(OffsetTable, ThreeFramesGolden) {
+  const std::string t = ac_toml();
+  bool update = std::getenv("CLPC_UPDATE_GOLDEN") != nullptr;
+  for (const char* name : {"ac-trunnion", "ac-trunnion-g10", "ac-trunnion-none"}) {
+    SCOPED_TRACE(name);
+    Compiled c = compile_path(src("tests/offsets/three_frames.cls"), machine(name, t));
+    ASSERT_TRUE(c.ok) << c.diags;
+    EXPECT_EQ(c.diags, "");
+    std::string expected = src(std::string("tests/offsets/three_frames.") + name + ".nc");
+    if (update) write_file(expected, c.output);
+    else EXPECT_EQ(c.output, read_file(expected));
+  }
+}
+
+TEST(OffsetTable, OneOffsetPerRegisterAndTheRightOneInEachOperation) {
+  const std::string t = ac_toml();
+  Compiled m = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion", t));
+  Compiled g = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion-g10", t));
+  Compiled n = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion-none", t));
+  ASSERT_TRUE(m.ok && g.ok && n.ok);
+  // The head: one call / one G10 per register, in order of first use.
+  auto calls = lines_with(m.output, "G65 P2013");
+  ASSERT_EQ(calls.size(), 3u);
+  EXPECT_THAT(calls[0], HasSubstr("G65 P2013 B1. X0. Y0. Z0. A0. C0."));
+  EXPECT_THAT(calls[1], HasSubstr("G65 P2013 B2. X50. Y0. Z-10. A45. C90."));
+  EXPECT_THAT(calls[2], HasSubstr("G65 P2013 B3. X0. Y40. Z-20. A90. C180."));
+  auto sets = lines_with(g.output, "G10 L2");
+  ASSERT_EQ(sets.size(), 3u);
+  EXPECT_THAT(sets[1], HasSubstr("G90 G10 L2 P2 X0. Y28.284 Z98.995"));  // Rx(-45) Rz(-90) (50, 0, 90)
+  EXPECT_TRUE(lines_with(n.output, "G10").empty());
+  EXPECT_TRUE(lines_with(n.output, "G65").empty());
+  // The macro program follows M30 only where the machine asks for it.
+  EXPECT_THAT(after(m.output, "M30"), HasSubstr("O2013\n"));
+  EXPECT_THAT(after(m.output, "O2013"), HasSubstr("G90 G10 L2 P#2 X#104 Y#105 Z#106\nM99\n%"));
+  EXPECT_EQ(after(g.output, "O2013"), "");
+  // The body: each operation selects its frame's register, at the rotary position of its frame.
+  const std::vector<std::tuple<std::string, std::string, std::string>> ops = {
+      {"(TOP_ROUGH)", "G54", "A0. C0."},      {"(SIDE_A_ROUGH)", "G55", "A45. C90."}, {"(SIDE_B_DRILL)", "G56", "A90. C180."},
+      {"(SIDE_A_FINISH)", "G55", "A45. C90."}, {"(TOP_FINISH)", "G54", "A0. C0."}};
+  for (auto& [op, reg, rot] : ops) {
+    std::string body = after(m.output, op);
+    body = body.substr(0, body.find("\n(", 1));
+    EXPECT_THAT(body, HasSubstr(rot)) << op;
+    EXPECT_THAT(body, HasSubstr(reg + " X")) << op;
+    for (const char* other : {"G54", "G55", "G56"})
+      if (other != reg) EXPECT_THAT(body, ::testing::Not(HasSubstr(other))) << op;
+  }
+  // The strategies differ in the head and the macro only.
+  std::string body_m = without_n(after(m.output, "(TOP_ROUGH)")), body_g = without_n(after(g.output, "(TOP_ROUGH)")),
+              body_n = without_n(after(n.output, "(TOP_ROUGH)"));
+  EXPECT_EQ(body_g, body_n);
+  EXPECT_EQ(body_m.substr(0, body_m.find("O2013")), body_g.substr(0, body_g.find("%")));
+}
+
+// Read back through the offsets the program sets and the table's rotation, the tool follows
+// every CL point of the part, whichever strategy set the offsets.
+TEST(OffsetTable, ThreeFramesFollowTheClPath) {
+  const std::string t = ac_toml();
+  const std::string cls = src("tests/offsets/three_frames.cls");
+  const auto cl = cl_points(cls);
+  ASSERT_GT(cl.size(), 30u);
+  std::map<int, Vec3> set_by_g10;
+  for (const char* name : {"ac-trunnion-g10", "ac-trunnion", "ac-trunnion-none"}) {
+    SCOPED_TRACE(name);
+    Machine mc = machine(name, t);
+    Compiled c = compile_path(cls, mc);
+    ASSERT_TRUE(c.ok) << c.diags;
+    // "none": the operator set the registers; take the values clpc computed for g10.
+    Readback b = read_back(c.output, mc, std::string(name) == "ac-trunnion-none" ? set_by_g10 : std::map<int, Vec3>{});
+    EXPECT_EQ(b.problems, 0) << b.first_problem;
+    if (set_by_g10.empty()) set_by_g10 = b.offsets;
+    expect_follows(cl, b.ends, 2e-3);
+  }
+}
+
+// --- corpus 3+2 files with one offset per distinct $$-> CSYS --------------------------------
+
+TEST(OffsetTable, CorpusOneOffsetPerDistinctCsys) {
+  if (corpus_dir().empty()) GTEST_SKIP() << "no corpus at " << CLPC_CORPUS_DIR;
+  const std::string pf =
+      "[umc-per-frame]\ninherits = \"haas-umc750\"\n[umc-per-frame.offsets]\nper_frame = true\ntable = \"g10\"\n"
+      "reference_height = 5.0\n";
+  const Machine m = machine("umc-per-frame", pf);
+  for (const char* f : {"nist/b45_face.ncl", "nist/b270_alldrill.ncl"}) {
+    SCOPED_TRACE(f);
+    const std::string path = corpus_dir() + "/" + f;
+    // The distinct frames, as the file gives them.
+    std::vector<std::string> frames;
+    {
+      std::istringstream in(read_file(path));
+      std::string l, rec;
+      while (std::getline(in, l)) {
+        if (l.rfind("$$-> CSYS", 0) != 0) continue;
+        rec = l;
+        while (!rec.empty() && rec.back() == '$' && std::getline(in, l)) rec += l;  // continuation lines
+        if (std::find(frames.begin(), frames.end(), rec) == frames.end()) frames.push_back(rec);
+      }
+    }
+    ASSERT_FALSE(frames.empty());
+    Compiled c = compile_path(path, m);
+    ASSERT_TRUE(c.ok) << c.diags;
+    EXPECT_EQ(lines_with(c.output, "G10 L2").size(), frames.size()) << c.output;
+    // Read back through the offsets and B C: every CL point of the file (in inches).
+    Readback b = read_back(c.output, m);
+    EXPECT_EQ(b.problems, 0) << b.first_problem;
+    expect_follows(cl_points(path), b.ends, 2e-4);
+  }
+}
+
+// --- errors ---------------------------------------------------------------------------------
+
+TEST(OffsetTable, RegisterGivenTwoFramesIsAnError) {
+  const std::string t = ac_toml();
+  std::string cl = "UNITS/MM\nTOOL PATH/A,TOOL,T\nLOAD/TOOL,1\nSET/55\n" + camera(rz(0) * rx(30), Vec3(0, 0, 0)) +
+                   "GOTO/0,0,10,0,-0.5,0.8660254038\nEND-OF-PATH\nTOOL PATH/B,TOOL,T\nSET/55\n" +
+                   camera(rz(90) * rx(30), Vec3(0, 0, 0)) + "GOTO/0,0,10,0.5,0,0.8660254038\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("ac-trunnion-g10", t));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":11:1: error: SET/55 is given a second frame; its register holds the frame of line 5 already"));
+}
+
+TEST(OffsetTable, MacroTakesStandardRegistersOnly) {
+  const std::string t = ac_toml();
+  std::string cl = "UNITS/MM\nTOOL PATH/A,TOOL,T\nLOAD/TOOL,1\nSET/101\n" + camera(rz(0) * rx(30), Vec3(0, 0, 0)) +
+                   "SPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10,0,-0.5,0.8660254038\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("ac-trunnion", t));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("error: work-offset table: the seed's macro sets G54-G59 only"));
+  // With G10 the extended register is G10 L20 P1 and selected as G54.1 P1.
+  Compiled g = compile_text(cl, machine("ac-trunnion-g10", t));
+  ASSERT_TRUE(g.ok) << g.diags;
+  EXPECT_THAT(g.output, HasSubstr("G90 G10 L20 P1 X0. Y"));
+  EXPECT_THAT(g.output, HasSubstr("G54.1 P1 X0. Y5.\n"));
+}
+
+TEST(OffsetTable, RunningOutOfRegistersIsAnError) {
+  const std::string t = ac_toml() + "\n[tiny]\ninherits = \"ac-trunnion-g10\"\n[tiny.offsets]\nextended = 0\nper_frame = true\n";
+  std::string cl = "UNITS/MM\n";
+  for (int i = 0; i < 7; ++i)
+    cl += "TOOL PATH/OP" + std::to_string(i) + ",TOOL,T\nLOAD/TOOL,1\n" + camera(rz(10 * i) * rx(30), Vec3(0, 0, 0)) +
+          "SPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10," + std::to_string(std::sin(10 * i * kPi / 180) * 0.5) + "," +
+          std::to_string(-std::cos(10 * i * kPi / 180) * 0.5) + ",0.8660254038\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("tiny", t));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("error: work-offset table: this frame needs a register beyond machine 'tiny''s 6 (6 frames before it)"));
+}
+
+TEST(OffsetTable, TiltedFrameOnAThreeAxisMachineNeedsNoTable) {
+  std::string cl = "UNITS/MM\nTOOL PATH/A,TOOL,T\nLOAD/TOOL,1\nSET/55\n" + camera(rx(90), Vec3(0, 0, 0)) +
+                   "SPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,-10,0,0,-1,0\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill", "[m]\ninherits = \"fanuc-mill\"\n[m.offsets]\ntable = \"g10\"\n"));
+  Machine m = machine("m", "[m]\ninherits = \"fanuc-mill\"\n[m.offsets]\ntable = \"g10\"\n");
+  Compiled e = compile_text(cl, m);
+  EXPECT_FALSE(e.ok);
+  EXPECT_THAT(e.diags, HasSubstr("has no rotary axes to turn this frame up"));
+  // Set on the machine (a second setup), the frame's own coordinates are written.
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(G55 = SET/55 CAMERA LINE 5 ORIGIN X0 Y0 Z0)"));
+  EXPECT_THAT(c.output, HasSubstr("G55 G00 X0. Y0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("G43 H01 Z10.\n"));
+}
