@@ -41,6 +41,7 @@ class TableBuilder : public RecordSink {
           info_.frames.back().set_register = reg;
           last_frame_unpaired_ = false;
         } else {
+          flush_pending_set();  // two SETs without a frame record between: the first is the frame in force's
           pending_set_ = reg;
           pending_set_loc_ = r.loc;
         }
@@ -148,14 +149,21 @@ class TableBuilder : public RecordSink {
       t.length = g.length;
     }
   }
+  // A SET no frame record pairs with names the register of the frame in force.
+  void flush_pending_set() {
+    if (!pending_set_) return;
+    ir::FrameUse u = frame_;
+    u.loc = pending_set_loc_;
+    u.set_register = pending_set_;
+    info_.frames.push_back(u);
+    pending_set_ = 0;
+  }
+
   void end_op() {
     // Frames and registers are modal: an operation without a frame record works in the frame
     // in force, the base frame before any.
     if (pending_set_) {
-      ir::FrameUse u = frame_;
-      u.loc = pending_set_loc_;
-      u.set_register = pending_set_;
-      info_.frames.push_back(u);
+      flush_pending_set();
     } else if (in_op_ && !frame_seen_) {
       ir::FrameUse u = frame_;
       u.loc = op_loc_;

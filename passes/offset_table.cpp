@@ -210,12 +210,13 @@ class OffsetTablePass : public Pass {
                         "seed macro angles");
   }
 
+  // Whether the SET at i pairs with a frame record after it in its operation (before another
+  // SET), as the pre-scan pairs them.
   static bool frame_record_ahead(const ir::Operation& op, size_t i) {
     for (size_t j = i + 1; j < op.body.size(); ++j) {
       const ir::Op& o = op.body[j].op;
       if (std::holds_alternative<ir::SetFrame>(o)) return true;
-      if (std::holds_alternative<ir::Move>(o) || std::holds_alternative<ir::Arc>(o) || std::holds_alternative<ir::Hole>(o))
-        return false;
+      if (std::holds_alternative<ir::SelectOffset>(o)) return false;
     }
     return false;
   }

@@ -374,3 +374,16 @@ TEST(OffsetTable, TiltedFrameOnAThreeAxisMachineNeedsNoTable) {
   EXPECT_THAT(c.output, HasSubstr("G55 G00 X0. Y0.\n"));
   EXPECT_THAT(c.output, HasSubstr("G43 H01 Z10.\n"));
 }
+
+// SET with no frame record names the register of the frame in force; the table lists every
+// register the program uses, for the operator.
+TEST(OffsetTable, SetWithoutFrameSelectsItsRegister) {
+  Compiled c = compile_text(
+      "UNITS/MM\nLOADTL/1\nSET/56\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/1,2,3\nFEDRAT/MMPM,100\nGOTO/5,2,3\nSET/101\nGOTO/6,2,3\nFINI\n",
+      machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(WORK OFFSETS - SET ON THE MACHINE)\n(G56 = SET/56 BASE FRAME LINE 3 ORIGIN X0 Y0 Z0)\n"
+                                  "(G54.1 P1 = SET/101 BASE FRAME LINE 9 ORIGIN X0 Y0 Z0)\n"));
+  EXPECT_THAT(c.output, HasSubstr("N50 G56 G00 X1. Y2.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N80 G54.1 P1 X6. Y2. Z3.\n"));  // another offset: every axis again
+}
