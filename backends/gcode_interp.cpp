@@ -24,6 +24,26 @@ struct Word {
 
 enum class Motion { Rapid, Linear, Cw, Ccw, None };
 
+// The address words of one block, by letter (the last one of a letter counts). A fixed table
+// rather than a map: the reader runs over every block of gigabyte programs.
+struct Words {
+  std::array<double, 26> value{};
+  std::array<bool, 26> has{};
+  std::array<bool, 26> point{};
+  void clear() {
+    has.fill(false);
+    point.fill(false);
+  }
+  void set(char c, double v, bool p) {
+    value[size_t(c - 'A')] = v;
+    has[size_t(c - 'A')] = true;
+    point[size_t(c - 'A')] = p;
+  }
+  size_t count(char c) const { return has[size_t(c - 'A')] ? 1 : 0; }
+  double operator[](char c) const { return value[size_t(c - 'A')]; }
+  bool with_point(char c) const { return point[size_t(c - 'A')]; }
+};
+
 class Interp {
  public:
   Interp(const Machine& m, const Options& opt) : m_(m), opt_(opt) {
@@ -38,19 +58,24 @@ class Interp {
 
   Result run(std::string_view text) {
     size_t at = 0;
-    int line = 0;
     while (at <= text.size()) {
       size_t nl = text.find('\n', at);
-      std::string_view l = text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at);
-      ++line;
-      // After M30 / M02 the main program is over; what follows (subprograms such as the
-      // offset macro) runs only when called.
-      if (!res_.ended) block(l, line);
+      feed(text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at));
       if (nl == std::string_view::npos) break;
       at = nl + 1;
     }
     return std::move(res_);
   }
+
+  void feed(std::string_view l) {
+    ++line_;
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    // After M30 / M02 the main program is over; what follows (subprograms such as the
+    // offset macro) runs only when called.
+    if (!res_.ended) block(l, line_);
+  }
+
+  Result& result() { return res_; }
 
  private:
   void problem(int line, std::string msg) { res_.problems.push_back({line, std::move(msg)}); }
@@ -116,25 +141,26 @@ class Interp {
   static bool is_g(double v, double code) { return std::abs(v - code) < 1e-6; }
 
   void block(std::string_view l, int line) {
-    std::vector<Word> words;
+    std::vector<Word>& words = words_;
+    words.clear();
     if (!parse(l, line, words) || words.empty()) return;
     if (words[0].letter == 'O') return;  // program number
     ++res_.blocks;
 
-    std::map<char, double> a;  // address -> value (last one)
-    std::map<char, bool> point;
-    std::vector<double> gs, ms;
+    Words& a = a_;  // address -> value (last one)
+    a.clear();
+    std::vector<double>& gs = gs_;
+    std::vector<double>& ms = ms_;
+    gs.clear();
+    ms.clear();
     for (const Word& w : words) {
       if (w.letter == 'G') gs.push_back(w.raw);
       else if (w.letter == 'M') ms.push_back(w.raw);
-      else if (w.letter != 'N') {
-        a[w.letter] = w.value;
-        point[w.letter] = w.has_point;
-      }
+      else if (w.letter != 'N') a.set(w.letter, w.value, w.has_point);
     }
     auto has = [&](char c) { return a.count(c) != 0; };
 
-    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, new_cycle = false;
+    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
     bool motion_word = false;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
@@ -159,7 +185,7 @@ class Interp {
       else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5)) tcp_ = true, length_comp_ = true;
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
-      else if (is_g(g, 50) && lathe) { /* spindle clamp (with S) */ }
+      else if (is_g(g, 50) && lathe) g50 = true;  // spindle clamp (with S)
       else if (is_g(g, 53)) g53 = true;
       else if (g >= 54 - 1e-6 && g <= 59 + 1e-6 && is_g(g, std::round(g))) new_offset = int(std::round(g)) - 53;
       else if (is_g(g, 54.1) || is_g(g, 154)) new_offset = -1;  // P gives the register
@@ -218,13 +244,13 @@ class Interp {
     } else if (!lathe && has('T') && std::find_if(ms.begin(), ms.end(), [](double v) { return std::round(v) == 6; }) == ms.end()) {
       pending_tool_ = int(std::round(a['T']));
     }
-    if (has('S')) spindle_ = a['S'];
+    if (has('S')) (g50 ? max_rpm_ : spindle_) = a['S'];
     if (has('F')) feed_ = a['F'];
 
     if (g04) {
       // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
       // seconds.
-      double secs = has('P') ? (point['P'] ? a['P'] : a['P'] / 1000.0)
+      double secs = has('P') ? (a.with_point('P') ? a['P'] : a['P'] / 1000.0)
                              : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
       res_.events.push_back({Event::Kind::Dwell, line, secs});
       return;
@@ -234,7 +260,7 @@ class Interp {
       return;
     }
     if (g65) {
-      macro_call(a, point, line);
+      macro_call(a, line);
       return;
     }
 
@@ -305,7 +331,7 @@ class Interp {
 
   // A canned-cycle block: (re)defines the cycle's words, and drills at X Y if given (or at the
   // current position when the cycle is new).
-  void hole(std::map<char, double>& a, bool new_cycle, const Vec3& target, int line) {
+  void hole(const Words& a, bool new_cycle, const Vec3& target, int line) {
     if (new_cycle && !cycle_on_) {
       initial_z_ = pos_.z();
       cycle_on_ = true;
@@ -336,6 +362,7 @@ class Interp {
       s.rotary = s.rotary_start = rotary_;
       s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
       s.from_cycle = true;
+      spindle_info(s);
       res_.segments.push_back(s);
       pos_ = to;
     };
@@ -372,7 +399,7 @@ class Interp {
 
   // G74/G75, two blocks: "G75 R(e)" sets the pull-out; "G75 X Z P Q [R] F" runs the cycle
   // from where the tool is, as groove::expand models a Fanuc doing it.
-  void lathe_groove(std::map<char, double>& a, const Vec3& target, int line) {
+  void lathe_groove(const Words& a, const Vec3& target, int line) {
     bool second = a.count('X') || a.count('Z') || a.count('U') || a.count('W');
     if (!second) {
       groove_retract_ = a.count('R') ? a['R'] : 0;
@@ -402,6 +429,7 @@ class Interp {
       s.tool = tool_;
       s.feed = st.cut ? feed_ : 0;
       s.from_cycle = true;
+      spindle_info(s);
       res_.segments.push_back(s);
       pos_ = st.to;
     }
@@ -413,7 +441,7 @@ class Interp {
     res_.units_set = true;
   }
 
-  void offset_set(std::map<char, double>& a, int line) {
+  void offset_set(const Words& a, int line) {
     if (!a.count('L') || !a.count('P')) {
       problem(line, "G10 needs L and P");
       return;
@@ -433,7 +461,7 @@ class Interp {
   // under the number the machine description gives it, as a control knows the macros in its
   // memory; #503 is the description's reference height. Its arithmetic, evaluated here from
   // the published text rather than from clpc's offset code.
-  void macro_call(std::map<char, double>& a, std::map<char, bool>& point, int line) {
+  void macro_call(const Words& a, int line) {
     const OffsetSettings& o = m_.offsets;
     if (!a.count('P') || std::lround(a['P']) != o.macro) {
       problem(line, "G65 calls a macro the reader does not know (it knows the offset macro, P" + std::to_string(o.macro) + ")");
@@ -444,7 +472,7 @@ class Interp {
         problem(line, std::string("G65 P") + std::to_string(o.macro) + " without its " + c + " argument");
         return;
       }
-      if (!point[c]) problem(line, std::string("G65 argument ") + c + " without a decimal point");
+      if (!a.with_point(c)) problem(line, std::string("G65 argument ") + c + " without a decimal point");
     }
     const double deg = 3.14159265358979323846 / 180;
     const double n1 = a['A'], n2 = a['B'], n3 = a['C'], n24 = a['X'], n25 = a['Y'], n26 = a['Z'];
@@ -465,7 +493,7 @@ class Interp {
     res_.events.push_back(e);
   }
 
-  void move(const Vec3& target, const std::array<double, 3>& rot, std::map<char, double>& a, int line) {
+  void move(const Vec3& target, const std::array<double, 3>& rot, const Words& a, int line) {
     Segment s;
     s.start = pos_;
     s.end = target;
@@ -477,6 +505,7 @@ class Interp {
     s.inverse_time = inverse_time_;
     s.tcp = tcp_;
     s.dwo = dwo_;
+    spindle_info(s);
     bool moves_z = (a.count('Z') || a.count('W')) && !(std::abs(target.z() - pos_.z()) < 1e-12);
     if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && moves_z && !m_.codes.length_offset.empty())
       problem(line, "Z moves with no tool length compensation (G43) for the tool in the spindle");
@@ -499,7 +528,7 @@ class Interp {
     rotary_ = rot;
   }
 
-  bool arc(Segment& s, std::map<char, double>& a, int line) {
+  bool arc(Segment& s, const Words& a, int line) {
     s.kind = Segment::Kind::Arc;
     s.ccw = motion_ == Motion::Ccw;
     int u, v;
@@ -555,6 +584,19 @@ class Interp {
     return true;
   }
 
+  // Feed per revolution and the spindle speed, for times: with constant surface speed (G96)
+  // the speed at the segment's middle diameter, within the G50 clamp.
+  void spindle_info(Segment& s) const {
+    s.per_rev = per_rev_;
+    s.rpm = spindle_on_ ? spindle_ : 0;
+    if (css_ && spindle_on_) {
+      double r = std::abs((s.start.x() + s.end.x()) / 2);
+      double surface = res_.units == ir::Units::Inch ? spindle_ * 12 : spindle_ * 1000;  // per minute, in X's units
+      s.rpm = r > 1e-9 ? surface / (2 * kPi * r) : 0;
+      if (max_rpm_ > 0 && (s.rpm > max_rpm_ || r <= 1e-9)) s.rpm = max_rpm_;
+    }
+  }
+
   static std::string fmt(double v) {
     char b[32];
     std::snprintf(b, sizeof b, "%.6g", v);
@@ -562,8 +604,12 @@ class Interp {
   }
 
   const Machine& m_;
-  const Options& opt_;
+  const Options opt_;
   Result res_;
+  int line_ = 0;
+  std::vector<Word> words_;  // per block, kept for their capacity
+  Words a_;
+  std::vector<double> gs_, ms_;
   double radius_tol_;
   Vec3 pos_;
   std::array<double, 3> rotary_{0, 0, 0};
@@ -587,10 +633,20 @@ class Interp {
   int pending_tool_ = 0;
   double feed_ = 0;
   double spindle_ = 0;
+  double max_rpm_ = 0;  // G50 S (lathe)
   bool spindle_on_ = false;
 };
 
 }  // namespace
+
+struct Reader::Impl : Interp {
+  using Interp::Interp;
+};
+
+Reader::Reader(const Machine& m, const Options& opt) : impl_(std::make_unique<Impl>(m, opt)) {}
+Reader::~Reader() = default;
+void Reader::line(std::string_view text) { impl_->feed(text); }
+Result& Reader::result() { return impl_->result(); }
 
 Result interpret(std::string_view program, const Machine& m, const Options& opt) {
   Interp in(m, opt);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +30,8 @@ struct Segment {
   double start_radius = 0, end_radius = 0;  // arcs: as the control computes them
   double feed = 0;            // output units per minute (0 for rapids; inverse time: 1/min)
   bool inverse_time = false;
+  bool per_rev = false;       // feed per revolution (G95 / lathe G99)
+  double rpm = 0;             // spindle speed during the segment (0: stopped)
   std::array<double, 3> rotary{0, 0, 0};  // A B C at the end (degrees)
   std::array<double, 3> rotary_start{0, 0, 0};
   int work_offset = 1;        // 1 = G54 ... 6 = G59, 7.. = extended
@@ -72,5 +75,19 @@ struct Options {
 };
 
 Result interpret(std::string_view program, const Machine& m, const Options& opt = {});
+
+// The same, a line at a time, for programs too large to hold: each line's segments, events
+// and problems are appended to result(), which the caller may drain between lines.
+class Reader {
+ public:
+  explicit Reader(const Machine& m, const Options& opt = {});
+  ~Reader();
+  void line(std::string_view text);  // without its line end
+  Result& result();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace clpc::gcode
