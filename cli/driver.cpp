@@ -82,16 +82,24 @@ std::string default_output(const std::string& input, const Machine& machine) {
 
 CompileResult compile_file(const std::string& input, const std::string& output, const Machine& machine,
                            const CompileOptions& opt, std::ostream& err) {
-  CompileResult res;
-  Diagnostics d(&err);
-  d.set_werror(opt.werror);
   SourceFile src;
   std::string why;
   if (!src.open(input, why)) {
     err << "clpc: error: " << why << "\n";
+    CompileResult res;
     res.errors = 1;
     return res;
   }
+  return compile_source(src, output, machine, opt, err);
+}
+
+CompileResult compile_source(SourceFile& src, const std::string& output, const Machine& machine, const CompileOptions& opt,
+                             std::ostream& err) {
+  CompileResult res;
+  const std::string& input = src.name();
+  std::string why;
+  Diagnostics d(&err);
+  d.set_werror(opt.werror);
   d.set_source(&src);
   if (output != "-" && input != "-" && same_file(input, output)) {
     err << "clpc: error: the output '" << output << "' is the input file; refusing to overwrite it\n";
@@ -131,6 +139,7 @@ CompileResult compile_file(const std::string& input, const std::string& output, 
     low.finish();
     if (!pipe.motion_ && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
     if (!d.has_errors()) be->end();
+    res.info = std::move(info);
   } catch (const FatalError&) {
   }
   d.finish();

@@ -26,12 +26,18 @@ struct CompileResult {
   bool ok = false;
   size_t errors = 0, warnings = 0;
   long blocks = 0;
+  ir::ProgramInfo info;  // the program-wide tables, as the passes left them (tools, offsets)
 };
 
 // Compiles `input` ("-" = stdin) for `machine` into `output` ("-" = stdout). Diagnostics go
 // to `err`. The output file is only created (renamed into place) on success.
 CompileResult compile_file(const std::string& input, const std::string& output, const Machine& machine,
                            const CompileOptions& opt, std::ostream& err);
+
+// The same for an input already open (it is read twice: pre-scan, then compile).
+class SourceFile;
+CompileResult compile_source(SourceFile& src, const std::string& output, const Machine& machine, const CompileOptions& opt,
+                             std::ostream& err);
 
 // The default output name: the input's name with the machine's extension.
 std::string default_output(const std::string& input, const Machine& machine);

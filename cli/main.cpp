@@ -7,6 +7,7 @@
 #include "backends/machine_loader.h"
 #include "backends/output.h"
 #include "cli/driver.h"
+#include "cli/verify.h"
 #include "passes/pass.h"
 
 using namespace clpc;
@@ -67,6 +68,24 @@ int main(int argc, char** argv) {
   add_machine_files(check);
   add_input_options(check);
 
+  std::string verify_input;
+  double tolerance = 0, axis_tolerance = 0.01;
+  bool json = false;
+  CLI::App* verify = app.add_subcommand("verify", "Compile a CL file, read the program back and compare its path with the CL path");
+  verify->add_option("INPUT", verify_input, "CL file ('-' reads standard input)")->required();
+  verify->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  verify->add_option("--tolerance", tolerance, "Largest deviation allowed, in the machine's units (default: its arc tolerance plus one output increment)")
+      ->check(CLI::PositiveNumber);
+  verify->add_option("--axis-tolerance", axis_tolerance, "Largest tool-axis deviation allowed, degrees (five-axis)")
+      ->check(CLI::PositiveNumber);
+  verify->add_flag("--json", json, "Write the report as JSON");
+  std::string verify_program;
+  verify->add_option("-o,--output", output, "Also keep the program in this file");
+  verify->add_option("--program", verify_program, "Check this program (say, one edited by hand) against the CL instead of clpc's own")
+      ->check(CLI::ExistingFile);
+  add_machine_files(verify);
+  add_input_options(verify);
+
   CLI::App* machines = app.add_subcommand("machines", "List the machines clpc knows");
   add_machine_files(machines);
 
@@ -119,6 +138,19 @@ int main(int argc, char** argv) {
     if (!load_machines(reg, machine_files, diags)) return kFailed;
     machine = reg.resolve(machine_name, diags);
     if (!machine) return kFailed;
+  }
+
+  if (*verify) {
+    VerifyOptions vo;
+    vo.tolerance = tolerance;
+    vo.axis_tolerance = axis_tolerance;
+    vo.compile = opt;
+    vo.keep = output;
+    vo.program = verify_program;
+    VerifyReport r = verify_file(verify_input, *machine, vo, std::cerr);
+    if (json) print_report_json(std::cout, r);
+    else print_report(std::cout, r);
+    return r.ok ? kOk : kFailed;
   }
 
   if (*check) {
