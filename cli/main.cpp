@@ -7,6 +7,7 @@
 #include "backends/machine_loader.h"
 #include "backends/output.h"
 #include "cli/driver.h"
+#include "cli/plot.h"
 #include "cli/verify.h"
 #include "passes/pass.h"
 
@@ -86,6 +87,18 @@ int main(int argc, char** argv) {
   add_machine_files(verify);
   add_input_options(verify);
 
+  std::string plot_input, plot_program;
+  int plot_width = 1200, plot_height = 900;
+  CLI::App* plot = app.add_subcommand("plot", "Draw the emitted program's tool path (SVG: top, front, side, isometric)");
+  plot->add_option("INPUT", plot_input, "CL file ('-' reads standard input)")->required();
+  plot->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  plot->add_option("-o,--output", output, "SVG file ('-' = standard output); default: INPUT with .svg");
+  plot->add_option("--program", plot_program, "Plot this program instead of clpc's own")->check(CLI::ExistingFile);
+  plot->add_option("--width", plot_width, "Width in pixels")->check(CLI::Range(200, 20000));
+  plot->add_option("--height", plot_height, "Height in pixels")->check(CLI::Range(200, 20000));
+  add_machine_files(plot);
+  add_input_options(plot);
+
   CLI::App* machines = app.add_subcommand("machines", "List the machines clpc knows");
   add_machine_files(machines);
 
@@ -151,6 +164,21 @@ int main(int argc, char** argv) {
     if (json) print_report_json(std::cout, r);
     else print_report(std::cout, r);
     return r.ok ? kOk : kFailed;
+  }
+
+  if (*plot) {
+    PlotOptions po;
+    po.compile = opt;
+    po.program = plot_program;
+    po.width = plot_width;
+    po.height = plot_height;
+    std::string out = output;
+    if (out.empty()) {
+      Machine svg = *machine;
+      svg.extension = ".svg";
+      out = default_output(plot_input, svg);
+    }
+    return plot_file(plot_input, out, *machine, po, std::cerr).ok ? kOk : kFailed;
   }
 
   if (*check) {

@@ -1,6 +1,9 @@
 #include "cli/readback.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
 
 #include "ir/params.h"
 
@@ -12,6 +15,19 @@ namespace {
 constexpr size_t kChunk = 1 << 20;
 bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 }  // namespace
+
+TempProgram::TempProgram() {
+  const char* dir = std::getenv("TMPDIR");
+  std::string t = std::string(dir && *dir ? dir : "/tmp") + "/clpc-program-XXXXXX";
+  int fd = mkstemp(t.data());
+  if (fd < 0) return;
+  close(fd);
+  path_ = t;
+}
+
+TempProgram::~TempProgram() {
+  if (!path_.empty()) std::remove(path_.c_str());
+}
 
 ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m) {
   use_offsets_ = !info.offsets.empty();

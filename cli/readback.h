@@ -34,6 +34,20 @@ struct ProgramTotals {
   bool rapid_time_known = true, feed_time_known = true;
 };
 
+// A temporary file for a program clpc compiles only to read back (verify, plot), removed with
+// this object.
+class TempProgram {
+ public:
+  TempProgram();
+  ~TempProgram();
+  TempProgram(const TempProgram&) = delete;
+  TempProgram& operator=(const TempProgram&) = delete;
+  const std::string& path() const { return path_; }  // empty if none could be made
+
+ private:
+  std::string path_;
+};
+
 class ProgramReader {
  public:
   // `info`: the compile's program tables (tools for lengths, the offset table).

@@ -543,15 +543,6 @@ class ReferencePipeline : public OperationSink {
   Verifier& v_;
 };
 
-std::string temp_path() {
-  const char* dir = std::getenv("TMPDIR");
-  std::string t = std::string(dir && *dir ? dir : "/tmp") + "/clpc-verify-XXXXXX";
-  int fd = mkstemp(t.data());
-  if (fd < 0) return {};
-  close(fd);
-  return t;
-}
-
 }  // namespace
 
 double default_tolerance(const Machine& m) {
@@ -578,18 +569,12 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
     err << "clpc: error: " << why << "\n";
     return rep;
   }
-  std::string program = opt.keep.empty() ? temp_path() : opt.keep;
+  TempProgram temp;
+  const std::string program = opt.keep.empty() ? temp.path() : opt.keep;
   if (program.empty()) {
     err << "clpc: error: cannot create a temporary file for the program\n";
     return rep;
   }
-  struct Cleanup {
-    std::string path;
-    ~Cleanup() {
-      if (!path.empty()) std::remove(path.c_str());
-    }
-  } cleanup{opt.keep.empty() ? program : std::string()};
-
   CompileOptions co = opt.compile;
   co.emit = Emit::Gcode;
   CompileResult cr = compile_source(src, program, m, co, err);
