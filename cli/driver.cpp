@@ -6,6 +6,7 @@
 
 #include "backends/backend.h"
 #include "backends/output.h"
+#include "cli/progress.h"
 #include "grammar/parse.h"
 #include "ir/lower.h"
 #include "ir/printer.h"
@@ -101,6 +102,15 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
   Diagnostics d(&err);
   d.set_werror(opt.werror);
   d.set_source(&src);
+  Progress progress(input, src.size(), opt.progress);
+  if (progress.active()) {
+    src.on_progress([&](uint64_t at) { progress.update(at); });
+    d.set_before_print([&] { progress.clear(); });
+  }
+  struct Detach {
+    SourceFile& s;
+    ~Detach() { s.on_progress(nullptr); }
+  } detach{src};
   if (output != "-" && input != "-" && same_file(input, output)) {
     err << "clpc: error: the output '" << output << "' is the input file; refusing to overwrite it\n";
     res.errors = 1;
@@ -111,6 +121,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
   try {
     PrescanOptions po;
     po.units = opt.input_units;
+    progress.phase("pre-scan");
     ir::ProgramInfo info = prescan_program(src, po);
     if (src.size() == 0) {
       d.error({}, "the file is empty");
@@ -135,8 +146,10 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     be->begin(info);
     Pipeline pipe(pm, *be, d);
     Lowerer low(info, d, pipe);
+    progress.phase("compile");
     parse_cl(src, d, low);
     low.finish();
+    progress.clear();
     if (!pipe.motion_ && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
     if (!d.has_errors()) be->end();
     res.info = std::move(info);

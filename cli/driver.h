@@ -20,6 +20,7 @@ struct CompileOptions {
   std::string print_after;  // pass name, "lower" or "all"
   bool verify_ir = false;
   std::optional<ir::Units> input_units;
+  bool progress = false;  // a progress bar on a terminal's standard error, for large inputs
 };
 
 struct CompileResult {

@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
   opt.verify_ir = verify_ir;
   opt.print_after = print_after;
   opt.input_units = parse_units(input_units);
+  opt.progress = true;  // shown only on a terminal, for large inputs
   if (!print_after.empty() && print_after != "lower" && print_after != "all" && !find_pass(print_after)) {
     std::cerr << "clpc: error: --print-after: no pass named '" << print_after << "' (see 'clpc passes')\n";
     return kUsage;

@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "backends/format.h"
+#include "cli/progress.h"
 #include "grammar/parse.h"
 #include "ir/arc_geometry.h"
 #include "ir/lower.h"
@@ -337,10 +338,15 @@ class Verifier : public OperationSink {
       double worst = 0;
       int worst_line = win_[*j].raw.line;
       const int n = std::max(8, int(std::ceil(std::abs(a.sweep) / 5)));
+      // Samples along the CL arc meet the program's pieces in order; going back through them
+      // (a linearised circle run the wrong way) turns the other way as surely as G02 for G03.
+      int backwards = 0;
+      size_t last_piece = 0;
       for (int i = 1; i < n; ++i) {
         Vec3 q = arcgeo::point_at(a, double(i) / n);
         double best = kInf;
         int line = 0;
+        size_t piece = 0;
         for (size_t s = 0; s <= *j; ++s) {
           const TipSegment& g = win_[s];
           if (!finite(g.start) || !finite(g.end)) continue;
@@ -348,12 +354,43 @@ class Verifier : public OperationSink {
           if (d < best) {
             best = d;
             line = g.raw.line;
+            piece = s;
           }
         }
         if (best > worst) {
           worst = best;
           worst_line = line;
         }
+        if (i > 1 && piece < last_piece) ++backwards;
+        last_piece = piece;
+      }
+      // And each program arc turns the CL arc's way (a full circle's points cannot tell).
+      const double cl_sense = a.dir == ir::ArcDir::Ccw ? 1 : -1;
+      int reversed_line = 0;
+      for (size_t s = 0; s <= *j; ++s) {
+        const TipSegment& g = win_[s];
+        if (g.raw.kind != gcode::Segment::Kind::Arc) continue;
+        double along = g.normal.dot(a.axis.normalized());
+        if (std::abs(along) < 0.5) continue;  // another plane: the samples judge it
+        if ((g.raw.ccw ? 1 : -1) * (along > 0 ? 1 : -1) != cl_sense) reversed_line = g.raw.line;
+      }
+      if (reversed_line || backwards > n / 2) {
+        // Said as a machinist sees it: from the positive end of the nearest principal axis.
+        const Vec3 ax = a.axis.normalized();
+        int k = 0;
+        for (int c = 1; c < 3; ++c)
+          if (std::abs(ax[c]) > std::abs(ax[k])) k = c;
+        const bool ccw_seen = (cl_sense > 0) == (ax[k] > 0);
+        fail(loc_, reversed_line ? reversed_line : worst_line,
+             std::string("the program turns this CL arc the other way (the CL arc turns ") +
+                 (ccw_seen ? "counter-clockwise" : "clockwise") + " seen from +" + "XYZ"[k] + ")",
+             0);
+        deviate(worst, loc_, worst_line);
+        consume(*j + 1);
+        prev_ = a.end;
+        have_prev_ = true;
+        have_hole_ = false;
+        return;
       }
       for (size_t s = 0; s <= *j; ++s) {
         const TipSegment& g = win_[s];
@@ -588,7 +625,12 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   }
   Diagnostics d(&err);
   d.set_source(&src);
-  d.set_keep(false);
+  Progress progress(input, src.size(), opt.compile.progress);
+  if (progress.active()) {
+    src.on_progress([&](uint64_t at) { progress.update(at); });
+    d.set_before_print([&] { progress.clear(); });
+  }
+  progress.phase("verify");
   Verifier v(m, cr.info, rd, d, rep, opt);
   // The reference: the CL as lowered, its arcs decided and its cycles made holes.
   Machine ref = m;
@@ -610,6 +652,8 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   } catch (const FatalError&) {
     // More problems than are worth listing: the report says how many were found.
   }
+  src.on_progress(nullptr);
+  progress.clear();
   rep.program = rd.totals();
   rep.ok = rep.problem_count == 0 && rep.max_deviation <= rep.tolerance;
   return rep;

@@ -88,6 +88,7 @@ int Lexer::fill() {
     return 1;
   }
   read_pos_ += uint64_t(n);
+  src_.reached(read_pos_);
   lim_ = b + keep + n;
   b[keep + size_t(n)] = 0;
   return 0;

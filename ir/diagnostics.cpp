@@ -63,6 +63,7 @@ void Diagnostics::emit(Severity sev, std::string_view file, SourceLoc loc, std::
   if (sev == Severity::Warning) ++warnings_;
   if (keep_) kept_.push_back({sev, std::string(file), loc, message});
   if (out_) {
+    if (before_print_) before_print_();
     std::ostream& o = *out_;
     o << file;
     if (loc.valid()) o << ':' << loc.line << ':' << loc.col;

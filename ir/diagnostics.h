@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <ostream>
 #include <string>
@@ -34,6 +35,8 @@ class Diagnostics {
   void set_werror(bool on) { werror_ = on; }
   // Keep every diagnostic in `all()` (tests); printing still happens when out != nullptr.
   void set_keep(bool on) { keep_ = on; }
+  // Called before each diagnostic is printed (a progress bar clears its line).
+  void set_before_print(std::function<void()> f) { before_print_ = std::move(f); }
 
   void error(SourceLoc loc, std::string_view msg) { report(Severity::Error, loc, msg); }
   // `category` groups repeated warnings: after kRepeatLimit of one category the rest are
@@ -67,6 +70,7 @@ class Diagnostics {
   size_t warnings_ = 0;
   std::map<std::string, size_t, std::less<>> repeats_;
   std::vector<Diagnostic> kept_;
+  std::function<void()> before_print_;
 };
 
 }  // namespace clpc

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,12 @@ class SourceFile {
   long read_at(uint64_t offset, char* dst, size_t n) const;
   uint64_t size() const { return size_; }
 
+  // The lexer reports how far it has read (for a progress display).
+  void on_progress(std::function<void(uint64_t)> f) { progress_ = std::move(f); }
+  void reached(uint64_t offset) const {
+    if (progress_) progress_(offset);
+  }
+
   // The lexer reports where lines start as it goes; a sparse index of them lets
   // `line_text` find any earlier line quickly.
   void note_line_start(uint32_t line, uint64_t offset);
@@ -49,6 +56,7 @@ class SourceFile {
   std::string_view memory_;
   bool in_memory_ = false;
   uint64_t size_ = 0;
+  std::function<void(uint64_t)> progress_;
   static constexpr uint32_t kCheckpointEvery = 1024;
   std::vector<uint64_t> checkpoints_{0};  // offset of line 1 + k * kCheckpointEvery
 };

@@ -129,3 +129,29 @@ TEST(Cli, ExampleCompiles) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("T2 M06"));
 }
+
+// A progress bar for large inputs, on a terminal only: under `script` (a pseudo-terminal) the
+// compile shows its phases; with standard error a file, nothing but diagnostics.
+TEST(Cli, ProgressBarOnlyOnATerminal) {
+  TempDir t;
+  std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,10\n";
+  char line[64];
+  for (int i = 0; i < 170000; ++i) {
+    std::snprintf(line, sizeof line, "GOTO/%.4f,%.4f,-1.0000\n", (i % 100) * 0.5, (i / 100 % 100) * 0.5);
+    cl += line;
+  }
+  cl += "FINI\n";
+  ASSERT_GT(cl.size(), size_t(4) << 20);
+  write_file(t.path("big.cls"), cl);
+  const std::string args = "compile " + t.path("big.cls") + " -t fanuc-mill -o " + t.path("big.nc");
+  RunResult quiet = run_clpc(args);
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.err, "");
+  const std::string typed = t.path("typescript");
+  std::string cmd = "script -qfec '" + std::string(CLPC_BINARY) + " " + args + "' " + typed + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::string tty = read_file(typed);
+  EXPECT_THAT(tty, HasSubstr("big.cls: pre-scan "));
+  EXPECT_THAT(tty, HasSubstr("big.cls: compile  [==============================] 100%"));
+  EXPECT_THAT(tty, HasSubstr("\r\033[K"));
+}

@@ -95,11 +95,22 @@ TEST(Verify, FlippedArcFailsAtTheCircle) {
   const Machine m = machine("fanuc-mill");
   Checked c = verify(cl, m, edit(program_for(cl, m), "G03 X10. I-10. J0.", "G02 X10. I-10. J0."));
   EXPECT_FALSE(c.report.ok);
-  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:13:1: error: the CL arc is not followed: the program's path is 14.14214 "
-                                              "from it (does it turn the other way?) [G-code line 17]"));
+  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:13:1: error: the program turns this CL arc the other way (the CL arc "
+                                              "turns counter-clockwise seen from +Z) [G-code line 17]"));
   // The top of the CL's half circle is sqrt(200) from the nearest point of the flipped one.
   EXPECT_NEAR(c.report.max_deviation, std::sqrt(200.0), 1e-6);
   EXPECT_EQ(c.report.max_loc.line, 13u);
+}
+
+// A full circle run the wrong way has every point on the CL circle: the direction gives it away.
+TEST(Verify, FullCircleTheWrongWayFails) {
+  const std::string cl = std::string(CLPC_SOURCE_DIR) + "/tests/golden/nx_mill.cls";
+  const Machine m = machine("fanuc-mill");
+  Checked c = verify(cl, m, edit(program_for(cl, m), "G02 I-6. J0.", "G03 I-6. J0."));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("nx_mill.cls:57:1: error: the program turns this CL arc the other way (the CL arc "
+                                              "turns clockwise seen from +Z) [G-code line 44]"));
+  EXPECT_LT(c.report.max_deviation, c.report.tolerance);  // the path itself is right
 }
 
 TEST(Verify, PointShiftedBy0_01mmFails) {
