@@ -8,18 +8,32 @@ namespace clpc {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
+// The midpoint of the arc the control cuts about (pu, pv), from the true midpoint. Without
+// trigonometry: the midpoint's direction bisects the start and end directions, and for any
+// sweep the bisector is perpendicular to the chord between the two unit directions (on the
+// chord's right for a counter-clockwise arc); the radius is the start's.
 double midpoint_deviation(const ArcCenterInput& in, double pu, double pv) {
-  double r = std::hypot(in.su - pu, in.sv - pv);
-  double a0 = std::atan2(in.sv - pv, in.su - pu);
-  double a1 = std::atan2(in.ev - pv, in.eu - pu);
-  double ccw = a1 - a0;
-  while (ccw < 0) ccw += 2 * kPi;
-  while (ccw >= 2 * kPi) ccw -= 2 * kPi;
-  double sweep = in.full ? 2 * kPi : in.ccw ? ccw : 2 * kPi - ccw;
-  double mid = a0 + (in.ccw ? 1 : -1) * sweep / 2;
-  return std::hypot(pu + r * std::cos(mid) - in.mu, pv + r * std::sin(mid) - in.mv);
+  const double au = in.su - pu, av = in.sv - pv, bu = in.eu - pu, bv = in.ev - pv;
+  const double ra = std::sqrt(au * au + av * av), rb = std::sqrt(bu * bu + bv * bv);
+  if (ra == 0 || rb == 0) return std::sqrt((pu - in.mu) * (pu - in.mu) + (pv - in.mv) * (pv - in.mv));
+  const double cu = bu / rb - au / ra, cv = bv / rb - av / ra;
+  double du, dv;
+  if (in.full) {
+    du = -au;
+    dv = -av;
+  } else if (cu * cu + cv * cv > 1e-12) {
+    du = in.ccw ? cv : -cv;
+    dv = in.ccw ? -cu : cu;
+  } else {
+    // Start and end in one direction: no turn, or a whole one.
+    const double cross = au * bv - av * bu;
+    const bool whole = in.ccw ? cross < 0 : cross > 0;
+    du = whole ? -au : au;
+    dv = whole ? -av : av;
+  }
+  const double dl = std::sqrt(du * du + dv * dv);
+  const double xu = pu + ra * du / dl - in.mu, xv = pv + ra * dv / dl - in.mv;
+  return std::sqrt(xu * xu + xv * xv);
 }
 
 }  // namespace
@@ -39,17 +53,27 @@ ArcCenterChoice choose_arc_center(const ArcCenterInput& in, const AddressFormat&
   int64_t qu0, qv0;
   if (!quantize(iu - ou, fu, qu0) || !quantize(iv - ov, fv, qv0)) return {iu, iv, 0, 0};
   double unit = std::min(std::abs(dequantize(1, fu)), std::abs(dequantize(1, fv)));
-  ArcCenterChoice best{0, 0, 1e300, 1e300};
+  // The radius mismatch first (cheap); the midpoint only for centres the control accepts,
+  // since any of those beats any it would not.
   constexpr int W = 3;
+  const double limit = unit * (1 + 1e-9);
+  ArcCenterChoice best{0, 0, 1e300, 1e300};
+  bool best_ok = false;
   for (int a = -W; a <= W; ++a)
     for (int b = -W; b <= W; ++b) {
-      double pu = ou + dequantize(qu0 + a, fu), pv = ov + dequantize(qv0 + b, fv);
-      double mis = std::abs(std::hypot(in.su - pu, in.sv - pv) - std::hypot(in.eu - pu, in.ev - pv));
-      double dev = midpoint_deviation(in, pu, pv);
-      bool ok = mis <= unit * (1 + 1e-9), best_ok = best.mismatch <= unit * (1 + 1e-9);
-      bool take = ok != best_ok ? ok : ok ? dev < best.deviation : mis < best.mismatch;
-      if (take) best = {pu, pv, mis, dev};
+      const double pu = ou + dequantize(qu0 + a, fu), pv = ov + dequantize(qv0 + b, fv);
+      const double su = in.su - pu, sv = in.sv - pv, eu = in.eu - pu, ev = in.ev - pv;
+      const double mis = std::abs(std::sqrt(su * su + sv * sv) - std::sqrt(eu * eu + ev * ev));
+      const bool ok = mis <= limit;
+      if (ok) {
+        const double dev = midpoint_deviation(in, pu, pv);
+        if (!best_ok || dev < best.deviation) best = {pu, pv, mis, dev};
+        best_ok = true;
+      } else if (!best_ok && mis < best.mismatch) {
+        best = {pu, pv, mis, 1e300};
+      }
     }
+  if (!best_ok) best.deviation = midpoint_deviation(in, best.cu, best.cv);
   return best;
 }
 
