@@ -25,20 +25,32 @@ double signed_angle(const Vec3& u, const Vec3& v, const Vec3& n) {
   return std::atan2(n.dot(a.cross(b)), a.dot(b)) * 180 / kPi;
 }
 
+// At most two solutions, without the heap: choose() runs for every five-axis move.
+struct Solutions {
+  Solution v[2];
+  size_t n = 0;
+  void push_back(const Solution& s) {
+    if (n < 2) v[n++] = s;
+  }
+  const Solution* begin() const { return v; }
+  const Solution* end() const { return v + n; }
+};
+
 // R(u1, t1) R(u2, t2) p = q, for unit u1, u2, p, q.
-std::vector<Solution> solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, const Vec3& q) {
-  std::vector<Solution> out;
+Solutions solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, const Vec3& q) {
+  Solutions out;
   double c12 = u1.dot(u2);
   double A = q.dot(u2) - c12 * q.dot(u1);
   double B = q.dot(u1.cross(u2));
   double C = c12 * q.dot(u1);
   double D = u2.dot(p) - C;
-  double R = std::hypot(A, B);
-  std::vector<double> t1s;
+  double R = std::sqrt(A * A + B * B);
+  double t1s[2];
+  size_t n1 = 0;
   bool t1_free = false;
   if (R < 1e-12) {
     if (std::abs(D) > 1e-9) return out;
-    t1s.push_back(0);
+    t1s[n1++] = 0;
     t1_free = true;
   } else {
     double c = D / R;
@@ -46,11 +58,12 @@ std::vector<Solution> solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, c
     c = std::clamp(c, -1.0, 1.0);
     double phi = std::atan2(B, A) * 180 / kPi;
     double d = std::acos(c) * 180 / kPi;
-    t1s.push_back(phi + d);
+    t1s[n1++] = phi + d;
     // The second root, unless it is the same angle (d = 0 or 180).
-    if (d > 1e-9 && std::abs(norm180(2 * d)) > 1e-9) t1s.push_back(phi - d);
+    if (d > 1e-9 && std::abs(norm180(2 * d)) > 1e-9) t1s[n1++] = phi - d;
   }
-  for (double t1 : t1s) {
+  for (size_t i1 = 0; i1 < n1; ++i1) {
+    const double t1 = t1s[i1];
     Vec3 w = rotation(u1, -t1) * q;
     Solution s;
     s.a[0] = norm180(t1);
@@ -66,8 +79,8 @@ std::vector<Solution> solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, c
   return out;
 }
 
-std::vector<Solution> solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
-  std::vector<Solution> out;
+Solutions solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
+  Solutions out;
   if (std::abs(u.dot(p) - u.dot(q)) > 1e-7) return out;
   Solution s;
   double t = signed_angle(p, q, u);
@@ -83,7 +96,15 @@ std::vector<Solution> solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
 }  // namespace
 
 Mat3 rotation(const Vec3& axis, double degrees) {
-  return Eigen::AngleAxisd(degrees * kPi / 180, axis.normalized()).toRotationMatrix();
+  // Rodrigues: R = c I + s [u]x + (1 - c) u u^T.
+  const double n2 = axis.squaredNorm();
+  const Vec3 u = std::abs(n2 - 1) < 1e-15 ? axis : Vec3(axis / std::sqrt(n2));
+  const double t = degrees * (kPi / 180), c = std::cos(t), s = std::sin(t), k = 1 - c;
+  Mat3 r;
+  r << c + k * u.x() * u.x(), k * u.x() * u.y() - s * u.z(), k * u.x() * u.z() + s * u.y(),
+      k * u.y() * u.x() + s * u.z(), c + k * u.y() * u.y(), k * u.y() * u.z() - s * u.x(),
+      k * u.z() * u.x() - s * u.y(), k * u.z() * u.y() + s * u.x(), c + k * u.z() * u.z();
+  return r;
 }
 
 Vec3 table_point(const KinematicsSettings& k, const Angles& a, const Vec3& p) {
@@ -147,7 +168,9 @@ Vec3 part_tip(const KinematicsSettings& k, const Angles& a, const Vec3& machine,
   return x;
 }
 
-std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
+namespace {
+
+Solutions solve_fixed(const KinematicsSettings& k, const Vec3& axis) {
   const auto& r = k.rotaries;
   Vec3 v = axis.normalized(), z = Vec3::UnitZ();
   if (r.size() == 1) {
@@ -160,8 +183,9 @@ std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
   if (!t0 && !t1) return solve_two(r[0].effective(), r[1].effective(), z, v);
   // One head and one table axis: R_T v = R_H z, i.e. R_H(-t) R_T v = z.
   size_t h = t0 ? 1 : 0, t = t0 ? 0 : 1;
-  std::vector<Solution> s = solve_two(-r[h].effective(), r[t].effective(), v, z);
-  for (Solution& x : s) {
+  Solutions s = solve_two(-r[h].effective(), r[t].effective(), v, z);
+  for (size_t i = 0; i < s.n; ++i) {
+    Solution& x = s.v[i];
     Solution y;
     y.a[h] = x.a[0];
     y.free[h] = x.free[0];
@@ -170,6 +194,13 @@ std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
     x = y;
   }
   return s;
+}
+
+}  // namespace
+
+std::vector<Solution> solve(const KinematicsSettings& k, const Vec3& axis) {
+  Solutions s = solve_fixed(k, axis);
+  return std::vector<Solution>(s.begin(), s.end());
 }
 
 namespace {
@@ -184,15 +215,22 @@ bool axis_in_limits(const RotaryAxis& r, double v) {
   return r.cyclic != Cyclic::No || (v >= r.min - 1e-9 && v <= r.max + 1e-9);
 }
 
-std::vector<double> representatives(const RotaryAxis& r, double base, double current) {
-  std::vector<double> v;
+// The values an axis may take for a solution angle: nearest the current one for continuous
+// axes, every turn within reach for limited ones.
+struct Values {
+  double v[9];
+  size_t n = 0;
+};
+
+Values representatives(const RotaryAxis& r, double base, double current) {
+  Values v;
   if (r.cyclic == Cyclic::Modulo) {
     double m = std::fmod(base, 360.0);
-    v.push_back(m < 0 ? m + 360 : m);
+    v.v[v.n++] = m < 0 ? m + 360 : m;
   } else if (r.cyclic == Cyclic::Wind) {
-    v.push_back(base + 360 * std::round((current - base) / 360));
+    v.v[v.n++] = base + 360 * std::round((current - base) / 360);
   } else {
-    for (int n = -4; n <= 4; ++n) v.push_back(base + 360 * n);
+    for (int n = -4; n <= 4; ++n) v.v[v.n++] = base + 360 * n;
   }
   return v;
 }
@@ -203,11 +241,12 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
   Choice best, any;
   double best_cost = 1e300, any_cost = 1e300;
   const size_t n = k.rotaries.size();
-  for (const Solution& s : solve(k, axis)) {
-    std::vector<std::vector<double>> vals(n);
+  for (const Solution& s : solve_fixed(k, axis)) {
+    Values vals[kMaxRotaries];
     for (size_t i = 0; i < n; ++i) {
       double cur = current ? (*current)[i] : 0.0;
-      vals[i] = s.free[i] ? std::vector<double>{cur} : representatives(k.rotaries[i], s.a[i], cur);
+      if (s.free[i]) vals[i].v[vals[i].n++] = cur;
+      else vals[i] = representatives(k.rotaries[i], s.a[i], cur);
     }
     auto consider = [&](const Angles& a) {
       double cost = 0, pref = 0;
@@ -231,10 +270,10 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
       }
     };
     if (n == 1) {
-      for (double x : vals[0]) consider({x, 0});
+      for (size_t i = 0; i < vals[0].n; ++i) consider({vals[0].v[i], 0});
     } else if (n == 2) {
-      for (double x : vals[0])
-        for (double y : vals[1]) consider({x, y});
+      for (size_t i = 0; i < vals[0].n; ++i)
+        for (size_t j = 0; j < vals[1].n; ++j) consider({vals[0].v[i], vals[1].v[j]});
     }
   }
   best.jump = best.found && current && any_cost < best_cost - 1e-6 && any_cost < 90;

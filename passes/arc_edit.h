@@ -2,6 +2,7 @@
 // Shared by the helix and arc-legalise passes.
 #pragma once
 
+#include <iterator>
 #include <vector>
 
 #include "ir/ir.h"
@@ -14,17 +15,25 @@ void split(const ir::Arc& a, int n, SourceLoc loc, std::vector<ir::Instr>& out);
 void linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Instr>& out);
 // Rebuilds op.body, replacing each instruction by what `edit` writes for it (returns false
 // to keep the instruction as it is).
+// Nothing is copied until the first edit; the buffers are kept for the next operation.
 template <class Edit>
 void rewrite(ir::Operation& op, Edit edit) {
-  std::vector<ir::Instr> out;
-  out.reserve(op.body.size());
+  static thread_local std::vector<ir::Instr> out, replacement;
   bool changed = false;
-  for (ir::Instr& in : op.body) {
-    if (edit(in, out)) {
-      changed = true;
+  for (size_t i = 0; i < op.body.size(); ++i) {
+    ir::Instr& in = op.body[i];
+    replacement.clear();
+    if (edit(in, replacement)) {
+      if (!changed) {
+        out.clear();
+        out.reserve(op.body.size() + replacement.size());
+        std::move(op.body.begin(), op.body.begin() + std::ptrdiff_t(i), std::back_inserter(out));
+        changed = true;
+      }
+      std::move(replacement.begin(), replacement.end(), std::back_inserter(out));
       continue;
     }
-    out.push_back(std::move(in));
+    if (changed) out.push_back(std::move(in));
   }
   if (changed) op.body.swap(out);
 }

@@ -34,7 +34,8 @@ bool machine_has(const Codes& k, const ir::CycleSpec& c) {
 class DrillCycles : public Pass {
  public:
   void run(ir::Operation& op, PassContext& ctx) override {
-    std::vector<ir::Instr> out;
+    std::vector<ir::Instr>& out = scratch_;  // kept: no allocation per operation
+    out.clear();
     out.reserve(op.body.size());
     int spec_in_op = -1;  // index of the active spec in this chunk's op.cycles
     if (active_) {        // a cycle carried over from the previous chunk
@@ -113,6 +114,7 @@ class DrillCycles : public Pass {
   }
 
   std::optional<ir::CycleSpec> active_;
+  std::vector<ir::Instr> scratch_;
   bool expand_ = false;
   ir::Vec3 pos_ = ir::Vec3::Zero(), start_ = ir::Vec3::Zero();
   bool have_pos_ = false, have_start_ = false;

@@ -53,13 +53,15 @@ class Kinematics : public Pass {
     for (RotaryAxis& r : k_.rotaries) r.center *= f;
     k_.pivot *= f;
     k_.retract_distance *= f;
+    singular_ = find_singular_direction();
   }
 
   void run(ir::Operation& op, PassContext& ctx) override {
     if (!k_.has_rotaries()) return;
     d_ = &ctx.diags;
     ctx_ = &ctx;
-    std::vector<ir::Instr> out;
+    std::vector<ir::Instr>& out = scratch_;  // kept: no allocation per operation
+    out.clear();
     out.reserve(op.body.size() + 8);
     // One tool axis for all the motion: an indexed (3+2) operation.
     std::optional<Vec3> axis;
@@ -151,7 +153,9 @@ class Kinematics : public Pass {
 
   // The tool direction at which the inner rotary axis is free (vertical, for a B/C trunnion),
   // if the machine has one.
-  std::optional<Vec3> singular_direction() const {
+  std::optional<Vec3> singular_direction() const { return singular_; }
+
+  std::optional<Vec3> find_singular_direction() const {
     if (k_.rotaries.size() != 2) return std::nullopt;
     Vec3 s = kin::tool_axis_in_part(k_, {0, 0});
     const RotaryAxis& inner = k_.rotaries[1];
@@ -160,9 +164,15 @@ class Kinematics : public Pass {
     return s;
   }
 
+  // Memoised: asked several times for each five-axis move, at the same position.
   bool at_singularity() const {
-    auto s = singular_direction();
-    return have_cur_ && s && kin::angle_between(kin::tool_axis_in_part(k_, cur_), *s) < 1e-6;
+    if (!have_cur_ || !singular_) return false;
+    if (!at_singular_known_ || at_singular_for_ != cur_) {
+      at_singular_ = kin::angle_between(kin::tool_axis_in_part(k_, cur_), *singular_) < 1e-6;
+      at_singular_for_ = cur_;
+      at_singular_known_ = true;
+    }
+    return at_singular_;
   }
 
   // At the singularity the free axis may turn without moving the tool, and for the first
@@ -511,6 +521,7 @@ class Kinematics : public Pass {
   }
 
   KinematicsSettings k_;
+  std::vector<ir::Instr> scratch_;
   Diagnostics* d_ = nullptr;
   PassContext* ctx_ = nullptr;
   kin::Angles cur_{0, 0};
@@ -519,6 +530,9 @@ class Kinematics : public Pass {
   std::optional<Vec3> indexed_at_;
   bool tcp_on_ = false, dwo_on_ = false;
   bool positioned_ = false;  // this operation was positioned by the offset table
+  std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
+  mutable kin::Angles at_singular_for_{0, 0};
+  mutable bool at_singular_known_ = false, at_singular_ = false;
   double tool_length_ = 0;
   ir::Feed feed_;
   bool feed_known_ = false;

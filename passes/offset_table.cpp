@@ -133,7 +133,8 @@ class OffsetTablePass : public Pass {
     if (table.empty()) return;
     // Frames and registers are modal, across operations; SET pairs with the frame record next
     // to it in its operation, as in the pre-scan (ir/tables.cpp).
-    std::vector<ir::Instr> out;
+    std::vector<ir::Instr>& out = scratch_;  // kept: no allocation per operation
+    out.clear();
     out.reserve(op.body.size() + 4);
     setup_end_ = 0;
     for (size_t i = 0; i < op.body.size(); ++i) {
@@ -303,6 +304,7 @@ class OffsetTablePass : public Pass {
   }
 
   KinematicsSettings k_;
+  std::vector<ir::Instr> scratch_;
   ir::Frame frame_;
   ir::FrameSource source_ = ir::FrameSource::Csys;
   int reg_ = 0;       // the SET register in force (0: none)
