@@ -100,6 +100,79 @@ void Lexer::newline(const unsigned char* after) {
   src_.note_line_start(line_, line_start_);
 }
 
+namespace {
+
+// A number as the grammar's `num` writes it; returns its end, or null.
+const unsigned char* match_num(const unsigned char* p, const unsigned char* e) {
+  if (p < e && (*p == '+' || *p == '-')) ++p;
+  const unsigned char* digits = p;
+  while (p < e && *p >= '0' && *p <= '9') ++p;
+  bool any = p > digits;
+  if (p < e && *p == '.') {
+    ++p;
+    const unsigned char* frac = p;
+    while (p < e && *p >= '0' && *p <= '9') ++p;
+    any = any || p > frac;
+  }
+  if (!any) return nullptr;
+  if (p < e && (*p == 'e' || *p == 'E')) {
+    const unsigned char* q = p + 1;
+    if (q < e && (*q == '+' || *q == '-')) ++q;
+    const unsigned char* exp = q;
+    while (q < e && *q >= '0' && *q <= '9') ++q;
+    if (q == exp) return nullptr;
+    p = q;
+  }
+  return p;
+}
+
+bool is_ws(unsigned char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\r'; }
+
+}  // namespace
+
+bool Lexer::simple_record(Simple& s) {
+  if (!simple_on_ || wanted_ || mode_ != Mode::LineStart || pending_ || at_end_) return false;
+  const unsigned char* p = cur_;
+  const unsigned char* nl = static_cast<const unsigned char*>(std::memchr(p, '\n', size_t(lim_ - p)));
+  if (!nl || size_t(nl - p) > kMaxToken) return false;
+  static constexpr struct {
+    const char* word;
+    size_t len;
+    MajorId id;
+  } kMajors[] = {{"GOTO/", 5, MajorId::Goto}, {"CIRCLE/", 7, MajorId::Circle}, {"FROM/", 5, MajorId::From},
+                 {"GODLTA/", 7, MajorId::Godlta}};
+  MajorId id = MajorId::Unknown;
+  for (const auto& m : kMajors)
+    if (size_t(nl - p) > m.len && std::memcmp(p, m.word, m.len) == 0) {
+      id = m.id;
+      p += m.len;
+      break;
+    }
+  if (id == MajorId::Unknown) return false;
+  s.n = 0;
+  for (;;) {
+    while (p < nl && is_ws(*p)) ++p;
+    const unsigned char* e = match_num(p, nl);
+    if (!e || s.n == kMaxSimple) return false;
+    if (e < nl && !is_ws(*e) && *e != ',') return false;  // a word, "1.2.3", "$": the grammar's
+    const char* b = reinterpret_cast<const char*>(*p == '+' ? p + 1 : p);
+    auto [end, ec] = std::from_chars(b, reinterpret_cast<const char*>(e), s.value[s.n]);
+    if (ec != std::errc() || end != reinterpret_cast<const char*>(e)) return false;
+    s.col[s.n++] = uint32_t(abs(p) - line_start_ + 1);
+    p = e;
+    while (p < nl && is_ws(*p)) ++p;
+    if (p == nl) break;
+    if (*p != ',') return false;
+    ++p;
+  }
+  s.id = id;
+  s.start = loc_of(cur_);
+  s.end = loc_of(nl);
+  cur_ = tok_ = nl + 1;
+  newline(cur_);
+  return true;
+}
+
 SourceLoc Lexer::loc_of(const unsigned char* p) const {
   uint64_t a = abs(p);
   uint64_t col = a >= line_start_ ? a - line_start_ + 1 : 1;

@@ -23,6 +23,21 @@ class Lexer {
 
   Parser::symbol_type lex();
 
+  // The commonest record — GOTO, CIRCLE, FROM or GODLTA, a slash and numbers on one line,
+  // nothing else — read here without the parser. True with the line consumed and `s` filled;
+  // false with nothing consumed, and the line goes through the grammar as any other. Both
+  // give the same record (tests/test_lexer.cpp compares them on the corpus).
+  static constexpr size_t kMaxSimple = 16;
+  struct Simple {
+    MajorId id = MajorId::Unknown;
+    SourceLoc start, end;
+    size_t n = 0;
+    double value[kMaxSimple];
+    uint32_t col[kMaxSimple];
+  };
+  bool simple_record(Simple& s);
+  void set_simple_records(bool on) { simple_on_ = on; }
+
   // True while the current record was written inside "$$->": its problems are warnings.
   bool in_data_comment() const { return data_comment_; }
   Diagnostics* diagnostics() const { return diags_; }
@@ -73,6 +88,7 @@ class Lexer {
   Mode mode_ = Mode::LineStart;
   bool data_comment_ = false;
   bool at_end_ = false;
+  bool simple_on_ = true;
   std::optional<Symbol> pending_;
   SourceLoc record_start_;
 

@@ -7,6 +7,7 @@ namespace clpc {
 namespace grammar {
 
 void ParseState::begin(const MajorTok& m, SourceLoc loc) {
+  in_record_ = true;
   params_.clear();
   too_many_ = false;
   rec_ = Record{};
@@ -43,7 +44,18 @@ void ParseState::word(std::string_view text, SourceLoc loc, Param::Kind kind) {
   params_.push_back(p);
 }
 
+void ParseState::simple_record(const Lexer::Simple& s) {
+  MajorTok m;
+  m.id = s.id;
+  m.text = major_spelling(s.id);
+  begin(m, s.start);
+  for (size_t i = 0; i < s.n; ++i) number(s.value[i], {s.start.line, s.col[i]});
+  slash();
+  end_statement(s.end);
+}
+
 void ParseState::end_statement(SourceLoc end) {
+  in_record_ = false;
   if (too_many_) return;
   rec_.params = params_;
   rec_.end = end;
@@ -67,15 +79,18 @@ void ParseState::syntax_error(SourceLoc loc, const std::string& msg) {
 
 namespace {
 
-void run(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted) {
+void run(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted, bool simple = true) {
   grammar::ParseState st(src, diags, sink, wanted);
+  st.lexer.set_simple_records(simple);
   grammar::Parser parser(st);
   parser.parse();
 }
 
 }  // namespace
 
-void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink) { run(src, &diags, sink, nullptr); }
+void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink, ParseOptions opt) {
+  run(src, &diags, sink, nullptr, opt.simple_records);
+}
 
 void prescan_cl(SourceFile& src, RecordSink& sink, const MajorSet& only) { run(src, nullptr, sink, only.on); }
 

@@ -17,7 +17,10 @@ struct MajorSet {
 // Problems are reported to `diags`; the parse goes on after an error (to the next record)
 // until Diagnostics stops it. With `only`, records of other majors are skipped unread and
 // nothing is reported (the compile pass will): that is the cheap pre-scan.
-void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink);
+struct ParseOptions {
+  bool simple_records = true;  // the lexer's fast path for MAJOR/numbers lines (off: all through the grammar)
+};
+void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink, ParseOptions opt = {});
 void prescan_cl(SourceFile& src, RecordSink& sink, const MajorSet& only);
 
 }  // namespace clpc

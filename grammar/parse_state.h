@@ -24,7 +24,14 @@ class ParseState {
   void text(std::string_view t) { rec_.text = t; }
   void end_statement(SourceLoc end);
   void comment(std::string_view text, SourceLoc loc);
-  void recovered() { too_many_ = false; }
+  void recovered() {
+    too_many_ = false;
+    in_record_ = false;
+  }
+  // Between records the lexer may hand over simple ones whole (Lexer::simple_record).
+  bool between_records() const { return !in_record_; }
+  void simple_record(const Lexer::Simple& s);
+  Lexer::Simple simple;
   void syntax_error(SourceLoc loc, const std::string& msg);
 
   static constexpr size_t kMaxParams = 4096;
@@ -35,8 +42,12 @@ class ParseState {
   Record rec_;
   std::vector<Param> params_;
   bool too_many_ = false;
+  bool in_record_ = false;
 };
 
-inline Parser::symbol_type yylex(ParseState& st) { return st.lexer.lex(); }
+inline Parser::symbol_type yylex(ParseState& st) {
+  while (st.between_records() && st.lexer.simple_record(st.simple)) st.simple_record(st.simple);
+  return st.lexer.lex();
+}
 
 }  // namespace clpc::grammar

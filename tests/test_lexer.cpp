@@ -246,3 +246,67 @@ TEST(Lexer, RecordsAcrossReadWindowRefills) {
   ASSERT_EQ(p.records.size(), size_t(n));
   EXPECT_EQ(p.records.back(), std::to_string(2 * n - 1) + ":1 GOTO/" + std::to_string(n - 1) + ".125,-2.5,3.75");
 }
+
+// The lexer reads simple records (GOTO/numbers...) without the parser: every record of every
+// corpus file, and of lines made to sit on the fast path's edges, is the same either way —
+// major, parameters with their columns, start and end.
+namespace {
+
+struct Dump : RecordSink {
+  std::string out;
+  void record(const Record& r) override {
+    out += std::to_string(r.loc.line) + ":" + std::to_string(r.loc.col) + "-" + std::to_string(r.end.line) + ":" +
+           std::to_string(r.end.col) + " " + std::to_string(int(r.kind)) + " " + std::string(r.major) +
+           (r.has_slash ? "/" : " ") + std::string(r.text) + (r.data_comment ? " data" : "");
+    for (const Param& p : r.params) {
+      char b[64];
+      std::snprintf(b, sizeof b, " [%d %.17g %u:%u ", int(p.kind), p.number, p.loc.line, p.loc.col);
+      out += b + std::string(p.text) + "]";
+    }
+    out += "\n";
+  }
+};
+
+std::string dump(const std::string& name, const std::string& text, bool simple, std::string& diags) {
+  SourceFile src;
+  src.open_memory(name, text);
+  std::ostringstream err;
+  Diagnostics d(&err);
+  d.set_source(&src);
+  Dump sink;
+  try {
+    ParseOptions o;
+    o.simple_records = simple;
+    parse_cl(src, d, sink, o);
+  } catch (const FatalError&) {
+  }
+  diags = err.str();
+  return sink.out;
+}
+
+}  // namespace
+
+TEST(Lexer, SimpleRecordsEqualTheGrammarsOnTheCorpus) {
+  if (corpus_dir().empty()) GTEST_SKIP() << "no corpus";
+  size_t records = 0;
+  for (const std::string& f : corpus_files()) {
+    std::string text = read_file(f), d1, d2;
+    std::string fast = dump(f, text, true, d1), slow = dump(f, text, false, d2);
+    EXPECT_EQ(fast, slow) << f;
+    EXPECT_EQ(d1, d2) << f;
+    records += size_t(std::count(fast.begin(), fast.end(), '\n'));
+  }
+  EXPECT_GT(records, 10000u);
+}
+
+TEST(Lexer, SimpleRecordsEqualTheGrammarsOnTheEdges) {
+  const std::string text =
+      "GOTO/1,2,3\nGOTO/1 , 2 ,3  \r\nGOTO/+1.,-.5,1e3\nGOTO/1,2,3 $$ comment\nGOTO/1,2,$\n3\nGOTO/1,,2\nGOTO/1,2,\n"
+      "GOTO/\nGOTO/1.2.3\nGOTO/1e\nGOTO/1,2X\nGOTO/1e999\nGOTO/1e-999\ngoto/1,2,3\nCIRCLE/1,2,3,0,0,1,5,0.01,0.5,10,0\n"
+      "FROM/0,0,50\nGODLTA/0,0,-5\nGOTO/1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17\nGOTO/1\t,2\n  GOTO/1,2,3\nGOTO/1,2,3";
+  std::string d1, d2;
+  std::string fast = dump("edges.cls", text, true, d1), slow = dump("edges.cls", text, false, d2);
+  EXPECT_EQ(fast, slow);
+  EXPECT_EQ(d1, d2);
+  EXPECT_THAT(d1, ::testing::HasSubstr("edges.cls:10:6: error: bad number '1.2.3'"));  // the grammar reports, as before
+}
