@@ -53,26 +53,41 @@ ArcCenterChoice choose_arc_center(const ArcCenterInput& in, const AddressFormat&
   int64_t qu0, qv0;
   if (!quantize(iu - ou, fu, qu0) || !quantize(iv - ov, fv, qv0)) return {iu, iv, 0, 0};
   double unit = std::min(std::abs(dequantize(1, fu)), std::abs(dequantize(1, fv)));
-  // The radius mismatch first (cheap); the midpoint only for centres the control accepts,
-  // since any of those beats any it would not.
+  // Rings of candidates outwards from the ideal centre; within a ring the radius mismatch
+  // first (cheap) and the midpoint only for centres the control accepts, since any of those
+  // beats any it would not. Once an accepted centre puts the midpoint within an increment of
+  // the true one, the outer rings (farther off) need not be tried.
   constexpr int W = 3;
   const double limit = unit * (1 + 1e-9);
   ArcCenterChoice best{0, 0, 1e300, 1e300};
   bool best_ok = false;
-  for (int a = -W; a <= W; ++a)
-    for (int b = -W; b <= W; ++b) {
-      const double pu = ou + dequantize(qu0 + a, fu), pv = ov + dequantize(qv0 + b, fv);
-      const double su = in.su - pu, sv = in.sv - pv, eu = in.eu - pu, ev = in.ev - pv;
-      const double mis = std::abs(std::sqrt(su * su + sv * sv) - std::sqrt(eu * eu + ev * ev));
-      const bool ok = mis <= limit;
-      if (ok) {
-        const double dev = midpoint_deviation(in, pu, pv);
-        if (!best_ok || dev < best.deviation) best = {pu, pv, mis, dev};
-        best_ok = true;
-      } else if (!best_ok && mis < best.mismatch) {
-        best = {pu, pv, mis, 1e300};
-      }
+  auto consider = [&](int a, int b) {
+    const double pu = ou + dequantize(qu0 + a, fu), pv = ov + dequantize(qv0 + b, fv);
+    const double su = in.su - pu, sv = in.sv - pv, eu = in.eu - pu, ev = in.ev - pv;
+    const double mis = std::abs(std::sqrt(su * su + sv * sv) - std::sqrt(eu * eu + ev * ev));
+    if (mis <= limit) {
+      const double dev = midpoint_deviation(in, pu, pv);
+      if (!best_ok || dev < best.deviation) best = {pu, pv, mis, dev};
+      best_ok = true;
+    } else if (!best_ok && mis < best.mismatch) {
+      best = {pu, pv, mis, 1e300};
     }
+  };
+  for (int ring = 0; ring <= W; ++ring) {
+    if (ring == 0) {
+      consider(0, 0);
+      continue;
+    }
+    for (int a = -ring; a <= ring; ++a) {
+      consider(a, -ring);
+      consider(a, ring);
+    }
+    for (int b = -ring + 1; b <= ring - 1; ++b) {
+      consider(-ring, b);
+      consider(ring, b);
+    }
+    if (best_ok && best.deviation <= unit) break;
+  }
   if (!best_ok) best.deviation = midpoint_deviation(in, best.cu, best.cv);
   return best;
 }

@@ -164,6 +164,16 @@ class Kinematics : public Pass {
     return s;
   }
 
+  // Whether the table is turned at all where the machine is now (memoised per position).
+  bool turned() const {
+    if (!turned_known_ || turned_for_ != cur_) {
+      turned_ = (kin::table_rotation(k_, cur_) - Mat3Identity()).cwiseAbs().maxCoeff() >= 1e-12;
+      turned_for_ = cur_;
+      turned_known_ = true;
+    }
+    return turned_;
+  }
+
   // Memoised: asked several times for each five-axis move, at the same position.
   bool at_singularity() const {
     if (!have_cur_ || !singular_) return false;
@@ -253,7 +263,7 @@ class Kinematics : public Pass {
       tcp_on_ = false;
     }
     // A dynamic work offset at no rotation would change nothing.
-    if (want_dwo && (kin::table_rotation(k_, cur_) - Mat3Identity()).cwiseAbs().maxCoeff() < 1e-12) want_dwo = false;
+    if (want_dwo && !turned()) want_dwo = false;
     if (want_dwo && !dwo_on_) {
       out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOn}});
       dwo_on_ = true;
@@ -533,6 +543,8 @@ class Kinematics : public Pass {
   std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
   mutable kin::Angles at_singular_for_{0, 0};
   mutable bool at_singular_known_ = false, at_singular_ = false;
+  mutable kin::Angles turned_for_{0, 0};
+  mutable bool turned_known_ = false, turned_ = false;
   double tool_length_ = 0;
   ir::Feed feed_;
   bool feed_known_ = false;
