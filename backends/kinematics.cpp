@@ -230,7 +230,12 @@ Values representatives(const RotaryAxis& r, double base, double current) {
   } else if (r.cyclic == Cyclic::Wind) {
     v.v[v.n++] = base + 360 * std::round((current - base) / 360);
   } else {
-    for (int n = -4; n <= 4; ++n) v.v[v.n++] = base + 360 * n;
+    // Every turn that could be within the limits, or within reach of a position that is
+    // (the jump test looks no farther than 90 degrees).
+    for (int n = -4; n <= 4; ++n) {
+      double x = base + 360 * n;
+      if (x >= r.min - 360 && x <= r.max + 360) v.v[v.n++] = x;
+    }
   }
   return v;
 }

@@ -6,6 +6,7 @@
 
 #include "backends/backend.h"
 #include "backends/output.h"
+#include "cli/stages.h"
 #include "cli/progress.h"
 #include "grammar/parse.h"
 #include "ir/lower.h"
@@ -42,27 +43,6 @@ class NullBackend : public Backend {
   void begin(const ir::ProgramInfo&) override {}
   void operation(const ir::Operation&) override {}
   void end() override {}
-};
-
-class Pipeline : public OperationSink {
- public:
-  Pipeline(PassManager& pm, Backend& be, Diagnostics& d) : pm_(pm), be_(be), d_(d) {}
-  void operation(ir::Operation& op) override {
-    for (const ir::Instr& in : op.body)
-      if (std::holds_alternative<ir::Move>(in.op) || std::holds_alternative<ir::Arc>(in.op)) {
-        motion_ = true;
-        break;
-      }
-    pm_.run(op);
-    // After an error no output is written: skip the backend's work.
-    if (!d_.has_errors()) be_.operation(op);
-  }
-  bool motion_ = false;
-
- private:
-  PassManager& pm_;
-  Backend& be_;
-  Diagnostics& d_;
 };
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -140,17 +120,64 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     else if (opt.emit == Emit::Ir) be = std::make_unique<IrBackend>(out);
     else be = std::make_unique<NullBackend>();
 
-    PassContext ctx{info, machine, d};
+    // The passes report into a deferred Diagnostics, replayed here in order: the same
+    // whether they run on this thread (printing the IR between passes) or their own.
+    Diagnostics pass_diags(nullptr);
+    pass_diags.set_source(&src);
+    pass_diags.set_deferred(true);
+    PassContext ctx{info, machine, pass_diags};
     PassManager pm(ctx, machine.pipeline, opt.print_after, opt.print_after.empty() ? nullptr : &err, opt.verify_ir);
     pm.begin();
+    for (const Diagnostics::Deferred& x : pass_diags.take_deferred()) d.replay(x);
     be->begin(info);
-    Pipeline pipe(pm, *be, d);
-    Lowerer low(info, d, pipe);
+    Backend& backend = *be;
+    bool motion = false;
+    auto write = [&](Piece& p) {
+      for (const Diagnostics::Deferred& x : p.diags) d.replay(x);
+      if (p.end) return false;
+      for (const ir::Instr& in : p.op.body)
+        if (std::holds_alternative<ir::Move>(in.op) || std::holds_alternative<ir::Arc>(in.op)) {
+          motion = true;
+          break;
+        }
+      // After an error no output is written: skip the backend's work.
+      if (!d.has_errors()) backend.operation(p.op);
+      return true;
+    };
     progress.phase("compile");
-    parse_cl(src, d, low);
-    low.finish();
+    PieceQueue lowered, passed;
+    struct StopOnExit {
+      PieceQueue &a, &b;
+      ~StopOnExit() {
+        a.stop();
+        b.stop();
+      }
+    };
+    if (opt.print_after.empty()) {
+      FrontEnd front(src, info, lowered);
+      PassStage passes(pm, pass_diags, lowered, passed);
+      StopOnExit stop{lowered, passed};  // on an exception here: the threads give up, then join
+      for (;;) {
+        Piece p = passed.pop();
+        if (!write(p)) break;
+        lowered.give_spare(std::move(p.op));
+      }
+    } else {
+      // The IR printed between passes goes to the diagnostics' stream: passes here, in order.
+      FrontEnd front(src, info, lowered);
+      StopOnExit stop{lowered, passed};
+      for (;;) {
+        Piece p = lowered.pop();
+        if (!p.end) {
+          pm.run(p.op);
+          for (auto& x : pass_diags.take_deferred()) p.diags.push_back(std::move(x));
+        }
+        if (!write(p)) break;
+        lowered.give_spare(std::move(p.op));
+      }
+    }
     progress.clear();
-    if (!pipe.motion_ && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
+    if (!motion && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
     if (!d.has_errors()) be->end();
     res.info = std::move(info);
   } catch (const FatalError&) {

@@ -17,14 +17,19 @@ Progress::~Progress() {
 }
 
 void Progress::phase(const char* what) {
+  std::lock_guard<std::mutex> g(lock_);
   phase_ = what;
   start_ = std::chrono::steady_clock::now();
   draw(0, true);
 }
 
-void Progress::update(uint64_t done) { draw(done, false); }
+void Progress::update(uint64_t done) {
+  std::lock_guard<std::mutex> g(lock_);
+  draw(done, false);
+}
 
 void Progress::clear() {
+  std::lock_guard<std::mutex> g(lock_);
   if (active_) std::fputs("\r\033[K", stderr);
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 #include <string>
 
 namespace clpc {
@@ -30,6 +31,7 @@ class Progress {
   bool active_;
   const char* phase_ = "";
   std::chrono::steady_clock::time_point start_, last_;
+  std::mutex lock_;  // the front end's thread updates, the other clears for diagnostics
 };
 
 }  // namespace clpc

@@ -24,7 +24,16 @@ std::string printable(std::string_view s) {
 
 }  // namespace
 
+void Diagnostics::replay(const Deferred& d) {
+  if (d.severity == Severity::Warning) warning(d.loc, d.message, d.category);
+  else report(d.severity, d.loc, d.message);
+}
+
 void Diagnostics::warning(SourceLoc loc, std::string_view msg, std::string_view category) {
+  if (deferred_on_) {
+    deferred_.push_back({Severity::Warning, loc, std::string(msg), std::string(category)});
+    return;
+  }
   if (!werror_ && !category.empty()) {
     auto it = repeats_.find(category);
     if (it == repeats_.end()) it = repeats_.emplace(std::string(category), 0).first;
@@ -37,6 +46,11 @@ void Diagnostics::warning(SourceLoc loc, std::string_view msg, std::string_view 
 }
 
 void Diagnostics::report(Severity sev, SourceLoc loc, std::string_view msg) {
+  if (deferred_on_) {
+    deferred_.push_back({sev, loc, std::string(msg), {}});
+    if (sev == Severity::Error && ++deferred_errors_ >= kErrorLimit) throw FatalError{};
+    return;
+  }
   std::string file = source_ ? source_->name() : std::string("<input>");
   std::string text;
   bool have = false;

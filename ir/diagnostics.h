@@ -35,6 +35,20 @@ class Diagnostics {
   void set_werror(bool on) { werror_ = on; }
   // Keep every diagnostic in `all()` (tests); printing still happens when out != nullptr.
   void set_keep(bool on) { keep_ = on; }
+  // Deferred: diagnostics are recorded (with their category) instead of printed or counted
+  // against the limits, to be replayed in order into another Diagnostics — the compile's front
+  // end runs on its own thread, and its diagnostics must come out where a one-thread compile
+  // would print them. Past kErrorLimit recorded errors the run stops (FatalError) all the same.
+  struct Deferred {
+    Severity severity;
+    SourceLoc loc;
+    std::string message;
+    std::string category;
+  };
+  void set_deferred(bool on) { deferred_on_ = on; }
+  std::vector<Deferred> take_deferred() { return std::move(deferred_); }
+  void replay(const Deferred& d);
+
   // Called before each diagnostic is printed (a progress bar clears its line).
   void set_before_print(std::function<void()> f) { before_print_ = std::move(f); }
 
@@ -71,6 +85,9 @@ class Diagnostics {
   std::map<std::string, size_t, std::less<>> repeats_;
   std::vector<Diagnostic> kept_;
   std::function<void()> before_print_;
+  bool deferred_on_ = false;
+  size_t deferred_errors_ = 0;
+  std::vector<Deferred> deferred_;
 };
 
 }  // namespace clpc

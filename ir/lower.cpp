@@ -197,10 +197,11 @@ void Lowerer::ensure_operation(SourceLoc loc) {
 
 void Lowerer::flush_chunk() {
   op_.last_chunk = false;
-  sink_.operation(op_);
+  // Read before the sink, which may hand back another operation's storage.
   uint32_t number = op_.number;
-  std::string name = std::move(op_.name);
+  std::string name = op_.name;
   SourceLoc loc = op_.loc;
+  sink_.operation(op_);
   op_.clear();
   op_.number = number;
   op_.name = std::move(name);

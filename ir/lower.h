@@ -26,7 +26,7 @@ class OperationSink {
 struct LowerOptions {
   // Instructions per operation chunk; longer operations are handed on in pieces so memory
   // stays bounded whatever the file looks like.
-  size_t chunk_size = 1u << 16;
+  size_t chunk_size = 1u << 14;
 };
 
 class Lowerer : public RecordSink {

@@ -110,13 +110,19 @@ long SourceFile::read_at(uint64_t offset, char* dst, size_t n) const {
 void SourceFile::note_line_start(uint32_t line, uint64_t offset) {
   if (line == 0 || (line - 1) % kCheckpointEvery != 0) return;
   size_t k = (line - 1) / kCheckpointEvery;
+  std::lock_guard<std::mutex> lock(checkpoints_lock_);
   if (k == checkpoints_.size()) checkpoints_.push_back(offset);
 }
 
 std::string SourceFile::line_text(uint32_t line) const {
   if (line == 0) return {};
-  size_t k = std::min<size_t>((line - 1) / kCheckpointEvery, checkpoints_.size() - 1);
-  uint64_t off = checkpoints_[k];
+  size_t k;
+  uint64_t off;
+  {
+    std::lock_guard<std::mutex> lock(checkpoints_lock_);
+    k = std::min<size_t>((line - 1) / kCheckpointEvery, checkpoints_.size() - 1);
+    off = checkpoints_[k];
+  }
   uint32_t at = uint32_t(k * kCheckpointEvery + 1);
   char buf[8192];
   std::string out;

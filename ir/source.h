@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,6 +60,7 @@ class SourceFile {
   std::function<void(uint64_t)> progress_;
   static constexpr uint32_t kCheckpointEvery = 1024;
   std::vector<uint64_t> checkpoints_{0};  // offset of line 1 + k * kCheckpointEvery
+  mutable std::mutex checkpoints_lock_;    // the lexer adds while diagnostics read (two threads)
 };
 
 }  // namespace clpc

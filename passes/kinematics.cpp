@@ -174,15 +174,16 @@ class Kinematics : public Pass {
     return turned_;
   }
 
-  // Memoised: asked several times for each five-axis move, at the same position.
+  // Asked several times for each five-axis move: from the tool axis the position was chosen
+  // for, when known (no forward kinematics), within 1e-6 degrees.
   bool at_singularity() const {
     if (!have_cur_ || !singular_) return false;
-    if (!at_singular_known_ || at_singular_for_ != cur_) {
-      at_singular_ = kin::angle_between(kin::tool_axis_in_part(k_, cur_), *singular_) < 1e-6;
-      at_singular_for_ = cur_;
-      at_singular_known_ = true;
+    if (!cur_axis_known_) {
+      cur_axis_ = kin::tool_axis_in_part(k_, cur_);
+      cur_axis_known_ = true;
     }
-    return at_singular_;
+    const double n = cur_axis_.norm();
+    return cur_axis_.dot(*singular_) > 0 && cur_axis_.cross(*singular_).norm() < 1.7453e-8 * n;
   }
 
   // At the singularity the free axis may turn without moving the tool, and for the first
@@ -192,9 +193,12 @@ class Kinematics : public Pass {
   }
 
   // Where the machine is now.
-  void set_current(const std::array<double, 2>& a) {
+  // `axis`: the tool axis (part frame) the position gives, when the caller knows it.
+  void set_current(const std::array<double, 2>& a, const Vec3* axis = nullptr) {
     cur_ = a;
     have_cur_ = true;
+    cur_axis_known_ = axis != nullptr;
+    if (axis) cur_axis_ = *axis;
   }
 
   void stamp(ir::Move& m) {
@@ -243,7 +247,7 @@ class Kinematics : public Pass {
         if (tcp_on_ && !want_tcp) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
         dwo_on_ = false;
         tcp_on_ = tcp_on_ && want_tcp;
-        set_current(c.a);
+        set_current(c.a, &axis);
         out.push_back({loc, ir::RotaryPosition{c.a, true}});
         indexed_at_ = axis;
       }
@@ -367,7 +371,7 @@ class Kinematics : public Pass {
     if (k_.inverse_time && simultaneous && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
         feed_.mode == ir::FeedMode::PerMinute && have_prev_)
       m.inverse_time = inverse_time(prev_tip_, tip, a);
-    set_current(a);
+    set_current(a, &axis);
     prev_tip_ = tip;
     prev_axis_ = axis;
     have_prev_ = true;
@@ -541,8 +545,8 @@ class Kinematics : public Pass {
   bool tcp_on_ = false, dwo_on_ = false;
   bool positioned_ = false;  // this operation was positioned by the offset table
   std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
-  mutable kin::Angles at_singular_for_{0, 0};
-  mutable bool at_singular_known_ = false, at_singular_ = false;
+  mutable Vec3 cur_axis_ = Vec3::UnitZ();  // the tool axis at cur_, part frame
+  mutable bool cur_axis_known_ = false;
   mutable kin::Angles turned_for_{0, 0};
   mutable bool turned_known_ = false, turned_ = false;
   double tool_length_ = 0;
