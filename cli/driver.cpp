@@ -154,11 +154,21 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       }
     };
     if (opt.print_after.empty()) {
+      // The passes up to the costliest on their own thread, the rest here before the backend.
+      const size_t split = pm.split_point();
+      Diagnostics late_diags(nullptr);
+      late_diags.set_source(&src);
+      late_diags.set_deferred(true);
+      PassContext late{info, machine, late_diags};
       FrontEnd front(src, info, lowered);
-      PassStage passes(pm, pass_diags, lowered, passed);
+      PassStage passes(pm, split, ctx, lowered, passed);
       StopOnExit stop{lowered, passed};  // on an exception here: the threads give up, then join
       for (;;) {
         Piece p = passed.pop();
+        if (!p.end && split < pm.size()) {
+          pm.run(p.op, split, pm.size(), late);
+          for (auto& x : late_diags.take_deferred()) p.diags.push_back(std::move(x));
+        }
         if (!write(p)) break;
         lowered.give_spare(std::move(p.op));
       }

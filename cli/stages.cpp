@@ -104,8 +104,8 @@ void FrontEnd::run() {
 
 // --- the passes ------------------------------------------------------------------------------
 
-PassStage::PassStage(PassManager& pm, Diagnostics& diags, PieceQueue& in, PieceQueue& out)
-    : pm_(pm), diags_(diags), in_(in), out_(out) {
+PassStage::PassStage(PassManager& pm, size_t upto, PassContext& ctx, PieceQueue& in, PieceQueue& out)
+    : pm_(pm), upto_(upto), ctx_(ctx), in_(in), out_(out) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -122,18 +122,18 @@ void PassStage::run() {
       return;
     }
     try {
-      pm_.run(p.op);
+      pm_.run(p.op, 0, upto_, ctx_);
     } catch (const FatalError&) {
       // Too many errors: the front end stops, the backend hears of them and stops too.
       in_.stop();
       Piece last;
       last.end = true;
       last.diags = std::move(p.diags);
-      for (auto& d : diags_.take_deferred()) last.diags.push_back(std::move(d));
+      for (auto& d : ctx_.diags.take_deferred()) last.diags.push_back(std::move(d));
       out_.push(std::move(last));
       return;
     }
-    for (auto& d : diags_.take_deferred()) p.diags.push_back(std::move(d));
+    for (auto& d : ctx_.diags.take_deferred()) p.diags.push_back(std::move(d));
     if (!out_.push(std::move(p))) {
       in_.stop();
       return;

@@ -61,17 +61,18 @@ class FrontEnd {
   std::thread thread_;
 };
 
-// Runs the passes over each piece from `in` on its own thread, into `out`. `diags` is the
-// passes' context's Diagnostics, in deferred mode.
+// Runs passes [0, upto) over each piece from `in` on its own thread, into `out`, in `ctx`
+// (whose Diagnostics is in deferred mode).
 class PassStage {
  public:
-  PassStage(PassManager& pm, Diagnostics& diags, PieceQueue& in, PieceQueue& out);
+  PassStage(PassManager& pm, size_t upto, PassContext& ctx, PieceQueue& in, PieceQueue& out);
   ~PassStage();
 
  private:
   void run();
   PassManager& pm_;
-  Diagnostics& diags_;
+  size_t upto_;
+  PassContext& ctx_;
   PieceQueue& in_;
   PieceQueue& out_;
   std::thread thread_;

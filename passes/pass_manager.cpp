@@ -20,18 +20,27 @@ PassManager::PassManager(PassContext& ctx, const std::vector<std::string>& pipel
     if (const PassInfo* p = find_pass(n)) passes_.emplace_back(p, p->make());
 }
 
+size_t PassManager::split_point() const {
+  for (size_t i = 0; i < passes_.size(); ++i)
+    if (passes_[i].first->name == "kinematics") return i + 1;
+  return passes_.size();
+}
+
 void PassManager::begin() {
   for (auto& [info, pass] : passes_) pass->begin(ctx_);
 }
 
-void PassManager::run(ir::Operation& op) {
-  if (print_to_ && print_after_ == "lower") {
+void PassManager::run(ir::Operation& op) { run(op, 0, passes_.size(), ctx_); }
+
+void PassManager::run(ir::Operation& op, size_t from, size_t to, PassContext& ctx) {
+  if (from == 0 && print_to_ && print_after_ == "lower") {
     *print_to_ << "; after lower\n";
     ir::print_operation(*print_to_, op);
   }
-  for (auto& [info, pass] : passes_) {
-    pass->run(op, ctx_);
-    if (verify_) verify_operation(op, info->name, ctx_.diags);
+  for (size_t i = from; i < to && i < passes_.size(); ++i) {
+    auto& [info, pass] = passes_[i];
+    pass->run(op, ctx);
+    if (verify_) verify_operation(op, info->name, ctx.diags);
     if (print_to_ && (print_after_ == info->name || print_after_ == "all")) {
       *print_to_ << "; after " << info->name << "\n";
       ir::print_operation(*print_to_, op);

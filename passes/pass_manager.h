@@ -18,6 +18,13 @@ class PassManager {
               std::ostream* print_to = nullptr, bool verify = false);
   void begin();
   void run(ir::Operation& op);
+  // Passes [from, to) of the pipeline, with another context (the same program and machine,
+  // its own diagnostics): the pipeline may be split between two threads.
+  void run(ir::Operation& op, size_t from, size_t to, PassContext& ctx);
+  size_t size() const { return passes_.size(); }
+  // Where a two-thread split balances best: after the costliest pass ('kinematics'), else at
+  // the end.
+  size_t split_point() const;
 
  private:
   PassContext& ctx_;

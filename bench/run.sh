@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Whole-program benchmarks: clpc against the floor program (bench/floor.cpp, "as fast as
+# reading the file") on generated CL files, with wall time, MB/s and peak RSS from
+# /usr/bin/time. Run from the repository root after a build (cmake --build build):
+#
+#   bash bench/run.sh ratio     200 MB mixed file to haas-umc750: clpc / floor, medians of 5 alternating runs
+#   bash bench/run.sh rss       1 GB mixed file, operations of at most 20 MB: peak RSS (must stay under 128 MB)
+#   bash bench/run.sh linear    10, 100 and 1000 MB: time per MB stays flat
+#   bash bench/run.sh all       the three
+#
+# Files go to $BENCH_DIR (default /tmp/clpc-bench), made once by bench/gen_cl (deterministic:
+# seed 1) and kept for the next run. RUNS=n changes the number of runs.
+set -euo pipefail
+
+build=${BUILD_DIR:-build}
+dir=${BENCH_DIR:-/tmp/clpc-bench}
+runs=${RUNS:-5}
+clpc=$build/clpc
+floor=$build/bench/floor
+gen=$build/bench/gen_cl
+machine=${MACHINE:-haas-umc750}
+for b in "$clpc" "$floor" "$gen"; do
+  [[ -x $b ]] || { echo "bench: $b missing: build first (cmake --build $build)" >&2; exit 1; }
+done
+[[ -x /usr/bin/time ]] || { echo "bench: /usr/bin/time missing (apt-get install time)" >&2; exit 1; }
+mkdir -p "$dir"
+
+make_file() {  # size_mb op_mb -> path
+  local f="$dir/mixed-$1mb-op$2.cls"
+  [[ -s $f ]] || "$gen" --size-mb "$1" --op-mb "$2" --seed 1 >"$f"
+  echo "$f"
+}
+
+# One timed run: prints "seconds peak_kb".
+timed() {
+  /usr/bin/time -f "%e %M" -o "$dir/time.txt" "$@" >/dev/null 2>"$dir/stderr.txt" || {
+    echo "bench: failed: $*" >&2; cat "$dir/stderr.txt" >&2; exit 1; }
+  cat "$dir/time.txt"
+}
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
+
+mb() { awk -v b="$(stat -c %s "$1")" 'BEGIN {printf "%.1f", b/1e6}'; }
+
+ratio() {
+  local f; f=$(make_file 200 8)
+  local size; size=$(mb "$f")
+  : >"$dir/floor.t"; : >"$dir/clpc.t"; : >"$dir/clpc.rss"
+  for ((i = 0; i < runs; i++)); do
+    timed "$floor" "$f" "$dir/floor.out" | awk '{print $1}' >>"$dir/floor.t"
+    timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc" >"$dir/one.txt"
+    awk '{print $1}' "$dir/one.txt" >>"$dir/clpc.t"
+    awk '{print $2}' "$dir/one.txt" >>"$dir/clpc.rss"
+  done
+  local tf tc rss
+  tf=$(median <"$dir/floor.t"); tc=$(median <"$dir/clpc.t"); rss=$(sort -n "$dir/clpc.rss" | tail -1)
+  awk -v s="$size" -v tf="$tf" -v tc="$tc" -v r="$rss" -v n="$runs" -v m="$machine" 'BEGIN {
+    printf "ratio: %s MB mixed, %d alternating runs, medians\n", s, n
+    printf "  floor          %6.2f s  %7.1f MB/s\n", tf, s/tf
+    printf "  clpc (%s) %6.2f s  %7.1f MB/s  peak RSS %.1f MB\n", m, tc, s/tc, r/1024
+    printf "  clpc / floor   %6.2f (target: at most 3)\n", tc/tf }'
+}
+
+rss() {
+  local f; f=$(make_file 1000 20)
+  local out; out=$(timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc")
+  awk -v s="$(mb "$f")" -v t="${out% *}" -v r="${out#* }" 'BEGIN {
+    printf "rss: %s MB mixed, operations of at most 20 MB\n", s
+    printf "  clpc %.2f s  %.1f MB/s  peak RSS %.1f MB (target: under 128 MB)\n", t, s/t, r/1024 }'
+}
+
+linear() {
+  echo "linear: clpc time per MB (median of 3)"
+  for size in 10 100 1000; do
+    local f; f=$(make_file "$size" 8)
+    : >"$dir/lin.t"
+    for ((i = 0; i < 3; i++)); do timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc" | awk '{print $1}' >>"$dir/lin.t"; done
+    awk -v s="$(mb "$f")" -v t="$(median <"$dir/lin.t")" 'BEGIN { printf "  %7.1f MB  %7.2f s  %6.1f MB/s  %.2f ms/MB\n", s, t, s/t, 1000*t/s }'
+  done
+}
+
+case ${1:-all} in
+  ratio) ratio ;;
+  rss) rss ;;
+  linear) linear ;;
+  all) ratio; rss; linear ;;
+  *) echo "usage: bench/run.sh [ratio|rss|linear|all]" >&2; exit 2 ;;
+esac
