@@ -24,11 +24,10 @@ void ParseState::number(double v, SourceLoc loc) {
     too_many_ = true;
     return;
   }
-  Param p;
+  Param& p = params_.emplace_back();
   p.kind = Param::Kind::Number;
   p.number = v;
   p.loc = loc;
-  params_.push_back(p);
 }
 
 void ParseState::word(std::string_view text, SourceLoc loc, Param::Kind kind) {

@@ -164,10 +164,20 @@ class Kinematics : public Pass {
     return s;
   }
 
+  // The table's rotation at `a`, memoised: indexed work asks for the same one every move.
+  const ir::Mat3& table(const kin::Angles& a) const {
+    if (!table_known_ || table_for_ != a) {
+      table_ = kin::table_rotation(k_, a);
+      table_for_ = a;
+      table_known_ = true;
+    }
+    return table_;
+  }
+
   // Whether the table is turned at all where the machine is now (memoised per position).
   bool turned() const {
     if (!turned_known_ || turned_for_ != cur_) {
-      turned_ = (kin::table_rotation(k_, cur_) - Mat3Identity()).cwiseAbs().maxCoeff() >= 1e-12;
+      turned_ = (table(cur_) - Mat3Identity()).cwiseAbs().maxCoeff() >= 1e-12;
       turned_for_ = cur_;
       turned_known_ = true;
     }
@@ -211,12 +221,12 @@ class Kinematics : public Pass {
   // The point the control is given for tip p at angles a, per mode.
   Vec3 output_point(const kin::Angles& a, const Vec3& p, bool simultaneous) const {
     if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return p;
-    if (!simultaneous && k_.indexed == Indexed::Dwo) return kin::table_rotation(k_, a) * p;  // identity at no rotation
+    if (!simultaneous && k_.indexed == Indexed::Dwo) return table(a) * p;  // identity at no rotation
     return kin::machine_point(k_, a, p, pivot());
   }
   Vec3 output_axis(const kin::Angles& a, const Vec3& axis, bool simultaneous) const {
     if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return axis;
-    return kin::table_rotation(k_, a) * axis;
+    return table(a) * axis;
   }
   bool tcp(bool simultaneous) const {
     return simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp;
@@ -545,6 +555,9 @@ class Kinematics : public Pass {
   bool tcp_on_ = false, dwo_on_ = false;
   bool positioned_ = false;  // this operation was positioned by the offset table
   std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
+  mutable ir::Mat3 table_ = ir::Mat3::Identity();
+  mutable kin::Angles table_for_{0, 0};
+  mutable bool table_known_ = false;
   mutable Vec3 cur_axis_ = Vec3::UnitZ();  // the tool axis at cur_, part frame
   mutable bool cur_axis_known_ = false;
   mutable kin::Angles turned_for_{0, 0};

@@ -95,13 +95,22 @@ class Limits : public Pass {
   }
 
   // The tool tip's machine position for the point the control is given, in output units.
-  ir::Vec3 machine_position(const ir::Vec3& given, double to_out) const {
-    if (!k_.has_rotaries()) return given * to_out;
-    kin::Angles a = rot_;
-    ir::Vec3 part = given;
-    if (dwo_) part = kin::table_rotation(k_, a).transpose() * given;
-    if (tcp_ || dwo_) return kin::machine_point(k_, a, part, k_.pivot + tool_length_) * to_out;
-    return given * to_out;
+  // Under a dynamic work offset the given point is the part point already turned with the
+  // table (T p); the chain's table_point is affine with that same rotation as its linear part,
+  // so the machine position is the given point plus the chain's offset at this position.
+  ir::Vec3 machine_position(const ir::Vec3& given, double to_out) {
+    if (!k_.has_rotaries() || !(tcp_ || dwo_)) return given * to_out;
+    if (dwo_) {
+      // Memoised per position: indexed work keeps one for many moves.
+      if (!dwo_known_ || dwo_for_ != rot_ || dwo_length_ != tool_length_) {
+        dwo_offset_ = kin::machine_point(k_, rot_, ir::Vec3::Zero(), k_.pivot + tool_length_);
+        dwo_for_ = rot_;
+        dwo_length_ = tool_length_;
+        dwo_known_ = true;
+      }
+      return (given + dwo_offset_) * to_out;
+    }
+    return kin::machine_point(k_, rot_, given, k_.pivot + tool_length_) * to_out;
   }
 
   void linear(const ir::Vec3& given, SourceLoc loc, PassContext& ctx, double to_out) {
@@ -134,6 +143,10 @@ class Limits : public Pass {
   KinematicsSettings k_;
   kin::Angles rot_{0, 0};
   bool tcp_ = false, dwo_ = false;
+  ir::Vec3 dwo_offset_ = ir::Vec3::Zero();
+  kin::Angles dwo_for_{0, 0};
+  double dwo_length_ = 0;
+  bool dwo_known_ = false;
   double tool_length_ = 0;
   double lo_[3] = {1e300, 1e300, 1e300}, hi_[3] = {-1e300, -1e300, -1e300};
   bool reported_[3] = {false, false, false};
