@@ -75,6 +75,12 @@ void Emitter::set_last(char letter, double value) {
   }
 }
 
+bool Emitter::differs(char letter, double value) const {
+  size_t i = size_t(letter - 'A');
+  int64_t q;
+  return !known_[i] || !quantize(value, m_.format(letter), q) || q != last_q_[i];
+}
+
 double Emitter::as_written(char letter, double value) const {
   int64_t q;
   if (!quantize(value, m_.format(letter), q)) return value;

@@ -42,7 +42,10 @@ class Emitter {
 
   // The value a control holds for `letter` after the blocks written so far.
   bool last(char letter, double& value) const;
-  void set_last(char letter, double value);  // e.g. after a move the emitter did not write
+  void set_last(char letter, double value);
+  // Whether `value` would be written differently from the last value of `letter` (or none
+  // is known): the rounded integers compared, nothing converted back.
+  bool differs(char letter, double value) const;  // e.g. after a move the emitter did not write
   void forget(char letter) { known_[size_t(letter - 'A')] = false; }
   void forget_all();
   void forget_linear();  // X Y Z U V W: after something moved or reframed them

@@ -85,8 +85,7 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
 }
 
 bool LatheBackend::changed(char letter, double value) const {
-  double last;
-  return !m_.modal.coordinates || !e_.last(letter, last) || e_.as_written(letter, value) != last;
+  return !m_.modal.coordinates || e_.differs(letter, value);
 }
 
 void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {

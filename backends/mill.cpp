@@ -88,8 +88,7 @@ bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
 }
 
 bool MillBackend::changed(char letter, double value) const {
-  double last;
-  return !m_.modal.coordinates || !e_.last(letter, last) || e_.as_written(letter, value) != last;
+  return !m_.modal.coordinates || e_.differs(letter, value);
 }
 
 void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
@@ -107,9 +106,8 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   bool rotates = false;
   if (mv.has_rotary)
     for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
-      double last;
       const char l = m_.kinematics.rotaries[i].name[0];
-      if (!e_.last(l, last) || e_.as_written(l, mv.rotary[i]) != last) rotates = true;
+      if (e_.differs(l, mv.rotary[i])) rotates = true;
     }
   if (rotates) unclamp(loc);
   if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
@@ -217,9 +215,8 @@ void MillBackend::clamp(SourceLoc loc) {
 void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc) {
   bool moves = false;
   for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
-    double last;
     char l = m_.kinematics.rotaries[i].name[0];
-    if (!e_.last(l, last) || e_.as_written(l, r.rotary[i]) != last) moves = true;
+    if (e_.differs(l, r.rotary[i])) moves = true;
   }
   if (moves) {
     // Turning the table for the next orientation with the tool down at the part is how
