@@ -76,6 +76,7 @@ ArcCenterChoice choose_arc_center(const ArcCenterInput& in, const AddressFormat&
   for (int ring = 0; ring <= W; ++ring) {
     if (ring == 0) {
       consider(0, 0);
+      if (best_ok && best.deviation <= unit) break;
       continue;
     }
     for (int a = -ring; a <= ring; ++a) {
