@@ -43,16 +43,17 @@ bool Emitter::word(char letter, double value) {
   return true;
 }
 
-bool Emitter::modal_word(char letter, double value) {
-  int64_t q;
-  if (!quantize(value, m_.format(letter), q)) {
-    d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(value));
+bool Emitter::modal_word(char letter, double value) { return modal_word(letter, round(letter, value)); }
+
+bool Emitter::modal_word(char letter, const Rounded& r) {
+  if (!r.ok) {
+    d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(r.value));
     return false;
   }
   size_t i = size_t(letter - 'A');
-  if (m_.modal.coordinates && known_[i] && last_q_[i] == q) return false;
-  add_quantized(letter, q);
-  last_q_[i] = q;
+  if (m_.modal.coordinates && known_[i] && last_q_[i] == r.q) return false;
+  add_quantized(letter, r.q);
+  last_q_[i] = r.q;
   known_[i] = true;
   return true;
 }

@@ -45,7 +45,24 @@ class Emitter {
   void set_last(char letter, double value);
   // Whether `value` would be written differently from the last value of `letter` (or none
   // is known): the rounded integers compared, nothing converted back.
-  bool differs(char letter, double value) const;  // e.g. after a move the emitter did not write
+  bool differs(char letter, double value) const;
+  // A value rounded once for `letter`, for differs() and modal_word() to share.
+  struct Rounded {
+    int64_t q = 0;
+    bool ok = false;
+    double value = 0;
+  };
+  Rounded round(char letter, double value) const {
+    Rounded r;
+    r.value = value;
+    r.ok = quantize(value, m_.format(letter), r.q);
+    return r;
+  }
+  bool differs(char letter, const Rounded& r) const {
+    const size_t i = size_t(letter - 'A');
+    return !r.ok || !known_[i] || r.q != last_q_[i];
+  }
+  bool modal_word(char letter, const Rounded& r);  // e.g. after a move the emitter did not write
   void forget(char letter) { known_[size_t(letter - 'A')] = false; }
   void forget_all();
   void forget_linear();  // X Y Z U V W: after something moved or reframed them

@@ -22,9 +22,15 @@ char* digits(uint64_t u, char* end) {
 }  // namespace
 
 bool quantize(double value, const AddressFormat& f, int64_t& q) {
-  double x = value * f.scale * double(kPow10[f.decimals]);
-  if (!std::isfinite(x) || std::abs(x) >= 1e15) return false;
-  q = std::llround(x);
+  const double x = value * f.scale * double(kPow10[f.decimals]);
+  if (!(x > -1e15 && x < 1e15)) return false;  // also NaN
+  // llround (halves away from zero) without the library call: truncate, then look at what
+  // was cut off, exactly (|x| < 1e15, so x - t is exact).
+  int64_t t = int64_t(x);
+  const double cut = x - double(t);
+  if (cut >= 0.5) ++t;
+  else if (cut <= -0.5) --t;
+  q = t;
   return true;
 }
 
@@ -40,42 +46,41 @@ void append_int(int64_t n, int width, std::string& out) {
 }
 
 void append_quantized(int64_t q, const AddressFormat& f, std::string& out) {
-  bool neg = q < 0;
+  // Built right to left in a small buffer, appended once.
+  char buf[48];
+  char* const end = buf + sizeof buf;
+  char* p = end;
+  const bool neg = q < 0;
   uint64_t u = neg ? uint64_t(-(q + 1)) + 1 : uint64_t(q);
-  if (neg) out.push_back('-');
-  else if (f.plus && u != 0) out.push_back('+');
   if (f.point == AddressFormat::Point::Never) {
-    char buf[24];
-    char* s = digits(u, buf + sizeof buf);
-    for (int pad = f.digits - int(buf + sizeof buf - s); pad > 0; --pad) out.push_back('0');
-    out.append(s, buf + sizeof buf);
-    return;
+    p = digits(u, p);
+    for (int pad = f.digits - int(end - p); pad > 0 && p > buf + 2; --pad) *--p = '0';
+  } else {
+    const int d = f.decimals;
+    const uint64_t ip = u / uint64_t(kPow10[d]);
+    uint64_t fp = u % uint64_t(kPow10[d]);
+    const bool whole = fp == 0;
+    // Fraction: d digits less the trailing zeros (unless kept), after a point.
+    int nfrac = d;
+    if (!f.trailing_zeros)
+      while (nfrac > 0 && fp % 10 == 0) {
+        fp /= 10;
+        --nfrac;
+      }
+    for (int i = 0; i < nfrac; ++i) {
+      *--p = char('0' + fp % 10);
+      fp /= 10;
+    }
+    if (nfrac > 0 || f.point == AddressFormat::Point::Always) *--p = '.';
+    if (ip != 0 || f.leading_zero || whole || f.digits > 0) {
+      char* int_end = p;
+      p = digits(ip, p);
+      for (int pad = f.digits - int(int_end - p); pad > 0 && p > buf + 2; --pad) *--p = '0';
+    }
   }
-  const int d = f.decimals;
-  uint64_t ip = u / uint64_t(kPow10[d]);
-  uint64_t fp = u % uint64_t(kPow10[d]);
-  char buf[24];
-  char* end = buf + sizeof buf;
-  if (ip != 0 || f.leading_zero || fp == 0 || f.digits > 0) {
-    char* s = digits(ip, end);
-    for (int pad = f.digits - int(end - s); pad > 0; --pad) out.push_back('0');
-    out.append(s, end);
-  }
-  // Fraction: exactly d digits, then trailing zeros dropped unless kept.
-  int nfrac = d;
-  char frac[16];
-  for (int i = d - 1; i >= 0; --i) {
-    frac[i] = char('0' + fp % 10);
-    fp /= 10;
-  }
-  if (!f.trailing_zeros)
-    while (nfrac > 0 && frac[nfrac - 1] == '0') --nfrac;
-  if (nfrac > 0) {
-    out.push_back('.');
-    out.append(frac, size_t(nfrac));
-  } else if (f.point == AddressFormat::Point::Always) {
-    out.push_back('.');
-  }
+  if (neg) *--p = '-';
+  else if (f.plus && u != 0) *--p = '+';
+  out.append(p, size_t(end - p));
 }
 
 }  // namespace clpc

@@ -80,8 +80,8 @@ void MillBackend::comp_code() {
 }
 
 bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
-  if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;
   if (m_.kinematics.has_rotaries()) return true;  // the kinematics pass gave the rotary positions
+  if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;
   d_.error(loc, "tool axis (" + num_text(axis.x()) + ", " + num_text(axis.y()) + ", " + num_text(axis.z()) +
                     ") is not the spindle axis, and machine '" + m_.name + "' has no rotary axes to tilt it");
   return false;
@@ -103,12 +103,19 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
+  // Every coordinate rounded once: for "has anything changed" and for the words.
+  const Emitter::Rounded x = e_.round('X', o.x()), y = e_.round('Y', o.y()), z = e_.round('Z', o.z());
+  Emitter::Rounded rot[2];
   bool rotates = false;
+  const auto& rotaries = m_.kinematics.rotaries;
   if (mv.has_rotary)
-    for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
-      const char l = m_.kinematics.rotaries[i].name[0];
-      if (e_.differs(l, mv.rotary[i])) rotates = true;
+    for (size_t i = 0; i < rotaries.size() && i < 2; ++i) {
+      rot[i] = e_.round(rotaries[i].name[0], mv.rotary[i]);
+      if (e_.differs(rotaries[i].name[0], rot[i])) rotates = true;
     }
+  auto rotary_words = [&] {
+    for (size_t i = 0; i < rotaries.size() && i < 2; ++i) e_.modal_word(rotaries[i].name[0], rot[i]);
+  };
   if (rotates) unclamp(loc);
   if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
     d_.warning(loc, "cutting move with the spindle stopped", "spindle stopped");
@@ -120,9 +127,9 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     absolute_code();
     work_offset_code();
     motion_code(Motion::Rapid);
-    e_.modal_word('X', o.x());
-    e_.modal_word('Y', o.y());
-    if (mv.has_rotary) rotary_words(mv.rotary, true);
+    e_.modal_word('X', x);
+    e_.modal_word('Y', y);
+    if (mv.has_rotary) rotary_words();
     e_.end();
     e_.begin(loc);
     if (need_length_offset_)
@@ -135,7 +142,8 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
 
-  bool any = changed('X', o.x()) || changed('Y', o.y()) || changed('Z', o.z()) || rotates;
+  const bool modal = m_.modal.coordinates;
+  bool any = !modal || e_.differs('X', x) || e_.differs('Y', y) || e_.differs('Z', z) || rotates;
   if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
@@ -155,10 +163,10 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     if (!rapid) feed_mode_code();
     motion_code(rapid ? Motion::Rapid : Motion::Linear);
   }
-  e_.modal_word('X', o.x());
-  e_.modal_word('Y', o.y());
-  e_.modal_word('Z', o.z());
-  if (mv.has_rotary) rotary_words(mv.rotary, true);
+  e_.modal_word('X', x);
+  e_.modal_word('Y', y);
+  e_.modal_word('Z', z);
+  if (mv.has_rotary) rotary_words();
   if (!rapid) {
     if (mv.inverse_time > 0) e_.word('F', mv.inverse_time);
     else feed_word(loc);
