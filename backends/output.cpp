@@ -139,11 +139,47 @@ bool OutputFile::open(const std::string& path, std::string& error) {
 
 void OutputFile::flush() {
   if (fd_ < 0 || buf_.empty()) return;
-  if (!failed_ && !write_all(fd_, buf_.data(), buf_.size())) {
-    failed_ = true;
-    errno_ = errno;
+  if (!thread_.joinable()) {
+    writing_.reserve(kBuffer);
+    thread_ = std::thread([this] { writer(); });
   }
+  std::unique_lock<std::mutex> g(lock_);
+  changed_.wait(g, [&] { return !write_pending_; });
+  writing_.swap(buf_);
+  write_pending_ = true;
+  g.unlock();
+  changed_.notify_all();
   buf_.clear();
+}
+
+void OutputFile::writer() {
+  std::unique_lock<std::mutex> g(lock_);
+  for (;;) {
+    changed_.wait(g, [&] { return write_pending_ || writer_stop_; });
+    if (!write_pending_) return;
+    g.unlock();
+    bool ok = failed_ || write_all(fd_, writing_.data(), writing_.size());
+    int err = errno;
+    g.lock();
+    if (!ok && !failed_) {
+      failed_ = true;
+      errno_ = err;
+    }
+    writing_.clear();
+    write_pending_ = false;
+    changed_.notify_all();
+  }
+}
+
+void OutputFile::finish_writes() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> g(lock_);
+    writer_stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+  writer_stop_ = false;
 }
 
 bool OutputFile::commit(std::string& error) {
@@ -151,7 +187,13 @@ bool OutputFile::commit(std::string& error) {
     error = "no output open";
     return false;
   }
-  flush();
+  // The last buffer, written here once the writer has done its part.
+  finish_writes();
+  if (!buf_.empty() && !failed_ && !write_all(fd_, buf_.data(), buf_.size())) {
+    failed_ = true;
+    errno_ = errno;
+  }
+  buf_.clear();
   if (failed_) {
     error = "cannot write the output: " + std::string(strerror(errno_));
     discard();
@@ -200,6 +242,7 @@ bool OutputFile::commit(std::string& error) {
 }
 
 void OutputFile::discard() {
+  finish_writes();
   if (fd_ >= 0) {
     close(fd_);
     fd_ = -1;

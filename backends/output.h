@@ -4,8 +4,11 @@
 // too, and is copied to standard output only on success.
 #pragma once
 
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <string_view>
+#include <thread>
 
 namespace clpc {
 
@@ -31,13 +34,23 @@ class OutputFile {
   static constexpr size_t kBuffer = 1 << 20;
 
  private:
+  // A full buffer is written by a writer thread while the next one fills (the copy into the
+  // page cache is off the compile's critical path); programs under a buffer never start it.
   void flush();
+  void finish_writes();  // waits for the writer; the file then holds all that was written
+  void writer();
   std::string path_, temp_;
   int fd_ = -1;
   bool to_stdout_ = false;
   bool failed_ = false;
   int errno_ = 0;
   std::string buf_;
+  std::string writing_;       // the buffer the writer has
+  bool write_pending_ = false;
+  bool writer_stop_ = false;
+  std::mutex lock_;
+  std::condition_variable changed_;
+  std::thread thread_;
 };
 
 // Removes, on SIGINT/SIGTERM/SIGHUP, every temporary output still open, then dies of the

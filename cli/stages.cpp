@@ -45,7 +45,7 @@ void PieceQueue::stop() {
 void PieceQueue::give_spare(ir::Operation&& op) {
   op.clear();
   std::lock_guard<std::mutex> g(lock_);
-  if (spare_.size() <= kDepth) spare_.push_back(std::move(op));
+  if (spare_.size() < kSpares) spare_.push_back(std::move(op));
 }
 
 ir::Operation PieceQueue::take_spare() {

@@ -38,6 +38,7 @@ class PieceQueue {
 
  private:
   static constexpr size_t kDepth = 2;
+  static constexpr size_t kSpares = 8;  // every operation in flight comes back: no fresh memory per chunk
   std::mutex lock_;
   std::condition_variable changed_;
   std::deque<Piece> queue_;
