@@ -21,19 +21,6 @@ char* digits(uint64_t u, char* end) {
 
 }  // namespace
 
-bool quantize(double value, const AddressFormat& f, int64_t& q) {
-  const double x = value * f.scale * double(kPow10[f.decimals]);
-  if (!(x > -1e15 && x < 1e15)) return false;  // also NaN
-  // llround (halves away from zero) without the library call: truncate, then look at what
-  // was cut off, exactly (|x| < 1e15, so x - t is exact).
-  int64_t t = int64_t(x);
-  const double cut = x - double(t);
-  if (cut >= 0.5) ++t;
-  else if (cut <= -0.5) --t;
-  q = t;
-  return true;
-}
-
 double dequantize(int64_t q, const AddressFormat& f) { return double(q) / double(kPow10[f.decimals]) / f.scale; }
 
 void append_int(int64_t n, int width, std::string& out) {

@@ -1,5 +1,7 @@
 #include "backends/output.h"
 
+#include <pthread.h>
+
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -153,6 +155,7 @@ void OutputFile::flush() {
 }
 
 void OutputFile::writer() {
+  pthread_setname_np(pthread_self(), "clpc-writer");
   std::unique_lock<std::mutex> g(lock_);
   for (;;) {
     changed_.wait(g, [&] { return write_pending_ || writer_stop_; });
