@@ -37,8 +37,8 @@ class PieceQueue {
   ir::Operation take_spare();
 
  private:
-  static constexpr size_t kDepth = 2;
-  static constexpr size_t kSpares = 8;  // every operation in flight comes back: no fresh memory per chunk
+  static constexpr size_t kDepth = 4;
+  static constexpr size_t kSpares = 12;  // every operation in flight comes back: no fresh memory per chunk
   std::mutex lock_;
   std::condition_variable changed_;
   std::deque<Piece> queue_;

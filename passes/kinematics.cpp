@@ -347,11 +347,13 @@ class Kinematics : public Pass {
     auto s = singular_direction();
     if (!s || !have_prev_ || !have_cur_ || m.kind != ir::MoveKind::Feed) return;
     const Vec3 a0 = prev_axis_, a1 = m.axis;
+    // The great circle from a0 to a1 passes through s when s lies in their plane, between
+    // them (tested first: it is cheap, and almost never so).
+    const Vec3 c = a0.cross(a1);
+    const double cn = c.norm();
+    if (cn < 1e-12 || std::abs(c.dot(*s)) > 1e-9 * cn) return;
     double total = kin::angle_between(a0, a1);
     if (total < 1e-9) return;
-    // The great circle from a0 to a1 passes through s when s lies in their plane, between them.
-    Vec3 n = a0.cross(a1).normalized();
-    if (std::abs(n.dot(*s)) > 1e-9) return;
     double t = kin::angle_between(a0, *s) / total;
     if (!(t > 1e-9 && t < 1 - 1e-9) || std::abs(kin::angle_between(a0, *s) + kin::angle_between(*s, a1) - total) > 1e-9)
       return;
