@@ -32,7 +32,7 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
   for (const std::string& l : m_.program_start) e_.line(l);
   if (m_.program_number > 0) {
     std::string o = "O";
-    int64_t q;
+    int64_t q = m_.program_number;  // the number as it is if the format cannot scale it
     quantize(double(m_.program_number), m_.format('O'), q);
     append_quantized(q, m_.format('O'), o);
     if (m_.comments.enabled && !info.part_name.empty()) {
