@@ -130,7 +130,9 @@ Machine machine(const std::string& name, const std::string& extra_toml) {
   Diagnostics d(&err);
   MachineRegistry reg(pass_names());
   EXPECT_TRUE(reg.load_builtin(d)) << err.str();
-  if (!extra_toml.empty()) EXPECT_TRUE(reg.load_text("extra.toml", extra_toml, d)) << err.str();
+  if (!extra_toml.empty()) {
+    EXPECT_TRUE(reg.load_text("extra.toml", extra_toml, d)) << err.str();
+  }
   auto m = reg.resolve(name, d);
   EXPECT_TRUE(m.has_value()) << err.str();
   return m ? *m : Machine{};

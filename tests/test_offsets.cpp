@@ -258,7 +258,9 @@ TEST(OffsetTable, OneOffsetPerRegisterAndTheRightOneInEachOperation) {
     EXPECT_THAT(body, HasSubstr(rot)) << op;
     EXPECT_THAT(body, HasSubstr(reg + " X")) << op;
     for (const char* other : {"G54", "G55", "G56"})
-      if (other != reg) EXPECT_THAT(body, ::testing::Not(HasSubstr(other))) << op;
+      if (other != reg) {
+        EXPECT_THAT(body, ::testing::Not(HasSubstr(other))) << op;
+      }
   }
   // The strategies differ in the head and the macro only.
   std::string body_m = without_n(after(m.output, "(TOP_ROUGH)")), body_g = without_n(after(g.output, "(TOP_ROUGH)")),
