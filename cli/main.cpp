@@ -2,7 +2,12 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <condition_variable>
 #include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
 
 #include "backends/machine_loader.h"
 #include "backends/output.h"
@@ -28,6 +33,43 @@ std::optional<ir::Units> parse_units(const std::string& s) {
   if (s == "mm") return ir::Units::Mm;
   if (s == "inch") return ir::Units::Inch;
   return std::nullopt;
+}
+
+// Several files at once: `jobs` workers take the next file in turn; each file's diagnostics
+// are held and printed whole, in input order, as soon as the files before it are done. No
+// progress bars (they would fight over the terminal).
+template <class OutputFor>
+bool compile_parallel(const std::vector<std::string>& inputs, OutputFor output_for, const Machine& m, CompileOptions opt,
+                      unsigned jobs) {
+  opt.progress = false;
+  const size_t n = inputs.size();
+  std::vector<std::string> diags(n);
+  std::vector<char> done(n, 0), ok(n, 0);
+  std::mutex lock;
+  std::condition_variable finished;
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i; (i = next.fetch_add(1)) < n;) {
+      std::ostringstream err;
+      bool r = compile_file(inputs[i], output_for(inputs[i]), m, opt, err).ok;
+      std::lock_guard<std::mutex> g(lock);
+      diags[i] = err.str();
+      ok[i] = r;
+      done[i] = 1;
+      finished.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned j = 0; j < std::min<size_t>(jobs, n); ++j) pool.emplace_back(worker);
+  bool all = true;
+  for (size_t i = 0; i < n; ++i) {
+    std::unique_lock<std::mutex> g(lock);
+    finished.wait(g, [&] { return done[i] != 0; });
+    std::cerr << diags[i];
+    all = all && ok[i];
+  }
+  for (std::thread& t : pool) t.join();
+  return all;
 }
 
 }  // namespace
@@ -60,6 +102,9 @@ int main(int argc, char** argv) {
   compile->add_option("--emit", emit, "What to write")->check(CLI::IsMember({"gcode", "ir"}));
   compile->add_option("--print-after", print_after, "Print the IR after this pass ('lower', a pass name or 'all') to stderr");
   compile->add_flag("--verify-ir", verify_ir, "Check the IR's invariants after every pass");
+  unsigned jobs = 1;
+  compile->add_option("-j,--jobs", jobs, "Compile this many files at once (each file's diagnostics stay together, in input order)")
+      ->check(CLI::Range(1u, 256u));
   add_machine_files(compile);
   add_input_options(compile);
 
@@ -200,11 +245,13 @@ int main(int argc, char** argv) {
     std::cerr << "clpc: error: -o names one output but " << inputs.size() << " inputs were given\n";
     return kUsage;
   }
-  bool ok = true;
-  for (const std::string& in : inputs) {
-    std::string out = !output.empty() ? output : opt.emit == Emit::Ir ? "-" : default_output(in, *machine);
-    CompileResult r = compile_file(in, out, *machine, opt, std::cerr);
-    ok = ok && r.ok;
+  auto output_for = [&](const std::string& in) {
+    return !output.empty() ? output : opt.emit == Emit::Ir ? "-" : default_output(in, *machine);
+  };
+  if (jobs <= 1 || inputs.size() <= 1) {
+    bool ok = true;
+    for (const std::string& in : inputs) ok = compile_file(in, output_for(in), *machine, opt, std::cerr).ok && ok;
+    return ok ? kOk : kFailed;
   }
-  return ok ? kOk : kFailed;
+  return compile_parallel(inputs, output_for, *machine, opt, jobs) ? kOk : kFailed;
 }

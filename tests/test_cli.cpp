@@ -155,3 +155,29 @@ TEST(Cli, ProgressBarOnlyOnATerminal) {
   EXPECT_THAT(tty, HasSubstr("big.cls: compile  [==============================] 100%"));
   EXPECT_THAT(tty, HasSubstr("\r\033[K"));
 }
+
+// -j N: files compiled at once, each file's diagnostics whole and in input order, the status
+// failing if any file fails, the good files written all the same.
+TEST(Cli, ParallelCompileKeepsDiagnosticsInInputOrder) {
+  TempDir t;
+  const std::string good = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,100\nGOTO/1,0,0\n";
+  write_file(t.path("a.cls"), good + "PPRINT A\n");
+  write_file(t.path("b.cls"), good + "GOTO/1,2,x\n");
+  write_file(t.path("c.cls"), good + "SPINDL/RPM,1000,SIDEWAYS\n");
+  write_file(t.path("d.cls"), good);
+  RunResult r = run_clpc("compile " + t.path("a.cls") + " " + t.path("b.cls") + " " + t.path("c.cls") + " " + t.path("d.cls") +
+                         " -t fanuc-mill -j 3");
+  EXPECT_EQ(r.status, 1);
+  const size_t b = r.err.find("b.cls:8:"), c = r.err.find("c.cls:8:");
+  ASSERT_NE(b, std::string::npos) << r.err;
+  ASSERT_NE(c, std::string::npos) << r.err;
+  EXPECT_LT(b, c);
+  EXPECT_TRUE(std::filesystem::exists(t.path("a.nc")));
+  EXPECT_FALSE(std::filesystem::exists(t.path("b.nc")));
+  EXPECT_TRUE(std::filesystem::exists(t.path("d.nc")));
+  // The same programs as one at a time.
+  TempDir u;
+  write_file(u.path("a.cls"), good + "PPRINT A\n");
+  ASSERT_EQ(run_clpc("compile " + u.path("a.cls") + " -t fanuc-mill").status, 0);
+  EXPECT_EQ(read_file(t.path("a.nc")), read_file(u.path("a.nc")));
+}
