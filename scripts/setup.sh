@@ -8,7 +8,7 @@
 set -euo pipefail
 
 build_pkgs=(cmake ninja-build g++ clang re2c bison pkg-config libeigen3-dev
-            libtomlplusplus-dev libgtest-dev libgmock-dev libcli11-dev libbenchmark-dev)
+            libtomlplusplus-dev libgtest-dev libgmock-dev libcli11-dev libbenchmark-dev time)
 test_pkgs=(linuxcnc-uspace chromium python3)
 
 want=("${build_pkgs[@]}")
