@@ -21,6 +21,7 @@ struct CompileOptions {
   bool verify_ir = false;
   std::optional<ir::Units> input_units;
   bool progress = false;  // a progress bar on a terminal's standard error, for large inputs
+  bool latin1 = false;    // --input-encoding latin1: comments and text in Latin-1
 };
 
 struct CompileResult {

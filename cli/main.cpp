@@ -89,9 +89,12 @@ int main(int argc, char** argv) {
     c->add_option("--machines", machine_files, "Machine descriptions (TOML) adding to or replacing the built-in ones")
         ->check(CLI::ExistingFile);
   };
+  std::string input_encoding = "utf-8";
   auto add_input_options = [&](CLI::App* c) {
     c->add_option("--input-units", input_units, "Units of the CL data when it has no UNITS record")
         ->check(CLI::IsMember({"mm", "inch"}));
+    c->add_option("--input-encoding", input_encoding, "Encoding of comments and text in the CL data (default utf-8)")
+        ->check(CLI::IsMember({"utf-8", "latin1"}));
     c->add_flag("--Werror", werror, "Treat warnings as errors");
   };
 
@@ -187,6 +190,7 @@ int main(int argc, char** argv) {
   opt.print_after = print_after;
   opt.input_units = parse_units(input_units);
   opt.progress = true;  // shown only on a terminal, for large inputs
+  opt.latin1 = input_encoding == "latin1";
   if (!print_after.empty() && print_after != "lower" && print_after != "all" && !find_pass(print_after)) {
     std::cerr << "clpc: error: --print-after: no pass named '" << print_after << "' (see 'clpc passes')\n";
     return kUsage;

@@ -75,8 +75,8 @@ class FrontEnd::Sink : public OperationSink {
   FrontEnd& f_;
 };
 
-FrontEnd::FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out)
-    : src_(src), info_(info), out_(out), diags_(nullptr) {
+FrontEnd::FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1)
+    : src_(src), info_(info), out_(out), latin1_(latin1), diags_(nullptr) {
   diags_.set_source(&src);
   diags_.set_deferred(true);
   thread_ = std::thread([this] { run(); });
@@ -91,7 +91,9 @@ void FrontEnd::run() {
   Sink sink(*this);
   try {
     Lowerer low(info_, diags_, sink);
-    parse_cl(src_, diags_, low);
+    ParseOptions po;
+    po.latin1 = latin1_;
+    parse_cl(src_, diags_, low, po);
     low.finish();
   } catch (const FatalError&) {
     // Too many errors, or the consumer stopped: what was found still goes over.

@@ -49,7 +49,7 @@ class PieceQueue {
 // Lowers `src` on its own thread into `out`.
 class FrontEnd {
  public:
-  FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out);
+  FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1 = false);
   ~FrontEnd();  // waits for the thread (stop the queue first to make it give up)
 
  private:
@@ -58,6 +58,7 @@ class FrontEnd {
   SourceFile& src_;
   const ir::ProgramInfo& info_;
   PieceQueue& out_;
+  bool latin1_;
   Diagnostics diags_;
   std::thread thread_;
 };

@@ -646,7 +646,9 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   ReferencePipeline pipe(pm, v);
   try {
     Lowerer low(info, quiet, pipe);
-    parse_cl(src, quiet, low);
+    ParseOptions po;
+    po.latin1 = opt.compile.latin1;
+    parse_cl(src, quiet, low, po);
     low.finish();
     v.finish();
   } catch (const FatalError&) {

@@ -1,6 +1,7 @@
 // The CL lexer: re2c rules, one block per mode. See lexer.h for the contract and
 // docs/cl-input.md for the lexical rules it implements.
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 
 #include "grammar/lexer.h"
@@ -65,6 +66,7 @@ int Lexer::fill() {
   if (size_t(cur_ - tok_) > kMaxToken) {
     // The token is too long to keep: drop what we have of it and remember. The rule that
     // ends up matching reports it and skips the record.
+    if (!overflow_) overflow_at_ = loc_of(tok_);
     overflow_ = true;
     tok_ = cur_;
   }
@@ -126,6 +128,34 @@ const unsigned char* match_num(const unsigned char* p, const unsigned char* e) {
   return p;
 }
 
+// The first byte of [b, e) that is not part of valid UTF-8 (no overlong forms, no
+// surrogates, nothing past U+10FFFF), or null.
+const unsigned char* invalid_utf8(const unsigned char* b, const unsigned char* e) {
+  while (b < e) {
+    unsigned char c = *b;
+    if (c < 0x80) {
+      ++b;
+      continue;
+    }
+    int n = 0;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (c >= 0xC2 && c <= 0xDF) n = 1;
+    else if (c == 0xE0) n = 2, lo = 0xA0;
+    else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) n = 2;
+    else if (c == 0xED) n = 2, hi = 0x9F;
+    else if (c == 0xF0) n = 3, lo = 0x90;
+    else if (c >= 0xF1 && c <= 0xF3) n = 3;
+    else if (c == 0xF4) n = 3, hi = 0x8F;
+    else return b;
+    if (e - b <= n) return b;
+    if (b[1] < lo || b[1] > hi) return b;
+    for (int i = 2; i <= n; ++i)
+      if (b[i] < 0x80 || b[i] > 0xBF) return b;
+    b += n + 1;
+  }
+  return nullptr;
+}
+
 bool is_ws(unsigned char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\r'; }
 
 }  // namespace
@@ -179,6 +209,22 @@ SourceLoc Lexer::loc_of(const unsigned char* p) const {
   return {line_, uint32_t(std::min<uint64_t>(col, UINT32_MAX))};
 }
 
+std::string Lexer::too_long() const {
+  return "line too long: a word, number or text of more than " + std::to_string(kMaxToken) + " characters";
+}
+
+// Comments and free text are UTF-8 (ASCII in practice): a byte that is not is reported where
+// it is, unless the file was declared Latin-1 (old CAM systems), where every byte is a letter.
+void Lexer::check_text(const unsigned char* b, const unsigned char* e, const char* what) {
+  if (latin1_) return;
+  if (const unsigned char* bad = invalid_utf8(b, e)) {
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", *bad);
+    report(loc_of(bad), std::string("invalid UTF-8 in a ") + what + ": byte " + hex +
+                            " (if the file is Latin-1, --input-encoding latin1 reads it)");
+  }
+}
+
 void Lexer::report(SourceLoc loc, const std::string& msg) {
   if (!diags_) return;
   if (data_comment_)
@@ -226,6 +272,7 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
   if (b < e && *b == '/') ++b;
   while (b < e && (*b == ' ' || *b == '\t')) ++b;
   while (e > b && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) --e;
+  check_text(b, e, "text");
   Symbol m = major(id, tok_, tok_ + keyword_len);
   pending_.emplace(Parser::make_TEXT(keep(b, e), loc_of(b)));
   mode_ = Mode::AfterComment;  // only the line end may follow
@@ -292,7 +339,7 @@ Lexer::Symbol Lexer::lex() {
 
 #define MAJOR(id)                                                        \
   {                                                                      \
-    if (overflow_) return error_token(loc_of(tok_), "line too long");    \
+    if (overflow_) return error_token(overflow_at_, too_long());    \
     if (!wanted_ || wanted_[int(MajorId::id)]) return major(MajorId::id, tok_, cur_); \
     skip_record();                                                       \
     continue;                                                            \
@@ -300,7 +347,7 @@ Lexer::Symbol Lexer::lex() {
 
 #define FREE_TEXT(id, n)                                                 \
   {                                                                      \
-    if (overflow_) return error_token(loc_of(tok_), "line too long");    \
+    if (overflow_) return error_token(overflow_at_, too_long());    \
     if (!wanted_ || wanted_[int(MajorId::id)]) return free_text_major(MajorId::id, n); \
     skip_record();                                                       \
     continue;                                                            \
@@ -449,7 +496,7 @@ Lexer::Symbol Lexer::lex_params() {
         return error_token(loc_of(tok_), "'$' continues a record only at the end of a line");
       }
       num {
-        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        if (overflow_) return error_token(overflow_at_, too_long());
         const char* b = reinterpret_cast<const char*>(tok_);
         const char* e = reinterpret_cast<const char*>(cur_);
         const char* digits = *b == '+' ? b + 1 : b;
@@ -468,19 +515,19 @@ Lexer::Symbol Lexer::lex_params() {
         return Parser::make_NUMBER(v, loc_of(tok_));
       }
       dword {
-        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        if (overflow_) return error_token(overflow_at_, too_long());
         return Parser::make_WORD(keep(tok_, cur_), loc_of(tok_));
       }
       numlike {
-        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        if (overflow_) return error_token(overflow_at_, too_long());
         return error_token(loc_of(tok_), "bad number '" + std::string(lexeme()) + "'");
       }
       pword {
-        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        if (overflow_) return error_token(overflow_at_, too_long());
         return Parser::make_WORD(keep(tok_, cur_), loc_of(tok_));
       }
       ['] [^'\n\x00]* ['] | ["] [^"\n\x00]* ["] {
-        if (overflow_) return error_token(loc_of(tok_), "line too long");
+        if (overflow_) return error_token(overflow_at_, too_long());
         return Parser::make_STRING(keep(tok_ + 1, cur_ - 1), loc_of(tok_));
       }
       ['"] { return error_token(loc_of(tok_), "unterminated string"); }
@@ -496,9 +543,10 @@ Lexer::Symbol Lexer::lex_comment() {
   mode_ = Mode::AfterComment;
   /*!re2c
     [^\n\x00]+ {
-      if (overflow_) return error_token(at, "comment too long");
+      if (overflow_) return error_token(at, too_long());
       const unsigned char* e = cur_;
       while (e > tok_ && e[-1] == '\r') --e;
+      check_text(tok_, e, "comment");
       return Parser::make_COMMENT(keep(tok_, e), at);
     }
     $ { return Parser::make_COMMENT(std::string_view(), at); }

@@ -37,6 +37,7 @@ class Lexer {
   };
   bool simple_record(Simple& s);
   void set_simple_records(bool on) { simple_on_ = on; }
+  void set_latin1(bool on) { latin1_ = on; }
 
   // True while the current record was written inside "$$->": its problems are warnings.
   bool in_data_comment() const { return data_comment_; }
@@ -65,6 +66,7 @@ class Lexer {
   Symbol major(MajorId id, const unsigned char* b, const unsigned char* e);
   Symbol free_text_major(MajorId id, size_t keyword_len);
   bool skip_record();               // to the end of the record; false at end of input
+  void check_text(const unsigned char* b, const unsigned char* e, const char* what);
   std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }
 
   SourceFile& src_;
@@ -82,6 +84,8 @@ class Lexer {
   uint64_t read_pos_ = 0;   // next file offset to read
   bool eof_ = false;
   bool overflow_ = false;   // a token outgrew kMaxToken
+  SourceLoc overflow_at_;   // where that token began
+  std::string too_long() const;
 
   uint32_t line_ = 1;
   uint64_t line_start_ = 0;  // file offset where the current line starts
@@ -89,6 +93,7 @@ class Lexer {
   bool data_comment_ = false;
   bool at_end_ = false;
   bool simple_on_ = true;
+  bool latin1_ = false;
   std::optional<Symbol> pending_;
   SourceLoc record_start_;
 

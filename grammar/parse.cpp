@@ -78,9 +78,10 @@ void ParseState::syntax_error(SourceLoc loc, const std::string& msg) {
 
 namespace {
 
-void run(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted, bool simple = true) {
+void run(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted, ParseOptions opt = {}) {
   grammar::ParseState st(src, diags, sink, wanted);
-  st.lexer.set_simple_records(simple);
+  st.lexer.set_simple_records(opt.simple_records);
+  st.lexer.set_latin1(opt.latin1);
   grammar::Parser parser(st);
   parser.parse();
 }
@@ -88,7 +89,7 @@ void run(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* want
 }  // namespace
 
 void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink, ParseOptions opt) {
-  run(src, &diags, sink, nullptr, opt.simple_records);
+  run(src, &diags, sink, nullptr, opt);
 }
 
 void prescan_cl(SourceFile& src, RecordSink& sink, const MajorSet& only) { run(src, nullptr, sink, only.on); }

@@ -19,6 +19,7 @@ struct MajorSet {
 // nothing is reported (the compile pass will): that is the cheap pre-scan.
 struct ParseOptions {
   bool simple_records = true;  // the lexer's fast path for MAJOR/numbers lines (off: all through the grammar)
+  bool latin1 = false;         // comments and text in Latin-1 rather than UTF-8
 };
 void parse_cl(SourceFile& src, Diagnostics& diags, RecordSink& sink, ParseOptions opt = {});
 void prescan_cl(SourceFile& src, RecordSink& sink, const MajorSet& only);

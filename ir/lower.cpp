@@ -54,6 +54,13 @@ void Lowerer::record(const Record& r) {
   }
 
   switch (r.id) {
+    case MajorId::Goto: case MajorId::Gohome: case MajorId::Godlta: case MajorId::Circle:
+      check_tool_loaded(r.loc);
+      break;
+    default: break;
+  }
+
+  switch (r.id) {
     case MajorId::Goto: lower_goto(r); return;
     case MajorId::From: lower_from(r); return;
     case MajorId::Gohome: lower_gohome(r); return;
@@ -65,6 +72,9 @@ void Lowerer::record(const Record& r) {
       close_operation();
       std::string name = r.params.empty() || r.params[0].is_number() ? std::string() : std::string(r.params[0].text);
       open_operation(std::move(name), r.loc);
+      tool_path_open_ = true;
+      tool_path_loc_ = r.loc;
+      tool_path_name_ = std::string(r.params.empty() || r.params[0].is_number() ? std::string_view() : r.params[0].text);
       op_tool_name_ = tool_name_of_tool_path(r);
       // NX often names the tool without loading it by number: load the number the pre-scan
       // gave that name here, before the operation's SPINDL (M06 stops the spindle).
@@ -81,7 +91,10 @@ void Lowerer::record(const Record& r) {
       }
       return;
     }
-    case MajorId::EndOfPath: close_operation(); return;
+    case MajorId::EndOfPath:
+      tool_path_open_ = false;
+      close_operation();
+      return;
 
     case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Select:
       lower_tool_change(r); return;
@@ -94,7 +107,11 @@ void Lowerer::record(const Record& r) {
     case MajorId::Opstop: ensure_operation(r.loc); push(r.loc, ir::Stop{ir::StopKind::Optional}); return;
     case MajorId::Stop: ensure_operation(r.loc); push(r.loc, ir::Stop{ir::StopKind::Program}); return;
     case MajorId::End: return;  // end of the part program: the program end is written at FINI / end of input
-    case MajorId::Fini: close_operation(); finished_ = true; return;
+    case MajorId::Fini:
+      tool_path_open_ = false;  // FINI ends what is open
+      close_operation();
+      finished_ = true;
+      return;
     case MajorId::Units: case MajorId::Unit: lower_units(r); return;
 
     case MajorId::Pprint: {
@@ -228,7 +245,24 @@ void Lowerer::finish() {
     d_.error(defining_loc_, "DEFSUB/" + std::to_string(defining_sub_) + " has no ENDSUB");
     defining_sub_ = -1;
   }
+  // NX closes every TOOL PATH with END-OF-PATH: a file that ends inside one was cut short, and
+  // the program would stop half way through the operation.
+  if (tool_path_open_)
+    d_.error(tool_path_loc_, "TOOL PATH" + (tool_path_name_.empty() ? std::string() : "/" + tool_path_name_) +
+                                 " has no END-OF-PATH: the file ends inside the operation (was it cut short?)");
   close_operation();
+}
+
+// Motion before any tool is loaded, in a file that loads tools: the machine would cut with
+// whatever tool is in the spindle, without its length offset. (Files that load no tool at all
+// are programs for the tool already there.)
+void Lowerer::check_tool_loaded(SourceLoc loc) {
+  if (tool_ >= 0 || info_.tools.empty() || reported_no_tool_) return;
+  reported_no_tool_ = true;
+  const ir::ToolInfo& first = info_.tools.front();
+  d_.error(loc, "motion before any tool is loaded; the file loads T" + std::to_string(first.number) +
+                    (first.first_use.valid() ? " at line " + std::to_string(first.first_use.line) : std::string()) +
+                    " later");
 }
 
 }  // namespace clpc

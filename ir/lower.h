@@ -42,6 +42,7 @@ class Lowerer : public RecordSink {
   void open_operation(std::string name, SourceLoc loc);
   void close_operation();
   void ensure_operation(SourceLoc loc);
+  void check_tool_loaded(SourceLoc loc);
   void flush_chunk();
   void unknown(const Record& r, std::string_view why, bool warn);
   void passthrough(const Record& r);
@@ -86,6 +87,10 @@ class Lowerer : public RecordSink {
 
   ir::Operation op_;
   bool op_open_ = false;
+  bool tool_path_open_ = false;   // an NX TOOL PATH not yet closed by END-OF-PATH
+  SourceLoc tool_path_loc_;
+  std::string tool_path_name_;
+  bool reported_no_tool_ = false;
   uint32_t op_count_ = 0;
   std::string op_tool_name_;     // tool named by TOOL PATH, if any
 

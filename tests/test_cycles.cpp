@@ -154,7 +154,7 @@ TEST(CycleErrors, UnknownWordAndStrayNumber) {
 
 TEST(CycleErrors, CycleWithoutOffWarnsAndCancels) {
   Machine m = machine("fanuc-mill");
-  std::string cl = std::string(kHead) + "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nEND-OF-PATH\nTOOL PATH/NEXT,TOOL,T2\nLOAD/TOOL,2\nGOTO/0,0,50\n";
+  std::string cl = std::string(kHead) + "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nEND-OF-PATH\nTOOL PATH/NEXT,TOOL,T2\nLOAD/TOOL,2\nGOTO/0,0,50\nEND-OF-PATH\n";
   Compiled d = compile_text(cl, m);
   ASSERT_TRUE(d.ok) << d.diags;
   EXPECT_THAT(d.diags, HasSubstr(":8:1: warning: CYCLE without CYCLE/OFF at the end of the operation: cancelled here"));

@@ -1,0 +1,231 @@
+// Bad input, run through the real binary: every case gets a compiler-style diagnostic with its
+// location, exit status 1, and no output file — never a crash, a hang or a half-written
+// program. And the output is safe: a compile killed while it writes leaves the old program
+// intact, its temporary file removed at once (SIGTERM) or by the next run (SIGKILL).
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <random>
+#include <regex>
+#include <thread>
+
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+struct Outcome {
+  int status = -1;
+  std::string err;
+  bool output_written = false;
+  bool temp_left = false;
+};
+
+// Compiles `name` (written with `bytes`) for fanuc-mill in a fresh directory, with a time
+// limit: a hang fails the test instead of stalling the suite.
+Outcome compile_bytes(const std::string& name, const std::string& bytes, const std::string& extra = {}) {
+  TempDir t;
+  write_file(t.path(name), bytes);
+  std::string out = t.path("out.nc");
+  RunResult r = run_clpc("compile " + t.path(name) + " -t fanuc-mill -o " + out + " " + extra);
+  Outcome o;
+  o.status = r.status;
+  o.err = r.err;
+  o.output_written = std::filesystem::exists(out);
+  for (auto& e : std::filesystem::directory_iterator(t.path("")))
+    if (e.path().filename().string().find(".clpc-") != std::string::npos) o.temp_left = true;
+  return o;
+}
+
+// The common verdict: refused with a located error, nothing written.
+void expect_refused(const Outcome& o, const std::string& located_error) {
+  EXPECT_EQ(o.status, 1) << o.err;
+  EXPECT_THAT(o.err, HasSubstr(located_error));
+  EXPECT_FALSE(o.output_written);
+  EXPECT_FALSE(o.temp_left);
+  EXPECT_EQ(o.err.find("Sanitizer"), std::string::npos) << o.err;
+}
+
+const std::string kHead = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\n";
+
+}  // namespace
+
+TEST(BadInput, EmptyFile) { expect_refused(compile_bytes("empty.cls", ""), "empty.cls:1:1: error: the file is empty"); }
+
+TEST(BadInput, BinaryGarbage) {
+  std::mt19937 rng(11);
+  std::string bytes(64 * 1024, '\0');
+  for (char& c : bytes) c = char(rng() & 0xFF);
+  Outcome o = compile_bytes("garbage.cls", bytes);
+  expect_refused(o, "garbage.cls:1:1: error:");
+  EXPECT_TRUE(std::regex_search(o.err, std::regex("garbage\\.cls:[0-9]+:[0-9]+: error: ")));
+  EXPECT_THAT(o.err, HasSubstr("fatal: too many errors (50), stopping"));
+}
+
+TEST(BadInput, TenMegabyteLine) {
+  expect_refused(compile_bytes("word.cls", std::string(10 << 20, 'A') + "\n"),
+                 "word.cls:1:1: error: line too long: a word, number or text of more than 65536 characters");
+  std::string numbers = "GOTO/1.5";
+  while (numbers.size() < size_t(10 << 20)) numbers += ",1.5";
+  expect_refused(compile_bytes("numbers.cls", kHead + numbers + "\n"), "numbers.cls:5:16390: error: record has more than 4096 parameters");
+}
+
+TEST(BadInput, NulBytes) {
+  expect_refused(compile_bytes("nul.cls", kHead + std::string("GOTO/1,2\0,3\n", 12)), "nul.cls:5:9: error: unexpected NUL byte in a record");
+}
+
+// Comments and text must be UTF-8: a Latin-1 byte is an error at its place, which names the
+// way out; declared Latin-1, the file compiles.
+TEST(BadInput, InvalidUtf8InComments) {
+  const std::string cl = kHead + "$$ caf\xE9 cr\xE8me\nPPRINT bad \xFF text\nRAPID\nGOTO/1,2,3\nGOTO/4,5,6\n";
+  Outcome o = compile_bytes("utf8.cls", cl);
+  expect_refused(o, "utf8.cls:5:7: error: invalid UTF-8 in a comment: byte 0xE9 (if the file is Latin-1, --input-encoding latin1 reads it)");
+  EXPECT_THAT(o.err, HasSubstr("utf8.cls:6:12: error: invalid UTF-8 in a text: byte 0xFF"));
+  Outcome ok = compile_bytes("utf8.cls", cl, "--input-encoding latin1");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_TRUE(ok.output_written);
+  // Valid UTF-8 is fine as it is.
+  EXPECT_EQ(compile_bytes("ok.cls", kHead + "$$ caf\xC3\xA9\nRAPID\nGOTO/1,2,3\n").status, 0);
+}
+
+TEST(BadInput, NumbersThatAreNot) {
+  expect_refused(compile_bytes("a.cls", kHead + "GOTO/1e999,0,0\n"), "a.cls:5:6: error: number out of range: '1e999'");
+  expect_refused(compile_bytes("b.cls", kHead + "GOTO/nan,0,0\n"), "b.cls:5:6: error: GOTO: expected a number, found 'nan'");
+  expect_refused(compile_bytes("c.cls", kHead + "GOTO/--1,0,0\n"), "c.cls:5:6: error: bad number '--1'");
+  expect_refused(compile_bytes("d.cls", kHead + "GOTO/1.2.3,0,0\n"), "d.cls:5:6: error: bad number '1.2.3'");
+  expect_refused(compile_bytes("e.cls", kHead + "GOTO/inf,0,0\n"), "e.cls:5:6: error: GOTO: expected a number, found 'inf'");
+}
+
+TEST(BadInput, CircleWithoutGoto) {
+  expect_refused(compile_bytes("circle.cls", kHead + "GOTO/0,0,0\nCIRCLE/0,0,0,0,0,1,5,0.01,0.5,10,0\nFINI\n"),
+                 "circle.cls:6:1: error: CIRCLE is not followed by a GOTO giving its end point");
+}
+
+// Motion before the first tool in a file that loads tools later; a file that loads none is
+// a program for the tool already in the spindle.
+TEST(BadInput, GotoBeforeAnyToolIsLoaded) {
+  expect_refused(compile_bytes("notool.cls", "UNITS/MM\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/1,0,0\nLOADTL/1\nSPINDL/RPM,100,CLW\nGOTO/2,0,0\n"),
+                 "notool.cls:4:1: error: motion before any tool is loaded; the file loads T1 at line 6 later");
+  Outcome none = compile_bytes("none.cls", "UNITS/MM\nSPINDL/RPM,100,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/1,0,0\n");
+  EXPECT_EQ(none.status, 0) << none.err;
+}
+
+TEST(BadInput, ContinuationAtEndOfFile) {
+  expect_refused(compile_bytes("dollar.cls", kHead + "GOTO/1,2,$"), "dollar.cls:5:10: error: unterminated continuation: '$' at the end of the file");
+}
+
+TEST(BadInput, UnterminatedOperation) {
+  expect_refused(compile_bytes("cut.cls", "UNITS/MM\nTOOL PATH/ROUGH,TOOL,EM10\nLOAD/TOOL,1\nSPINDL/RPM,100,CLW\nRAPID\nGOTO/0,0,5\n"),
+                 "cut.cls:2:1: error: TOOL PATH/ROUGH has no END-OF-PATH: the file ends inside the operation (was it cut short?)");
+  expect_refused(compile_bytes("sub.cls", kHead + "DEFSUB/1\nGOTO/1,2,3\n"), "sub.cls:5:1: error: DEFSUB/1 has no ENDSUB");
+}
+
+TEST(BadInput, NestedSubroutineDefinitions) {
+  expect_refused(compile_bytes("nested.cls", kHead + "DEFSUB/1\nGOTO/1,2,3\nDEFSUB/2\nGOTO/1,2,3\nENDSUB\nENDSUB\nCALSUB/1\n"),
+                 "nested.cls:7:1: error: DEFSUB inside DEFSUB/1: subroutine definitions cannot nest");
+}
+
+// Machine descriptions: an inheritance cycle and absurd values, each at its line and column.
+TEST(BadInput, MachineDescriptions) {
+  TempDir t;
+  write_file(t.path("part.cls"), kHead + "RAPID\nGOTO/1,2,3\n");
+  auto run = [&](const std::string& name, const std::string& toml, const std::string& target) {
+    write_file(t.path(name), toml);
+    return run_clpc("compile " + t.path("part.cls") + " -t " + target + " --machines " + t.path(name) + " -o " + t.path("out.nc"));
+  };
+  RunResult cycle = run("cycle.toml", "[a]\ninherits = \"b\"\n[b]\ninherits = \"a\"\n", "a");
+  EXPECT_EQ(cycle.status, 1);
+  EXPECT_THAT(cycle.err, HasSubstr("cycle.toml:4:12: error: b.inherits: inheritance cycle: a -> b -> a"));
+  RunResult neg = run("neg.toml", "[m]\ninherits = \"fanuc-mill\"\n[m.format]\nX = { decimals = -2 }\n", "m");
+  EXPECT_EQ(neg.status, 1);
+  EXPECT_THAT(neg.err, HasSubstr("neg.toml:4:18: error: m.format.X.decimals: expected an integer from 0 to 9, found -2"));
+  RunResult minmax = run("minmax.toml",
+                         "[m]\ninherits = \"haas-umc750\"\n[[m.kinematics.axes]]\nname = \"A\"\naxis = [1.0, 0.0, 0.0]\nmin = 90.0\nmax = -90.0\n", "m");
+  EXPECT_EQ(minmax.status, 1);
+  EXPECT_THAT(minmax.err, HasSubstr("minmax.toml:7:7: error: m.kinematics.axes[0].max: must be more than min (90)"));
+  RunResult huge = run("huge.toml", "[m]\ninherits = \"fanuc-mill\"\n[m.arcs]\ntolerance = 1e300\n", "m");
+  EXPECT_EQ(huge.status, 1);
+  EXPECT_THAT(huge.err, HasSubstr("huge.toml:4:13: error: m.arcs.tolerance: expected a number greater than 0 and at most 1000000"));
+  EXPECT_FALSE(std::filesystem::exists(t.path("out.nc")));
+}
+
+// --- output safety ---------------------------------------------------------------------------
+
+namespace {
+
+// A CL file big enough that writing its program takes a while (about 60 MB in).
+std::string big_cl() {
+  std::string s = kHead + "RAPID\nGOTO/0,0,10\n";
+  char b[64];
+  for (int i = 0; s.size() < size_t(60) << 20; ++i) {
+    std::snprintf(b, sizeof b, "GOTO/%.4f,%.4f,-1.0000\n", (i % 1000) * 0.1, (i / 1000 % 1000) * 0.1);
+    s += b;
+  }
+  return s;
+}
+
+bool temp_beside(const std::string& dir) {
+  for (auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().filename().string().find(".clpc-") != std::string::npos) return true;
+  return false;
+}
+
+// Starts clpc on `in` -> `out`, waits until its temporary output exists, kills it with `sig`.
+void kill_while_writing(const std::string& in, const std::string& out, const std::string& dir, int sig) {
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, 2);
+    execl(CLPC_BINARY, "clpc", "compile", in.c_str(), "-t", "fanuc-mill", "-o", out.c_str(), nullptr);
+    _exit(127);
+  }
+  auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!temp_beside(dir) && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // well into the writing
+  kill(pid, sig);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  EXPECT_TRUE(WIFSIGNALED(st)) << "clpc finished before it could be killed";
+}
+
+}  // namespace
+
+TEST(OutputSafety, KilledMidWriteLeavesTheOldProgram) {
+  TempDir t;
+  const std::string dir = t.path(""), in = t.path("big.cls"), out = t.path("part.nc");
+  write_file(in, big_cl());
+  const std::string old_program = "%\nO0001 (THE PROGRAM FROM YESTERDAY)\nM30\n%\n";
+  write_file(out, old_program);
+
+  // SIGTERM: the handler removes the temporary file before clpc dies.
+  kill_while_writing(in, out, dir, SIGTERM);
+  EXPECT_EQ(read_file(out), old_program);
+  EXPECT_FALSE(temp_beside(dir));
+
+  // SIGKILL cannot be caught: the temporary file stays, the old program is intact, and the
+  // next run writing beside it removes the dead run's leftovers.
+  kill_while_writing(in, out, dir, SIGKILL);
+  EXPECT_EQ(read_file(out), old_program);
+  EXPECT_TRUE(temp_beside(dir));
+  write_file(t.path("small.cls"), kHead + "RAPID\nGOTO/1,2,3\n");
+  RunResult next = run_clpc("compile " + t.path("small.cls") + " -t fanuc-mill -o " + out);
+  EXPECT_EQ(next.status, 0) << next.err;
+  EXPECT_FALSE(temp_beside(dir));
+  EXPECT_THAT(read_file(out), HasSubstr("X1. Y2."));
+}
+
+TEST(OutputSafety, RefusesToOverwriteItsInput) {
+  TempDir t;
+  write_file(t.path("part.cls"), kHead + "RAPID\nGOTO/1,2,3\n");
+  RunResult r = run_clpc("compile " + t.path("part.cls") + " -t fanuc-mill -o " + t.path("part.cls"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("is the input file; refusing to overwrite it"));
+  EXPECT_EQ(read_file(t.path("part.cls")), kHead + "RAPID\nGOTO/1,2,3\n");
+}
