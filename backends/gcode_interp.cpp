@@ -373,11 +373,15 @@ class Interp {
     auto z = [&](double zz) { return Vec3(target.x(), target.y(), zz); };
     seg(Segment::Kind::Rapid, z(cyc_r_));
     double d = m_.cycles.peck_clearance;
-    if (cycle_ == 83 || cycle_ == 73) {
+    if ((cycle_ == 83 || cycle_ == 73) && cyc_q_ > 0 && (cyc_r_ - cyc_bottom_) / cyc_q_ > 100000) {
+      problem(line, "peck cycle with Q so small it would peck more than 100000 times");
+      seg(Segment::Kind::Feed, z(cyc_bottom_));
+    } else if (cycle_ == 83 || cycle_ == 73) {
       if (!(cyc_q_ > 0)) problem(line, "peck cycle without Q");
       double depth = cyc_r_;
       while (cyc_q_ > 0 && depth > cyc_bottom_ + 1e-9) {
         double next = std::max(cyc_bottom_, depth - cyc_q_);
+        if (next == depth) next = cyc_bottom_;  // a peck lost in the rounding of large coordinates
         if (depth < cyc_r_ && cycle_ == 83) seg(Segment::Kind::Rapid, z(depth + d));
         seg(Segment::Kind::Feed, z(next));
         depth = next;
@@ -420,7 +424,12 @@ class Interp {
     Vec3 end(std::isnan(target.x()) ? start.x() : target.x(), 0, std::isnan(target.z()) ? start.z() : target.z());
     ++res_.cycles;
     res_.events.push_back({Event::Kind::CycleStart, line, double(groove_)});
-    for (const groove::Step& st : groove::expand(start, end, p)) {
+    const std::vector<groove::Step> steps = groove::expand(start, end, p);
+    if (steps.empty()) {
+      problem(line, "G" + std::to_string(groove_) + ": P and Q so small the cycle would make more than a million moves");
+      return;
+    }
+    for (const groove::Step& st : steps) {
       Segment s;
       s.kind = st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid;
       s.start = pos_;

@@ -416,10 +416,12 @@ void read_format(Reader r, AddressFormat& f) {
   r.boolean("leading_zero", f.leading_zero);
   r.boolean("trailing_zeros", f.trailing_zeros);
   r.integer("digits", f.digits, 0, 12);
-  if (const toml::node* n = r.find("scale"); n && n->is_number() && *n->value<double>() == 0)
-    r.error(*n, "scale", "expected a non-zero number, found 0");
+  // A scale is a diameter's 2 or a sign change, not a way to lose every digit.
+  if (const toml::node* n = r.find("scale"); n && n->is_number() &&
+                                             !(std::abs(*n->value<double>()) >= 1e-3 && std::abs(*n->value<double>()) <= 1e3))
+    r.error(*n, "scale", "expected a number from 0.001 to 1000 (or -1000 to -0.001), found " + num_text(*n->value<double>()));
   else
-    r.number("scale", f.scale, -1e6, 1e6);
+    r.number("scale", f.scale, -1e3, 1e3);
   r.boolean("plus", f.plus);
   r.finish();
 }
@@ -521,15 +523,15 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       }
     }
     s->boolean("helical", a.helical);
-    s->number("max_sweep", a.max_sweep, 0, 360, true);
-    s->number("helix_max_sweep", a.helix_max_sweep, 0, 360, true);
+    s->number("max_sweep", a.max_sweep, 1, 360);
+    s->number("helix_max_sweep", a.helix_max_sweep, 1, 360);
     s->number("min_radius", a.min_radius, 0, 1e9);
     s->number("max_radius", a.max_radius, 0, 1e9);
     if (a.max_radius > 0 && a.max_radius < a.min_radius)
       s->error(*s->find("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
     int ctr = s->choice("center", {"incremental", "absolute", "radius"});
     if (ctr >= 0) a.center = ArcCenter(ctr);
-    s->number("tolerance", a.tolerance, 0, 1e6, true);
+    s->number("tolerance", a.tolerance, 1e-6, 1e3);
     s->finish();
   }
   if (auto s = r.sub("modal")) {

@@ -448,7 +448,12 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
     e_.word('Y', o.y());
     e_.word('Z', want.bottom);
     e_.word('R', want.r);
-    if (want.peck > 0) e_.word('Q', want.peck);
+    if (want.peck > 0) {
+      // Q0 would be an alarm (or an endless cycle): a peck must survive the rounding.
+      if (e_.round('Q', want.peck).q == 0)
+        d_.error(loc, "the peck depth " + num_text(want.peck) + " rounds to Q0 at machine '" + m_.name + "''s resolution");
+      e_.word('Q', want.peck);
+    }
     if (want.dwell > 0)
       e_.code(k.cycle_dwell_word, TemplateVars().with(Var::Seconds, want.dwell).with(Var::Milliseconds, want.dwell * 1000));
     e_.word('F', want.feed);

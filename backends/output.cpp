@@ -140,6 +140,7 @@ bool OutputFile::open(const std::string& path, std::string& error) {
 }
 
 void OutputFile::flush() {
+  if (null_) buf_.clear();
   if (fd_ < 0 || buf_.empty()) return;
   if (!thread_.joinable()) {
     writing_.reserve(kBuffer);

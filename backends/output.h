@@ -22,6 +22,8 @@ class OutputFile {
   // Creates the temporary file for `path` ("-" = standard output). Also removes temporary
   // files that earlier clpc runs, now dead, left beside `path`.
   bool open(const std::string& path, std::string& error);
+  // Writes nowhere (fuzzing, benchmarks of the backend alone): what is written is dropped.
+  void open_null() { null_ = true; }
   void write(std::string_view s) {
     if (buf_.size() + s.size() > kBuffer) flush();
     buf_.append(s);
@@ -42,6 +44,7 @@ class OutputFile {
   std::string path_, temp_;
   int fd_ = -1;
   bool to_stdout_ = false;
+  bool null_ = false;
   bool failed_ = false;
   int errno_ = 0;
   std::string buf_;

@@ -1,5 +1,6 @@
 // The CL lexer: re2c rules, one block per mode. See lexer.h for the contract and
 // docs/cl-input.md for the lexical rules it implements.
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -48,13 +49,21 @@ std::string describe(unsigned char c) {
   text    = [^\n\x00]*;
 */
 
+namespace {
+// Small files get small buffers (tests, fuzzing, the many short CL files): the window need
+// only hold the file or twice the longest token, the arena only the file's text.
+size_t window_for(uint64_t size) { return size_t(std::clamp<uint64_t>(size + 1, 2 * Lexer::kMaxToken + 1, kWindow)); }
+size_t arena_for(uint64_t size) { return size_t(std::clamp<uint64_t>(size + 1, 4096, Lexer::kArenaSize)); }
+}  // namespace
+
 Lexer::Lexer(SourceFile& src, Diagnostics* diags, const bool* wanted)
     : src_(src),
       diags_(diags),
       wanted_(wanted),
-      buf_(new unsigned char[kWindow + 1]),
-      cap_(kWindow),
-      arena_(new char[kArenaSize]) {
+      buf_(new unsigned char[window_for(src.size()) + 1]),
+      cap_(window_for(src.size())),
+      arena_(new char[arena_for(src.size())]),
+      arena_cap_(arena_for(src.size())) {
   cur_ = lim_ = tok_ = mar_ = ctx_ = buf_.get();
   buf_[0] = 0;
   src_.note_line_start(1, 0);
@@ -235,7 +244,7 @@ void Lexer::report(SourceLoc loc, const std::string& msg) {
 
 std::string_view Lexer::keep(const unsigned char* b, const unsigned char* e) {
   size_t n = size_t(e - b);
-  if (arena_used_ + n > kArenaSize) {
+  if (arena_used_ + n > arena_cap_) {
     if (!arena_full_) report(record_start_, "record too long (its text exceeds 1 MiB)");
     arena_full_ = true;
     return {};

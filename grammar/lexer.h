@@ -98,6 +98,7 @@ class Lexer {
   SourceLoc record_start_;
 
   std::unique_ptr<char[]> arena_;
+  size_t arena_cap_;
   size_t arena_used_ = 0;
   bool arena_full_ = false;
 };

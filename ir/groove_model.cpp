@@ -18,11 +18,15 @@ std::vector<Step> expand(const ir::Vec3& start, const ir::Vec3& end, const Param
   const double dp = p1 > p0 ? 1 : -1, ds = s1 > s0 ? 1 : -1;
   const double eps = 1e-9 * std::max(1.0, std::abs(p1 - p0) + std::abs(s1 - s0));
   std::vector<Step> out;
+  const double stations = step > 0 ? std::ceil(std::abs(s1 - s0) / step) + 1 : 1;
+  const double pecks = peck > 0 ? std::ceil(std::abs(p1 - p0) / peck) + 1 : 1;
+  if (!(stations * pecks <= kMaxSteps / 4)) return out;  // absurd P or Q: the caller says so
   double s = s0;
-  for (int station = 0; station < 100000; ++station) {
+  for (int station = 0;; ++station) {
     double x = p0;
-    for (int k = 0; k < 100000; ++k) {
+    for (;;) {
       double next = peck > 0 ? x + dp * std::min(peck, std::abs(p1 - x)) : p1;
+      if (next == x) next = p1;  // a peck lost in the rounding of large coordinates
       out.push_back({at(next, s), true});
       x = next;
       if (std::abs(p1 - x) <= eps) break;
@@ -35,7 +39,8 @@ std::vector<Step> expand(const ir::Vec3& start, const ir::Vec3& end, const Param
     }
     out.push_back({at(p0, s_here), false});
     if (std::abs(s1 - s) <= eps || step <= 0) break;
-    s += ds * std::min(step, std::abs(s1 - s));
+    const double moved = s + ds * std::min(step, std::abs(s1 - s));
+    s = moved == s ? s1 : moved;
     out.push_back({at(p0, s), false});
   }
   out.push_back({start, false});

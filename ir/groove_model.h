@@ -26,7 +26,9 @@ struct Step {
 
 // From `start` (where the tool is when the cycle starts) to the far corner `end`: plunges to
 // end's depth at stations from start to end, stepping by the shift amount (the last step is
-// shortened to land on end), then back to start.
+// shortened to land on end), then back to start. Empty when the amounts are so small that
+// the cycle would take more than kMaxSteps moves.
+constexpr double kMaxSteps = 1e6;
 std::vector<Step> expand(const ir::Vec3& start, const ir::Vec3& end, const Params& p);
 
 }  // namespace clpc::groove

@@ -13,6 +13,10 @@
 namespace clpc {
 
 namespace {
+constexpr double kMaxPecks = 10000;
+}  // namespace
+
+namespace {
 
 std::string upper(std::string_view s) {
   std::string u(s);
@@ -140,6 +144,13 @@ void Lowerer::lower_cycle(const Record& r) {
   if (c.kind == ir::CycleKind::Peck || c.kind == ir::CycleKind::ChipBreak) {
     if (!(c.peck > 0)) {
       d_.error(r.loc, "CYCLE/" + kind + ": a peck cycle needs a peck depth (STEP or 1STPECK) greater than zero");
+      return;
+    }
+    // Bounded: a hole written as moves (or read back) takes one peck per step.
+    const double smallest = c.peck_next > 0 ? std::min(c.peck, c.peck_next) : c.peck;
+    if (std::abs(c.depth) / smallest > kMaxPecks) {
+      d_.error(r.loc, "CYCLE/" + kind + ": a peck depth of " + num_text(smallest) + " makes more than " +
+                          std::to_string(long(kMaxPecks)) + " pecks per hole of depth " + num_text(std::abs(c.depth)));
       return;
     }
   } else if (c.peck > 0 && c.kind == ir::CycleKind::Drill) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ir/arc_geometry.h"
+#include "ir/params.h"
 
 namespace clpc::arcedit {
 
@@ -21,10 +22,17 @@ void split(const ir::Arc& a, int n, SourceLoc loc, std::vector<ir::Instr>& out) 
   }
 }
 
-void linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Instr>& out) {
+bool linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Instr>& out, Diagnostics& d) {
   double r = std::max(arcgeo::radial(a, a.start).norm(), arcgeo::radial(a, a.end).norm());
   double step = arcgeo::sweep_for_chord_error(r, tol);
-  int n = std::max(1, int(std::ceil(a.sweep / step)));
+  const double pieces = std::ceil(a.sweep / step);
+  if (!(pieces <= kMaxPieces)) {
+    d.error(loc, "this arc (radius " + num_text(r) + ", " + num_text(a.sweep) + " degrees) would need " +
+                     (std::isfinite(pieces) ? num_text(pieces) : std::string("countless")) + " lines within the tolerance of " +
+                     num_text(tol) + "; at most " + std::to_string(long(kMaxPieces)) + " are written");
+    return false;
+  }
+  int n = std::max(1, int(pieces));
   for (int i = 1; i <= n; ++i) {
     ir::Move m;
     m.point = i == n ? a.end : arcgeo::point_at(a, double(i) / n);
@@ -34,6 +42,7 @@ void linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Inst
     m.rotary = a.rotary;
     out.push_back(ir::Instr{loc, m});
   }
+  return true;
 }
 
 }  // namespace clpc::arcedit

@@ -5,14 +5,17 @@
 #include <iterator>
 #include <vector>
 
+#include "ir/diagnostics.h"
 #include "ir/ir.h"
 
 namespace clpc::arcedit {
 
 // `n` arcs of equal sweep that together make `a` (a decided arc; helices rise evenly).
 void split(const ir::Arc& a, int n, SourceLoc loc, std::vector<ir::Instr>& out);
-// Feed moves along `a` whose chords stay within `tol` of it.
-void linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Instr>& out);
+// Feed moves along `a` whose chords stay within `tol` of it: false (an error reported, nothing
+// written) when that would take more than kMaxPieces lines — an absurd radius or tolerance.
+constexpr double kMaxPieces = 1e6;
+bool linearise(const ir::Arc& a, double tol, SourceLoc loc, std::vector<ir::Instr>& out, Diagnostics& d);
 // Rebuilds op.body, replacing each instruction by what `edit` writes for it (returns false
 // to keep the instruction as it is).
 // Nothing is copied until the first edit; the buffers are kept for the next operation.

@@ -64,7 +64,7 @@ class ArcLegalise : public Pass {
       }
       bool radius_ok = (s.min_radius <= 0 || r >= s.min_radius * to_prog) && (s.max_radius <= 0 || r <= s.max_radius * to_prog);
       if (!plane_ok(s, a->axis) || !radius_ok) {
-        arcedit::linearise(*a, tol, in.loc, out);
+        if (!arcedit::linearise(*a, tol, in.loc, out, ctx.diags)) out.push_back(in);
         return true;
       }
       double limit = s.max_sweep;

@@ -30,7 +30,7 @@ class Helix : public Pass {
       bool helical = rise > rise_tol;
       if (!helical && a->extra_turns == 0) return false;
       if (helical && !s.helical) {
-        arcedit::linearise(*a, tol, in.loc, out);
+        if (!arcedit::linearise(*a, tol, in.loc, out, ctx.diags)) out.push_back(in);
         return true;
       }
       double limit = helical ? s.helix_max_sweep : s.max_sweep;

@@ -477,7 +477,7 @@ class Kinematics : public Pass {
       // Under TCPC the control is given part-frame points: lines within tolerance are safe
       // whatever the tool's tilt.
       std::vector<ir::Instr> lines;
-      arcedit::linearise(a, ctx_->tolerance(), loc, lines);
+      if (!arcedit::linearise(a, ctx_->tolerance(), loc, lines, *d_)) return;
       for (ir::Instr& in : lines) motion(std::get<ir::Move>(in.op), in.loc, out);
       return;
     }

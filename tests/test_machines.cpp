@@ -56,7 +56,7 @@ TEST(MachineErrors, ValueOutOfRange) {
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\n[m.format]\nX = { decimals = -1 }\n")),
             "shop.toml:4:18: error: m.format.X.decimals: expected an integer from 0 to 9, found -1");
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\n[m.arcs]\ntolerance = 0\n")),
-            "shop.toml:4:13: error: m.arcs.tolerance: expected a number greater than 0 and at most 1000000, found 0");
+            "shop.toml:4:13: error: m.arcs.tolerance: expected a number at least 1e-06 and at most 1000, found 0");
 }
 
 TEST(MachineErrors, UnknownKey) {
@@ -72,7 +72,7 @@ TEST(MachineErrors, BadFormatSpec) {
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\n[m.format]\nXX = { decimals = 3 }\n")),
             "shop.toml:4:1: error: m.format.XX: expected an address letter A-Z");
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\n[m.format]\nX = { scale = 0 }\n")),
-            "shop.toml:4:15: error: m.format.X.scale: expected a non-zero number, found 0");
+            "shop.toml:4:15: error: m.format.X.scale: expected a number from 0.001 to 1000 (or -1000 to -0.001), found 0");
 }
 
 TEST(MachineErrors, UnknownPassName) {
