@@ -352,17 +352,8 @@ class Interp {
     ++res_.cycles;
     res_.events.push_back({Event::Kind::CycleStart, line, double(cycle_)});
     auto seg = [&](Segment::Kind k, const Vec3& to) {
-      Segment s;
-      s.kind = k;
-      s.start = pos_;
-      s.end = to;
-      s.line = line;
-      s.tool = tool_;
-      s.work_offset = work_offset_;
-      s.rotary = s.rotary_start = rotary_;
-      s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
+      Segment s = segment(k, to, rotary_, line);
       s.from_cycle = true;
-      spindle_info(s);
       res_.segments.push_back(s);
       pos_ = to;
     };
@@ -430,15 +421,8 @@ class Interp {
       return;
     }
     for (const groove::Step& st : steps) {
-      Segment s;
-      s.kind = st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid;
-      s.start = pos_;
-      s.end = st.to;
-      s.line = line;
-      s.tool = tool_;
-      s.feed = st.cut ? feed_ : 0;
+      Segment s = segment(st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid, st.to, rotary_, line);
       s.from_cycle = true;
-      spindle_info(s);
       res_.segments.push_back(s);
       pos_ = st.to;
     }
@@ -502,10 +486,12 @@ class Interp {
     res_.events.push_back(e);
   }
 
-  void move(const Vec3& target, const std::array<double, 3>& rot, const Words& a, int line) {
+  // A segment from where the tool is, with the modal state it runs in.
+  Segment segment(Segment::Kind k, const Vec3& to, const std::array<double, 3>& rot, int line) const {
     Segment s;
+    s.kind = k;
     s.start = pos_;
-    s.end = target;
+    s.end = to;
     s.rotary_start = rotary_;
     s.rotary = rot;
     s.line = line;
@@ -514,12 +500,19 @@ class Interp {
     s.inverse_time = inverse_time_;
     s.tcp = tcp_;
     s.dwo = dwo_;
+    s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
     spindle_info(s);
+    return s;
+  }
+
+  void move(const Vec3& target, const std::array<double, 3>& rot, const Words& a, int line) {
+    Segment s = segment(Segment::Kind::Feed, target, rot, line);
     bool moves_z = (a.count('Z') || a.count('W')) && !(std::abs(target.z() - pos_.z()) < 1e-12);
     if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && moves_z && !m_.codes.length_offset.empty())
       problem(line, "Z moves with no tool length compensation (G43) for the tool in the spindle");
     if (motion_ == Motion::Rapid) {
       s.kind = Segment::Kind::Rapid;
+      s.feed = 0;
     } else {
       if (!(feed_ > 0)) problem(line, "cutting move with no feed rate (F)");
       if (inverse_time_ && !a.count('F')) problem(line, "inverse time (G93) needs F in every cutting block");

@@ -251,22 +251,11 @@ class View {
 PlotResult plot_file(const std::string& input, const std::string& output, const Machine& m, const PlotOptions& opt,
                      std::ostream& err) {
   PlotResult res;
-  SourceFile src;
+  CompiledProgram cp;
+  if (!compile_for_readback(input, m, opt.compile, {}, opt.program, err, cp)) return res;
+  const CompileResult& cr = cp.compiled;
+  const std::string& program = cp.path;
   std::string why;
-  if (!src.open(input, why)) {
-    err << "clpc: error: " << why << "\n";
-    return res;
-  }
-  TempProgram temp;
-  if (temp.path().empty()) {
-    err << "clpc: error: cannot create a temporary file for the program\n";
-    return res;
-  }
-  CompileOptions co = opt.compile;
-  co.emit = Emit::Gcode;
-  CompileResult cr = compile_source(src, temp.path(), m, co, err);
-  if (!cr.ok) return res;
-  const std::string program = opt.program.empty() ? temp.path() : opt.program;
 
   // Pass 1: the extent.
   Box box;

@@ -29,6 +29,24 @@ TempProgram::~TempProgram() {
   if (!path_.empty()) std::remove(path_.c_str());
 }
 
+bool compile_for_readback(const std::string& input, const Machine& m, CompileOptions opt, const std::string& keep,
+                          const std::string& given, std::ostream& err, CompiledProgram& out) {
+  std::string why;
+  if (!out.source.open(input, why)) {
+    err << "clpc: error: " << why << "\n";
+    return false;
+  }
+  const std::string target = keep.empty() ? out.temp.path() : keep;
+  if (target.empty()) {
+    err << "clpc: error: cannot create a temporary file for the program\n";
+    return false;
+  }
+  opt.emit = Emit::Gcode;
+  out.compiled = compile_source(out.source, target, m, opt, err);
+  out.path = given.empty() ? target : given;
+  return out.compiled.ok;
+}
+
 ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m) {
   use_offsets_ = !info.offsets.empty();
   if (use_offsets_) {

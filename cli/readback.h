@@ -7,11 +7,14 @@
 
 #include <cstdio>
 #include <map>
+#include <ostream>
 #include <string>
 
 #include "backends/gcode_interp.h"
 #include "backends/kinematics.h"
 #include "backends/machine.h"
+#include "cli/driver.h"
+#include "ir/source.h"
 #include "ir/ir.h"
 
 namespace clpc {
@@ -47,6 +50,18 @@ class TempProgram {
  private:
   std::string path_;
 };
+
+// The program to read back: `input` compiled for `m` into `keep` (or a temporary file), or,
+// with `given`, that program instead (clpc's compile still gives the tables). False, with the
+// reason on `err`, when the input cannot be read or does not compile.
+struct CompiledProgram {
+  SourceFile source;
+  TempProgram temp;
+  CompileResult compiled;
+  std::string path;  // the program to read
+};
+bool compile_for_readback(const std::string& input, const Machine& m, CompileOptions opt, const std::string& keep,
+                          const std::string& given, std::ostream& err, CompiledProgram& out);
 
 class ProgramReader {
  public:

@@ -600,26 +600,14 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   rep.tolerance = opt.tolerance > 0 ? opt.tolerance : default_tolerance(m);
   rep.axis_tolerance = opt.axis_tolerance;
 
-  SourceFile src;
-  std::string why;
-  if (!src.open(input, why)) {
-    err << "clpc: error: " << why << "\n";
-    return rep;
-  }
-  TempProgram temp;
-  const std::string program = opt.keep.empty() ? temp.path() : opt.keep;
-  if (program.empty()) {
-    err << "clpc: error: cannot create a temporary file for the program\n";
-    return rep;
-  }
-  CompileOptions co = opt.compile;
-  co.emit = Emit::Gcode;
-  CompileResult cr = compile_source(src, program, m, co, err);
-  if (!cr.ok) return rep;
+  CompiledProgram cp;
+  if (!compile_for_readback(input, m, opt.compile, opt.keep, opt.program, err, cp)) return rep;
   rep.compiled = true;
-
+  const CompileResult& cr = cp.compiled;
+  SourceFile& src = cp.source;
+  std::string why;
   ProgramReader rd(m, cr.info);
-  if (!rd.open(opt.program.empty() ? program : opt.program, why)) {
+  if (!rd.open(cp.path, why)) {
     err << "clpc: error: " << why << "\n";
     return rep;
   }

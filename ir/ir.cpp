@@ -1,3 +1,4 @@
+#include <cctype>
 #include "ir/ir.h"
 
 #include <charconv>
@@ -6,6 +7,12 @@
 #include "ir/params.h"
 
 namespace clpc {
+
+std::string upper(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
 
 std::string num_text(double v) {
   if (v == 0) return "0";  // also folds -0

@@ -16,16 +16,6 @@ namespace {
 constexpr double kMaxPecks = 10000;
 }  // namespace
 
-namespace {
-
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
-
-}  // namespace
-
 void Lowerer::lower_cycle(const Record& r) {
   ParamReader ps(r, d_);
   if (ps.size() == 0 || !ps[0].is_word()) {

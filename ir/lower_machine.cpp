@@ -7,16 +7,6 @@
 
 namespace clpc {
 
-namespace {
-
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
-
-}  // namespace
-
 void Lowerer::lower_tool_change(const Record& r) {
   ToolRecord t = read_tool_record(r, &d_);
   if (t.number < 0) return;

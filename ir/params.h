@@ -13,6 +13,7 @@ namespace clpc {
 
 // Shortest round-trip text of a number, for messages and the IR printer.
 std::string num_text(double v);
+std::string upper(std::string_view s);  // ASCII upper case
 
 class ParamReader {
  public:

@@ -47,12 +47,7 @@ std::string vec_text(const Vec3& v) {
 class Kinematics : public Pass {
  public:
   void begin(PassContext& ctx) override {
-    k_ = ctx.machine.kinematics;
-    // The model works in program units: scale the machine's lengths.
-    const double f = ctx.from_output();
-    for (RotaryAxis& r : k_.rotaries) r.center *= f;
-    k_.pivot *= f;
-    k_.retract_distance *= f;
+    k_ = ctx.kinematics();
     singular_ = find_singular_direction();
   }
 

@@ -23,10 +23,7 @@ namespace {
 class Limits : public Pass {
  public:
   void begin(PassContext& ctx) override {
-    k_ = ctx.machine.kinematics;
-    const double f = ctx.from_output();
-    for (RotaryAxis& r : k_.rotaries) r.center *= f;
-    k_.pivot *= f;
+    k_ = ctx.kinematics();
   }
 
   void run(ir::Operation& op, PassContext& ctx) override {

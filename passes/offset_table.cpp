@@ -41,9 +41,8 @@ class OffsetTablePass : public Pass {
  public:
   void begin(PassContext& ctx) override {
     const OffsetSettings& s = ctx.machine.offsets;
-    k_ = ctx.machine.kinematics;
+    k_ = ctx.kinematics();
     const double f = ctx.from_output();
-    for (RotaryAxis& r : k_.rotaries) r.center *= f;
     auto& table = ctx.info.offsets;
     table.clear();
     bool any_set = false;

@@ -24,6 +24,9 @@ struct PassContext {
   double tolerance() const { return machine.arcs.tolerance * from_output(); }
   // One increment of the X address (the output resolution) in program units.
   double resolution() const;
+  // The machine's kinematics with its lengths (centres, pivot, retract) in program units, as
+  // the kinematic model works on the IR.
+  KinematicsSettings kinematics() const;
 };
 
 class Pass {

@@ -20,6 +20,15 @@ PassManager::PassManager(PassContext& ctx, const std::vector<std::string>& pipel
     if (const PassInfo* p = find_pass(n)) passes_.emplace_back(p, p->make());
 }
 
+KinematicsSettings PassContext::kinematics() const {
+  KinematicsSettings k = machine.kinematics;
+  const double f = from_output();
+  for (RotaryAxis& r : k.rotaries) r.center *= f;
+  k.pivot *= f;
+  k.retract_distance *= f;
+  return k;
+}
+
 size_t PassManager::split_point() const {
   for (size_t i = 0; i < passes_.size(); ++i)
     if (passes_[i].first->name == "kinematics") return i + 1;
