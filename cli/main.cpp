@@ -85,6 +85,9 @@ int main(int argc, char** argv) {
   std::string machine_name, output, emit = "gcode", print_after, input_units;
   bool werror = false, verify_ir = false;
 
+  auto add_target = [&](CLI::App* c) {
+    c->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  };
   auto add_machine_files = [&](CLI::App* c) {
     c->add_option("--machines", machine_files, "Machine descriptions (TOML) adding to or replacing the built-in ones")
         ->check(CLI::ExistingFile);
@@ -100,7 +103,7 @@ int main(int argc, char** argv) {
 
   CLI::App* compile = app.add_subcommand("compile", "Compile CL files into G-code for one machine");
   compile->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
-  compile->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  add_target(compile);
   compile->add_option("-o,--output", output, "Output file ('-' = standard output); default: INPUT with the machine's extension");
   compile->add_option("--emit", emit, "What to write")->check(CLI::IsMember({"gcode", "ir"}));
   compile->add_option("--print-after", print_after, "Print the IR after this pass ('lower', a pass name or 'all') to stderr");
@@ -122,7 +125,7 @@ int main(int argc, char** argv) {
   bool json = false;
   CLI::App* verify = app.add_subcommand("verify", "Compile a CL file, read the program back and compare its path with the CL path");
   verify->add_option("INPUT", verify_input, "CL file ('-' reads standard input)")->required();
-  verify->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  add_target(verify);
   verify->add_option("--tolerance", tolerance, "Largest deviation allowed, in the machine's units (default: its arc tolerance plus one output increment)")
       ->check(CLI::PositiveNumber);
   verify->add_option("--axis-tolerance", axis_tolerance, "Largest tool-axis deviation allowed, degrees (five-axis)")
@@ -139,7 +142,7 @@ int main(int argc, char** argv) {
   int plot_width = 1200, plot_height = 900;
   CLI::App* plot = app.add_subcommand("plot", "Draw the emitted program's tool path (SVG: top, front, side, isometric)");
   plot->add_option("INPUT", plot_input, "CL file ('-' reads standard input)")->required();
-  plot->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+  add_target(plot);
   plot->add_option("-o,--output", output, "SVG file ('-' = standard output); default: INPUT with .svg");
   plot->add_option("--program", plot_program, "Plot this program instead of clpc's own")->check(CLI::ExistingFile);
   plot->add_option("--width", plot_width, "Width in pixels")->check(CLI::Range(200, 20000));
