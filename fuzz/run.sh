@@ -58,7 +58,7 @@ for t in parse compile machine; do
   [[ $t == machine ]] && max_len=8192
   set +e
   $build/fuzz/fuzz_$t "$corpus/$t" -max_total_time="$seconds" -print_final_stats=1 -max_len=$max_len -timeout=20 \
-    -rss_limit_mb=2048 -artifact_prefix="$build/artifacts/$t-" -jobs=1 >"$log" 2>&1
+    -rss_limit_mb=2048 -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1
   rc=$?
   set -e
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{print $2}' | tail -1)
