@@ -84,13 +84,11 @@ ir::Arc as_arc(const TipSegment& s) {
 
 class Verifier : public OperationSink {
  public:
-  Verifier(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep,
-           const VerifyOptions& opt)
+  Verifier(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
       : m_(m), info_(info), rd_(rd), d_(d), rep_(rep), tol_(rep.tolerance), axis_tol_(rep.axis_tolerance) {
     k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m.units);
     five_axis_ = m.kinematics.has_rotaries();
     table_ = !info.offsets.empty();
-    (void)opt;
   }
 
   void operation(ir::Operation& op) override {
@@ -619,7 +617,7 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
     d.set_before_print([&] { progress.clear(); });
   }
   progress.phase("verify");
-  Verifier v(m, cr.info, rd, d, rep, opt);
+  Verifier v(m, cr.info, rd, d, rep);
   // The reference: the CL as lowered, its arcs decided and its cycles made holes.
   Machine ref = m;
   ref.pipeline.clear();
