@@ -25,6 +25,12 @@ double signed_angle(const Vec3& u, const Vec3& v, const Vec3& n) {
   return std::atan2(n.dot(a.cross(b)), a.dot(b)) * 180 / kPi;
 }
 
+// Axis i of a solution at angle t; NaN (no angle determined): the axis is free, kept at 0.
+void set_angle(Solution& s, size_t i, double t) {
+  s.free[i] = std::isnan(t);
+  s.a[i] = s.free[i] ? 0 : norm180(t);
+}
+
 // At most two solutions, without the heap: choose() runs for every five-axis move.
 struct Solutions {
   Solution v[2];
@@ -68,12 +74,7 @@ Solutions solve_two(const Vec3& u1, const Vec3& u2, const Vec3& p, const Vec3& q
     Solution s;
     s.a[0] = norm180(t1);
     s.free[0] = t1_free;
-    double t2 = signed_angle(p, w, u2);
-    if (std::isnan(t2)) {
-      s.free[1] = true;
-      t2 = 0;
-    }
-    s.a[1] = norm180(t2);
+    set_angle(s, 1, signed_angle(p, w, u2));
     out.push_back(s);
   }
   return out;
@@ -83,12 +84,7 @@ Solutions solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
   Solutions out;
   if (std::abs(u.dot(p) - u.dot(q)) > 1e-7) return out;
   Solution s;
-  double t = signed_angle(p, q, u);
-  if (std::isnan(t)) {
-    s.free[0] = true;
-    t = 0;
-  }
-  s.a[0] = norm180(t);
+  set_angle(s, 0, signed_angle(p, q, u));
   out.push_back(s);
   return out;
 }

@@ -61,13 +61,18 @@ const char* kPlate =
     "GOTO/0,0,-2\nFEDRAT/MMPM,800\nGOTO/30,0,-2\nGOTO/30,20,-2\nCIRCLE/20,20,-2,0,0,-1,10,0.01,0.5,10,0\n"
     "GOTO/10,20,-2\nGOTO/0,20,-2\nGOTO/0,5,-2\nRAPID\nGOTO/0,5,20\nFINI\n";
 
-}  // namespace
-
-TEST(Verify, PlatePassesWithItsReport) {
+// The plate written to a fresh directory, and the machine it is verified for.
+struct VerifyPlate : ::testing::Test {
   TempDir t;
   std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  Checked c = verify(cl, machine("fanuc-mill"));
+  Machine m = machine("fanuc-mill");
+  void SetUp() override { write_file(cl, kPlate); }
+};
+
+}  // namespace
+
+TEST_F(VerifyPlate, PassesWithItsReport) {
+  Checked c = verify(cl, m);
   EXPECT_TRUE(c.report.ok) << c.diags;
   EXPECT_EQ(c.report.cl_points, 8);  // and the arc's end
   EXPECT_EQ(c.report.cl_arcs, 1);
@@ -88,11 +93,7 @@ TEST(Verify, PlatePassesWithItsReport) {
   EXPECT_THAT(text.str(), HasSubstr("  result: PASS\n"));
 }
 
-TEST(Verify, FlippedArcFailsAtTheCircle) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  const Machine m = machine("fanuc-mill");
+TEST_F(VerifyPlate, FlippedArcFailsAtTheCircle) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "G03 X10. I-10. J0.", "G02 X10. I-10. J0."));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:13:1: error: the program turns this CL arc the other way (the CL arc "
@@ -113,11 +114,7 @@ TEST(Verify, FullCircleTheWrongWayFails) {
   EXPECT_LT(c.report.max_deviation, c.report.tolerance);  // the path itself is right
 }
 
-TEST(Verify, PointShiftedBy0_01mmFails) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  const Machine m = machine("fanuc-mill");
+TEST_F(VerifyPlate, PointShiftedBy0_01mmFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N120 G01 X0.", "N120 G01 X0.01"));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:15:1: error: CL point (0.0000, 20.0000, -2.0000) is never reached: the "
@@ -126,21 +123,13 @@ TEST(Verify, PointShiftedBy0_01mmFails) {
   EXPECT_EQ(c.report.max_loc.line, 15u);
 }
 
-TEST(Verify, DroppedBlockFails) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  const Machine m = machine("fanuc-mill");
+TEST_F(VerifyPlate, DroppedBlockFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", ""));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:12:1: error: CL point (30.0000, 20.0000, -2.0000) is never reached"));
 }
 
-TEST(Verify, RapidThroughACutFails) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  const Machine m = machine("fanuc-mill");
+TEST_F(VerifyPlate, RapidThroughACutFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N120 G01 X0.", "N120 G00 X0."));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:15:1: error: this CL feed move is made at rapid traverse (G00)"));
@@ -157,11 +146,7 @@ TEST(Verify, RotaryBeyondItsLimitFails) {
   EXPECT_THAT(c.diags, HasSubstr("error: B125.000 is beyond the B axis's limits (-35 to 120) [G-code line"));
 }
 
-TEST(Verify, JsonReport) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
-  const Machine m = machine("fanuc-mill");
+TEST_F(VerifyPlate, JsonReport) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N120 G01 X0.", "N120 G01 X0.01"));
   std::ostringstream j;
   print_report_json(j, c.report);
@@ -174,14 +159,11 @@ TEST(Verify, JsonReport) {
 }
 
 // The command: exit status, report on stdout, diagnostics on stderr.
-TEST(Verify, CommandLine) {
-  TempDir t;
-  std::string cl = t.path("plate.cls");
-  write_file(cl, kPlate);
+TEST_F(VerifyPlate, CommandLine) {
   RunResult ok = run_clpc("verify " + cl + " -t fanuc-mill");
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_THAT(ok.out, HasSubstr("result: PASS"));
-  write_file(t.path("bad.nc"), edit(program_for(cl, machine("fanuc-mill")), "N100 Y20.\n", ""));
+  write_file(t.path("bad.nc"), edit(program_for(cl, m), "N100 Y20.\n", ""));
   RunResult bad = run_clpc("verify " + cl + " -t fanuc-mill --program " + t.path("bad.nc") + " --json");
   EXPECT_EQ(bad.status, 1);
   EXPECT_THAT(bad.out, HasSubstr("\"ok\": false"));
