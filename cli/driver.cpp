@@ -160,7 +160,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       late_diags.set_source(&src);
       late_diags.set_deferred(true);
       PassContext late{info, machine, late_diags};
-      FrontEnd front(src, info, lowered, opt.latin1);
+      FrontEnd front(src, info, lowered, opt.latin1, opt.lower);
       PassStage passes(pm, split, ctx, lowered, passed);
       StopOnExit stop{lowered, passed};  // on an exception here: the threads give up, then join
       for (;;) {
@@ -174,7 +174,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       }
     } else {
       // The IR printed between passes goes to the diagnostics' stream: passes here, in order.
-      FrontEnd front(src, info, lowered, opt.latin1);
+      FrontEnd front(src, info, lowered, opt.latin1, opt.lower);
       StopOnExit stop{lowered, passed};
       for (;;) {
         Piece p = lowered.pop();

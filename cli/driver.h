@@ -9,6 +9,7 @@
 
 #include "backends/machine.h"
 #include "ir/ir.h"
+#include "ir/lower.h"
 
 namespace clpc {
 
@@ -22,6 +23,7 @@ struct CompileOptions {
   std::optional<ir::Units> input_units;
   bool progress = false;  // a progress bar on a terminal's standard error, for large inputs
   bool latin1 = false;    // --input-encoding latin1: comments and text in Latin-1
+  LowerOptions lower;     // how long operations are cut into chunks (tests make them short)
 };
 
 struct CompileResult {

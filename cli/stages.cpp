@@ -75,8 +75,8 @@ class FrontEnd::Sink : public OperationSink {
   FrontEnd& f_;
 };
 
-FrontEnd::FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1)
-    : src_(src), info_(info), out_(out), latin1_(latin1), diags_(nullptr) {
+FrontEnd::FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1, LowerOptions lower)
+    : src_(src), info_(info), out_(out), latin1_(latin1), lower_(lower), diags_(nullptr) {
   diags_.set_source(&src);
   diags_.set_deferred(true);
   thread_ = std::thread([this] { run(); });
@@ -90,7 +90,7 @@ void FrontEnd::run() {
   pthread_setname_np(pthread_self(), "clpc-front");
   Sink sink(*this);
   try {
-    Lowerer low(info_, diags_, sink);
+    Lowerer low(info_, diags_, sink, lower_);
     ParseOptions po;
     po.latin1 = latin1_;
     parse_cl(src_, diags_, low, po);

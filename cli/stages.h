@@ -15,6 +15,7 @@
 
 #include "ir/diagnostics.h"
 #include "ir/ir.h"
+#include "ir/lower.h"
 #include "ir/source.h"
 #include "passes/pass_manager.h"
 
@@ -49,7 +50,7 @@ class PieceQueue {
 // Lowers `src` on its own thread into `out`.
 class FrontEnd {
  public:
-  FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1 = false);
+  FrontEnd(SourceFile& src, const ir::ProgramInfo& info, PieceQueue& out, bool latin1 = false, LowerOptions lower = {});
   ~FrontEnd();  // waits for the thread (stop the queue first to make it give up)
 
  private:
@@ -59,6 +60,7 @@ class FrontEnd {
   const ir::ProgramInfo& info_;
   PieceQueue& out_;
   bool latin1_;
+  LowerOptions lower_;
   Diagnostics diags_;
   std::thread thread_;
 };

@@ -16,6 +16,7 @@
 // points stay in the part frame with the rotaries beside them; without, each point goes
 // through the chain, and moves are split where the rotation would take the tip off the CL
 // segment by more than the tolerance. Inverse-time feeds (G93) where the machine asks.
+// A long operation comes in chunks; once one is simultaneous, so is the rest of it.
 //
 // Contract. Expects: legal arcs, holes from drill-cycles, moves with tool axes in the part
 // frame. Guarantees (machines with rotaries): every move has its rotary positions; rotaries
@@ -63,7 +64,7 @@ class Kinematics : public Pass {
     bool indexed = true;
     // The offset table positions 3+2 operations itself (the first chunk holds its
     // RotaryPosition); the later chunks of such an operation are positioned too.
-    if (!op.continued) positioned_ = false;
+    if (!op.continued) positioned_ = op_mode_known_ = false;
     for (const ir::Instr& in : op.body) {
       if (std::holds_alternative<ir::RotaryPosition>(in.op)) positioned_ = true;
       const Vec3* a = nullptr;
@@ -94,6 +95,15 @@ class Kinematics : public Pass {
       return;
     }
     mode_indexed_ = indexed && axis.has_value();
+    if (axis) {
+      // A long operation comes in chunks, each seen alone. Once one chunk needed simultaneous
+      // motion, or indexed work at another axis, the rest of the operation stays simultaneous:
+      // the mode changes at most once per operation, and the rotaries never re-index mid-cut.
+      if (op.continued && op_mode_known_ && (!op_indexed_ || (op_axis_ - *axis).norm() > 1e-9)) mode_indexed_ = false;
+      op_mode_known_ = true;
+      op_indexed_ = mode_indexed_;
+      op_axis_ = *axis;
+    }
     for (ir::Instr& in : op.body) {
       if (auto* tc = std::get_if<ir::ToolChange>(&in.op)) {
         const ir::ToolInfo* t = ctx.info.tool(tc->tool);
@@ -548,6 +558,9 @@ class Kinematics : public Pass {
   kin::Angles cur_{0, 0};
   bool have_cur_ = false;
   bool mode_indexed_ = false;
+  // The mode this operation's chunks so far were cut in, and the tool axis of the last one.
+  bool op_mode_known_ = false, op_indexed_ = false;
+  Vec3 op_axis_ = Vec3::UnitZ();
   std::optional<Vec3> indexed_at_;
   bool tcp_on_ = false, dwo_on_ = false;
   bool positioned_ = false;  // this operation was positioned by the offset table

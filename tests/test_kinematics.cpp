@@ -5,6 +5,7 @@
 
 #include "backends/gcode_interp.h"
 #include "backends/kinematics.h"
+#include "cli/verify.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -274,6 +275,67 @@ TEST(KinematicsPass, HeadTableMachineFromToml) {
   Compiled c = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.5,0,0.866\n", m);
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("B30."));
+}
+
+namespace {
+
+// A five-axis operation of 20 moves per tool axis given (a null axis: C winds 5 degrees a move
+// at B30), one operation, so that its chunks of 8 instructions see the phases apart.
+std::string phased_operation(const std::vector<std::optional<Vec3>>& phases) {
+  std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\nMULTAX/ON\n";
+  int n = 0;
+  for (const auto& phase : phases)
+    for (int i = 0; i < 20; ++i, ++n) {
+      Vec3 a = phase ? phase->normalized() : tilt(30, 5.0 * n);
+      char b[160];
+      std::snprintf(b, sizeof b, "GOTO/%.1f,0,10,%.12f,%.12f,%.12f\n", 0.5 * n, a.x(), a.y(), a.z());
+      cl += b;
+    }
+  return cl + "FINI\n";
+}
+
+size_t occurrences(const std::string& text, const std::string& word) {
+  size_t n = 0;
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
+CompileOptions short_chunks() {
+  CompileOptions o;
+  o.lower.chunk_size = 8;
+  return o;
+}
+
+}  // namespace
+
+// A long operation reaches the pass in chunks (ir/lower.h), each seen alone. Its rotaries are
+// indexed at most once: once a chunk needed simultaneous motion the operation stays so, and
+// a later run of moves at one axis is not clamped and re-indexed mid-cut.
+TEST(KinematicsPass, ALongOperationIndexesAtMostOnceWhateverItsChunks) {
+  TempDir t;
+  const Machine m = machine("haas-umc750");
+  const std::string indexed_then_not = t.path("a.cls");
+  write_file(indexed_then_not, phased_operation({tilt(30, 0), std::nullopt, tilt(40, 90)}));
+  Compiled c = compile_path(indexed_then_not, m, short_chunks());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(occurrences(c.output, "M10"), 1u);   // the clamp of the first (indexed) chunks
+  EXPECT_EQ(occurrences(c.output, "G254"), 1u);
+  EXPECT_EQ(occurrences(c.output, "G234"), 1u);  // then TCPC to the end of the operation
+  VerifyOptions vo;
+  vo.compile = short_chunks();
+  std::ostringstream err;
+  VerifyReport r = verify_file(indexed_then_not, m, vo, err);
+  EXPECT_TRUE(r.ok) << err.str();
+  EXPECT_EQ(r.cl_points, 60);
+
+  // Simultaneous from the first chunk: the chunks change nothing.
+  const std::string simultaneous_first = t.path("b.cls");
+  write_file(simultaneous_first, phased_operation({std::nullopt, tilt(40, 90), tilt(30, 0)}));
+  Compiled whole = compile_path(simultaneous_first, m);
+  Compiled chunked = compile_path(simultaneous_first, m, short_chunks());
+  ASSERT_TRUE(whole.ok && chunked.ok) << whole.diags << chunked.diags;
+  EXPECT_EQ(occurrences(whole.output, "M10"), 0u);
+  EXPECT_EQ(chunked.output, whole.output);
 }
 
 // --- limits ---------------------------------------------------------------------------------
