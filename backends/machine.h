@@ -193,6 +193,7 @@ struct Machine {
   CycleSettings cycles;
   Codes codes;
   double rapid_rate = 0;        // output units per minute; for cycle-time estimates (0 = unknown)
+  double tool_change_time = 0;  // seconds per tool change; for cycle-time estimates (0 = unknown)
   double max_feed = 0;          // output units per minute; caps feeds (0 = none)
 
   const AddressFormat& format(char letter) const { return formats[size_t(letter - 'A')]; }

@@ -44,6 +44,7 @@ std::string explain_machine(const Machine& m) {
   o << "extension = " << quote(m.extension) << "\n";
   o << "pipeline = " << list(m.pipeline) << "\n";
   o << "rapid_rate = " << num_text(m.rapid_rate) << "\n";
+  o << "tool_change_time = " << num_text(m.tool_change_time) << "\n";
   o << "max_feed = " << num_text(m.max_feed) << "\n";
 
   o << "\n[" << m.name << ".program]\n";

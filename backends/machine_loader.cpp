@@ -458,6 +458,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     m.pipeline = pipeline;
   }
   r.number("rapid_rate", m.rapid_rate, 0, 1e9);
+  r.number("tool_change_time", m.tool_change_time, 0, 3600);
   r.number("max_feed", m.max_feed, 0, 1e9);
 
   if (auto p = r.sub("program")) {

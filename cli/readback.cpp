@@ -169,7 +169,11 @@ void ProgramReader::take_events() {
       case gcode::Event::Kind::OffsetSet:
         if (use_offsets_) offsets_[e.reg] = e.v;
         break;
-      case gcode::Event::Kind::ToolChange: ++totals_.tool_changes; break;
+      case gcode::Event::Kind::ToolChange:
+        ++totals_.tool_changes;
+        if (m_.tool_change_time > 0) totals_.tool_change_minutes += m_.tool_change_time / 60;
+        else totals_.tool_change_time_known = false;
+        break;
       case gcode::Event::Kind::Dwell: totals_.dwell_minutes += e.value / 60; break;
       case gcode::Event::Kind::CycleStart: ++totals_.cycle_holes; break;
       default: break;

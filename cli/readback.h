@@ -33,8 +33,11 @@ struct ProgramTotals {
   long lines = 0, bytes = 0, blocks = 0;
   long rapids = 0, feeds = 0, arcs = 0, cycle_holes = 0, tool_changes = 0;
   double rapid_length = 0, feed_length = 0;      // output units (tool tip in the program's frame)
-  double feed_minutes = 0, rapid_minutes = 0, dwell_minutes = 0;
-  bool rapid_time_known = true, feed_time_known = true;
+  double feed_minutes = 0, rapid_minutes = 0, dwell_minutes = 0, tool_change_minutes = 0;
+  bool rapid_time_known = true, feed_time_known = true, tool_change_time_known = true;
+
+  double total_minutes() const { return feed_minutes + rapid_minutes + dwell_minutes + tool_change_minutes; }
+  bool time_complete() const { return feed_time_known && rapid_time_known && tool_change_time_known; }
 };
 
 // A temporary file for a program clpc compiles only to read back (verify, plot), removed with

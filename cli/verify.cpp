@@ -696,10 +696,11 @@ void print_report(std::ostream& o, const VerifyReport& r) {
   o << "  program:    " << p.lines << " lines (" << p.bytes << " bytes), " << p.blocks << " blocks; " << p.rapids << " rapids, "
     << p.feeds << " feeds, " << p.arcs << " arcs, " << p.cycle_holes << " cycles, " << p.tool_changes << " tool changes\n";
   o << "  path:       " << fixed(p.feed_length, 1) << " " << u << " cutting, " << fixed(p.rapid_length, 1) << " " << u << " rapid\n";
-  o << "  cycle time: " << minutes_text(p.feed_minutes + p.rapid_minutes + p.dwell_minutes) << " (cutting "
+  o << "  cycle time: " << minutes_text(p.total_minutes()) << (p.time_complete() ? "" : "+") << " (cutting "
     << minutes_text(p.feed_minutes) << (p.feed_time_known ? "" : "+, some feeds unknown") << ", rapids "
     << minutes_text(p.rapid_minutes) << (p.rapid_time_known ? "" : "+, rapid rate unknown") << ", dwells "
-    << minutes_text(p.dwell_minutes) << "; tool changes not counted)\n";
+    << minutes_text(p.dwell_minutes) << ", tool changes " << minutes_text(p.tool_change_minutes)
+    << (p.tool_change_time_known ? "" : "+, tool change time unknown") << ")\n";
   o << "  deviation:  max ";
   if (std::isinf(r.max_deviation)) o << "unbounded (a CL point never reached)";
   else o << fixed(r.max_deviation, dec) << " " << u;
@@ -730,10 +731,10 @@ void print_report_json(std::ostream& o, const VerifyReport& r) {
     << ", \"rapids\": " << p.rapids << ", \"feeds\": " << p.feeds << ", \"arcs\": " << p.arcs << ", \"cycles\": " << p.cycle_holes
     << ", \"tool_changes\": " << p.tool_changes << ", \"feed_length\": " << json_number(p.feed_length)
     << ", \"rapid_length\": " << json_number(p.rapid_length) << "},\n";
-  o << "  \"cycle_time_s\": {\"total\": " << json_number((p.feed_minutes + p.rapid_minutes + p.dwell_minutes) * 60)
+  o << "  \"cycle_time_s\": {\"total\": " << json_number(p.total_minutes() * 60)
     << ", \"cutting\": " << json_number(p.feed_minutes * 60) << ", \"rapid\": " << json_number(p.rapid_minutes * 60)
-    << ", \"dwell\": " << json_number(p.dwell_minutes * 60) << ", \"complete\": "
-    << (p.feed_time_known && p.rapid_time_known ? "true" : "false") << "},\n";
+    << ", \"dwell\": " << json_number(p.dwell_minutes * 60) << ", \"tool_change\": " << json_number(p.tool_change_minutes * 60)
+    << ", \"complete\": " << (p.time_complete() ? "true" : "false") << "},\n";
   o << "  \"problem_count\": " << r.problem_count << ",\n";
   o << "  \"problems\": [";
   for (size_t i = 0; i < r.problems.size(); ++i) {

@@ -86,11 +86,28 @@ TEST_F(VerifyPlate, PassesWithItsReport) {
   // Rapids at 24000 mm/min, each as long as its longest axis: 20 (G43 Z20 from Z unknown is not
   // counted), 18, 22.
   EXPECT_NEAR(c.report.program.rapid_minutes, (18.0 + 22.0) / 24000, 1e-6);
+  // One tool change at the machine's 4 s.
+  EXPECT_NEAR(c.report.program.tool_change_minutes, 4.0 / 60, 1e-12);
   EXPECT_LT(c.report.max_deviation, 1e-9);
   std::ostringstream text;
   print_report(text, c.report);
   EXPECT_THAT(text.str(), HasSubstr("  CL path:    8 points, 1 arcs, 0 holes\n"));
+  EXPECT_THAT(text.str(), HasSubstr("  cycle time: 0:13 (cutting 0:09, rapids 0:00, dwells 0:00, tool changes 0:04)\n"));
   EXPECT_THAT(text.str(), HasSubstr("  result: PASS\n"));
+}
+
+// A machine that does not say how long its tool change takes: the time is a lower bound.
+TEST_F(VerifyPlate, CycleTimeWithoutAToolChangeTimeIsALowerBound) {
+  Machine quiet = machine("quiet-mill", "[quiet-mill]\ninherits = \"fanuc-mill\"\ntool_change_time = 0.0\n");
+  Checked c = verify(cl, quiet);
+  EXPECT_TRUE(c.report.ok) << c.diags;
+  EXPECT_FALSE(c.report.program.time_complete());
+  std::ostringstream text, json;
+  print_report(text, c.report);
+  print_report_json(json, c.report);
+  EXPECT_THAT(text.str(), HasSubstr("  cycle time: 0:09+ (cutting 0:09, rapids 0:00, dwells 0:00, tool changes 0:00+, tool change time "
+                                    "unknown)\n"));
+  EXPECT_THAT(json.str(), HasSubstr("\"tool_change\": 0, \"complete\": false}"));
 }
 
 TEST_F(VerifyPlate, FlippedArcFailsAtTheCircle) {
