@@ -711,7 +711,25 @@ Machine default_machine(Family family, ir::Units units) {
 MachineRegistry::MachineRegistry(std::vector<std::string> known_passes) : known_passes_(std::move(known_passes)) {}
 MachineRegistry::~MachineRegistry() = default;
 
+// Past the error limit Diagnostics stops the run (FatalError). The registry's entry points turn
+// that into a refusal like any other: the errors and the stop have been reported.
 bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
+  try {
+    return add_source_unguarded(std::move(src), d, names);
+  } catch (const FatalError&) {
+    return false;
+  }
+}
+
+std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d) {
+  try {
+    return resolve_unguarded(name_or_path, d);
+  } catch (const FatalError&) {
+    return std::nullopt;
+  }
+}
+
+bool MachineRegistry::add_source_unguarded(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
   try {
     src->table = toml::parse(src->text, src->path);
   } catch (const toml::parse_error& e) {
@@ -755,7 +773,10 @@ bool MachineRegistry::load_text(const std::string& name, std::string text, Diagn
 bool MachineRegistry::load_file(const std::string& path, Diagnostics& d) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    d.report_in(Severity::Error, path, {}, "cannot read machine description");
+    try {
+      d.report_in(Severity::Error, path, {}, "cannot read machine description");
+    } catch (const FatalError&) {  // the error limit, reached over many files
+    }
     return false;
   }
   std::stringstream ss;
@@ -792,7 +813,7 @@ bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::t
   return true;
 }
 
-std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d) {
+std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& name_or_path, Diagnostics& d) {
   std::string name = name_or_path;
   bool is_path = name.find('/') != std::string::npos || (name.size() > 5 && name.substr(name.size() - 5) == ".toml");
   if (is_path) {

@@ -155,6 +155,26 @@ TEST(BadInput, MachineDescriptions) {
   EXPECT_FALSE(std::filesystem::exists(t.path("out.nc")));
 }
 
+// More mistakes than the error limit (found by fuzz_machine: clpc used to abort). Refused like
+// one mistake, the first ones reported with their places, then the stop.
+TEST(BadInput, MachineDescriptionWithMoreErrorsThanTheLimit) {
+  TempDir t;
+  std::string toml = "[m]\ninherits = \"fanuc-mill\"\n";
+  for (int i = 0; i < 60; ++i) toml += "typo" + std::to_string(i) + " = 1\n";
+  write_file(t.path("typos.toml"), toml);
+  write_file(t.path("part.cls"), kHead + "GOTO/0,0,0\n");
+  for (const std::string& command : std::vector<std::string>{"explain m", "compile " + t.path("part.cls") + " -t m -o " + t.path("out.nc")}) {
+    SCOPED_TRACE(command);
+    RunResult r = run_clpc(command + " --machines " + t.path("typos.toml"));
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("typos.toml:3:1: error: unknown key 'typo0' in m"));
+    EXPECT_THAT(r.err, HasSubstr("typos.toml: fatal: too many errors (50), stopping\n"));
+    EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+  EXPECT_FALSE(std::filesystem::exists(t.path("out.nc")));
+}
+
 // --- output safety ---------------------------------------------------------------------------
 
 namespace {
