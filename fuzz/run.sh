@@ -4,7 +4,7 @@
 # ../shared/corpus when it is there, and fuzz/seeds; machine descriptions from machines.toml,
 # tests/machines and examples, one machine per seed.
 #
-#   bash fuzz/run.sh [SECONDS_PER_TARGET]     default 200 (three targets: 10 minutes)
+#   bash fuzz/run.sh [SECONDS_PER_TARGET]     default 600 (ten minutes each, half an hour in all)
 #
 # Prints each target's executions and findings; exits 1 if anything crashed, hung or leaked.
 # A finding is left in build-fuzz/artifacts/: reproduce it with build-fuzz/fuzz/TARGET FILE,
@@ -12,7 +12,7 @@
 # every file there through the compiler and the machine loader).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${1:-200}
+seconds=${1:-600}
 build=build-fuzz
 bash scripts/setup.sh >/dev/null
 CC=clang CXX=clang++ cmake -S . -B $build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLPC_FUZZ=ON \
