@@ -697,6 +697,32 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   return m;
 }
 
+// Past the error limit Diagnostics stops the run (FatalError). The registry's entry points turn
+// that into a refusal like any other: the errors and the stop have been reported.
+template <class T, class Body>
+T refusing_past_error_limit(T refusal, Body&& body) {
+  try {
+    return body();
+  } catch (const FatalError&) {
+    return refusal;
+  }
+}
+
+// A machine description file read whole, or null (reported).
+std::unique_ptr<MachineRegistry::Source> read_source(const std::string& path, Diagnostics& d) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    d.report_in(Severity::Error, path, {}, "cannot read machine description");
+    return nullptr;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  auto s = std::make_unique<MachineRegistry::Source>();
+  s->path = path;
+  s->text = ss.str();
+  return s;
+}
+
 }  // namespace
 
 Machine default_machine(Family family, ir::Units units) {
@@ -711,25 +737,7 @@ Machine default_machine(Family family, ir::Units units) {
 MachineRegistry::MachineRegistry(std::vector<std::string> known_passes) : known_passes_(std::move(known_passes)) {}
 MachineRegistry::~MachineRegistry() = default;
 
-// Past the error limit Diagnostics stops the run (FatalError). The registry's entry points turn
-// that into a refusal like any other: the errors and the stop have been reported.
 bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
-  try {
-    return add_source_unguarded(std::move(src), d, names);
-  } catch (const FatalError&) {
-    return false;
-  }
-}
-
-std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d) {
-  try {
-    return resolve_unguarded(name_or_path, d);
-  } catch (const FatalError&) {
-    return std::nullopt;
-  }
-}
-
-bool MachineRegistry::add_source_unguarded(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
   try {
     src->table = toml::parse(src->text, src->path);
   } catch (const toml::parse_error& e) {
@@ -760,28 +768,25 @@ bool MachineRegistry::load_builtin(Diagnostics& d) {
   auto s = std::make_unique<Source>();
   s->path = kBuiltinName;
   s->text = std::string(builtin_machines_toml());
-  return add_source(std::move(s), d, nullptr);
+  return refusing_past_error_limit(false, [&] { return add_source(std::move(s), d, nullptr); });
 }
 
 bool MachineRegistry::load_text(const std::string& name, std::string text, Diagnostics& d) {
   auto s = std::make_unique<Source>();
   s->path = name;
   s->text = std::move(text);
-  return add_source(std::move(s), d, nullptr);
+  return refusing_past_error_limit(false, [&] { return add_source(std::move(s), d, nullptr); });
 }
 
 bool MachineRegistry::load_file(const std::string& path, Diagnostics& d) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    try {
-      d.report_in(Severity::Error, path, {}, "cannot read machine description");
-    } catch (const FatalError&) {  // the error limit, reached over many files
-    }
-    return false;
-  }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return load_text(path, ss.str(), d);
+  return refusing_past_error_limit(false, [&] {
+    auto s = read_source(path, d);
+    return s && add_source(std::move(s), d, nullptr);
+  });
+}
+
+std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d) {
+  return refusing_past_error_limit(std::optional<Machine>{}, [&] { return resolve_unguarded(name_or_path, d); });
 }
 
 bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
@@ -818,17 +823,8 @@ std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& nam
   bool is_path = name.find('/') != std::string::npos || (name.size() > 5 && name.substr(name.size() - 5) == ".toml");
   if (is_path) {
     std::vector<std::string> names;
-    std::ifstream in(name, std::ios::binary);
-    if (!in) {
-      d.report_in(Severity::Error, name, {}, "cannot read machine description");
-      return std::nullopt;
-    }
-    std::stringstream ss;
-    ss << in.rdbuf();
-    auto s = std::make_unique<Source>();
-    s->path = name;
-    s->text = ss.str();
-    if (!add_source(std::move(s), d, &names)) return std::nullopt;
+    auto s = read_source(name, d);
+    if (!s || !add_source(std::move(s), d, &names)) return std::nullopt;
     if (names.size() != 1) {
       d.report_in(Severity::Error, name, {}, "-t with a file needs exactly one machine in it; it has " + std::to_string(names.size()));
       return std::nullopt;

@@ -47,7 +47,6 @@ class MachineRegistry {
     const toml::table* table;
   };
   bool add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names);
-  bool add_source_unguarded(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names);
   std::optional<Machine> resolve_unguarded(const std::string& name_or_path, Diagnostics& d);
   bool flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
                Diagnostics& d);
