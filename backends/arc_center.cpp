@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "backends/format.h"
+#include "machine/format.h"
 
 namespace clpc {
 

@@ -2,7 +2,7 @@
 // the arc it cuts stays on the CL arc.
 #pragma once
 
-#include "backends/machine.h"
+#include "machine/machine.h"
 
 namespace clpc {
 

@@ -6,18 +6,19 @@
 #include <memory>
 
 #include "backends/emitter.h"
-#include "backends/machine.h"
-#include "ir/diagnostics.h"
+#include "machine/machine.h"
+#include "support/diagnostics.h"
 #include "ir/ir.h"
+#include "ir/sink.h"
 
 namespace clpc {
 
-class Backend {
+// A backend is the sink that writes G-code for one machine.
+class Backend : public ProgramSink {
  public:
-  virtual ~Backend() = default;
-  virtual void begin(const ir::ProgramInfo& info) = 0;
-  virtual void operation(const ir::Operation& op) = 0;
-  virtual void end() = 0;
+  void begin(const ir::ProgramInfo& info) override = 0;
+  void operation(const ir::Operation& op) override = 0;
+  void end() override = 0;
 };
 
 std::unique_ptr<Backend> make_backend(const Machine& m, OutputFile& out, Diagnostics& d);
@@ -43,10 +44,24 @@ class ProgramWriter : public Backend {
   virtual void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc);
   virtual void write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc);
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
+  virtual void write_stop(const ir::Stop& s, SourceLoc loc);
+  virtual void retract_for_stop(SourceLoc loc) {}
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 
   void visit(const ir::Operation& op, const ir::Instr& in);
+  // The per-job options around a tool change (docs/machines.md, "Per-job options"): the
+  // backends call these around their own tool-change blocks.
+  void before_tool_change(SourceLoc loc);
+  void optional_stop_between_operations(SourceLoc loc);
+  void after_tool_change(int tool, SourceLoc loc);
+  // Before motion: the coolant a tool change turned off, on again (unless the CL said).
+  void restore_coolant(SourceLoc loc);
+  void write_smoothing(bool on);
+  // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
+  bool spindle_within_limit(double rpm, SourceLoc loc);
+  void write_header(const ir::ProgramInfo& info);
+  long program_number(const ir::ProgramInfo& info) const;
   void write_coolant(const ir::Coolant& c, SourceLoc loc);
   void write_dwell(const ir::Dwell& d, SourceLoc loc);
   void write_cutter_comp(const ir::CutterComp& c, SourceLoc loc);
@@ -58,6 +73,12 @@ class ProgramWriter : public Backend {
   // the F word when the feed changed (after the coordinates).
   void feed_mode_code();
   bool feed_word(SourceLoc loc);
+  // F in the format of its kind (feeds.*), refused where rounding makes it zero or changes it by
+  // more than feeds.max_rounding; `cl` is the record the feed came from.
+  bool write_feed(double value, ir::FeedMode mode, SourceLoc cl);
+  // A tap's F (its pitch per revolution, or pitch x S per minute): refused where rounding would
+  // lose sync over the tap's depth by half an output increment or more.
+  bool write_tap_feed(double value, double pitch, double rpm, double depth, SourceLoc cl);
   std::string tool_comment(const ir::ToolInfo& t) const;
   std::string length_text(double program_units) const;
 
@@ -79,6 +100,8 @@ class ProgramWriter : public Backend {
   bool feed_mode_known_ = false;
   double feed_ = 0;  // program units
   bool feed_known_ = false;
+  SourceLoc feed_loc_;      // the FEDRAT the feed came from
+  bool in_cycle_ = false;  // between a CycleOn and its CycleOff
   bool feed_written_ = false;
   ir::SpindleDir spindle_ = ir::SpindleDir::Off;
   double spindle_rpm_ = 0;  // last programmed speed (rpm mode)
@@ -87,6 +110,11 @@ class ProgramWriter : public Backend {
   bool comp_pending_set_ = false;
   bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental
   bool position_known_ = false;
+  bool cut_since_stop_ = false;     // something moved since the program start or the last M01
+  bool stop_pending_ = false;       // optional_stop = "operation": M01 before the operation's first action
+  bool coolant_restore_ = false;    // coolant_around_tool_change: turn coolant_after_ on before motion
+  ir::CoolantKind coolant_after_ = ir::CoolantKind::Off;
+  size_t tool_change_at_ = 0;       // where in info_->tool_changes the last change was
   ir::Vec3 pos_ = ir::Vec3::Zero();  // last programmed tool tip, program units
 };
 

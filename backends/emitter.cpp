@@ -1,6 +1,6 @@
 #include "backends/emitter.h"
 
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc {
 

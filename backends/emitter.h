@@ -8,11 +8,11 @@
 #include <string>
 #include <string_view>
 
-#include "backends/code_template.h"
-#include "backends/format.h"
-#include "backends/machine.h"
-#include "backends/output.h"
-#include "ir/diagnostics.h"
+#include "machine/code_template.h"
+#include "machine/format.h"
+#include "machine/machine.h"
+#include "support/output.h"
+#include "support/diagnostics.h"
 
 namespace clpc {
 

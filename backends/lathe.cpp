@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "backends/mill.h"
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc {
 
@@ -20,6 +20,7 @@ std::unique_ptr<Backend> make_backend(const Machine& m, OutputFile& out, Diagnos
 void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   if (t.tool == tool_) return;
   if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
+  before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   int offset = t.length_offset > 0 ? t.length_offset : t.tool;
   e_.begin(loc);
@@ -31,7 +32,10 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   motion_ = Motion::None;
   e_.forget_linear();
   feed_written_ = false;
+  after_tool_change(t.tool, loc);
 }
+
+void LatheBackend::retract_for_stop(SourceLoc loc) { blocks({m_.codes.safe_retract}, loc); }
 
 void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   if (s.dir == ir::SpindleDir::Off) {
@@ -45,7 +49,7 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   if (s.mode == ir::SpindleMode::SurfaceSpeed) {
     // The programmer's MAXRPM, never above the machine's limit.
     double clamp = s.max_rpm;
-    if (m_.lathe.max_rpm > 0 && (clamp <= 0 || clamp > m_.lathe.max_rpm)) clamp = m_.lathe.max_rpm;
+    if (m_.spindle_limit() > 0 && (clamp <= 0 || clamp > m_.spindle_limit())) clamp = m_.spindle_limit();
     if (clamp <= 0) {
       d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
       return;
@@ -62,6 +66,10 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.code(dir);
     e_.end();
   } else {
+    if (!spindle_within_limit(s.speed, loc)) {
+      spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
+      return;
+    }
     e_.begin(loc);
     e_.code(m_.codes.spindle_rpm_mode);
     e_.word('S', s.speed);
@@ -194,7 +202,7 @@ void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, So
   e_.word('P', s.x_amount * k_);
   e_.word('Q', s.z_amount * k_);
   if (s.relief > 0) e_.word('R', s.relief * k_);
-  e_.word('F', feed * k_);
+  if (!write_feed(feed * k_, mode, s.feed > 0 ? loc : feed_loc_)) return;
   e_.end();
   feed_written_ = false;
   motion_ = Motion::None;

@@ -16,6 +16,7 @@ class LatheBackend : public ProgramWriter {
   void write_tool_change(const ir::ToolChange& t, SourceLoc loc) override;
   void write_spindle(const ir::Spindle& s, SourceLoc loc) override;
   void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc) override;
+  void retract_for_stop(SourceLoc loc) override;
 
   void motion_code(Motion mo);
   bool in_plane(const ir::Vec3& p, SourceLoc loc);

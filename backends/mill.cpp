@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc {
 
@@ -20,6 +20,7 @@ MillBackend::MillBackend(const Machine& m, OutputFile& out, Diagnostics& d) : Pr
 void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   if (t.tool == tool_) return;  // already in the spindle
   if (tool_ >= 0) retract(loc);
+  before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
   length_offset_ = t.length_offset > 0 ? t.length_offset : t.tool;
@@ -34,6 +35,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   e_.forget_linear();
   feed_written_ = false;
   spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
+  after_tool_change(t.tool, loc);
 }
 
 void MillBackend::retract(SourceLoc loc) {
@@ -118,7 +120,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   };
   if (rotates) unclamp(loc);
   if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
-    d_.warning(loc, "cutting move with the spindle stopped", "spindle stopped");
+    d_.warning(loc, "cutting move with the spindle stopped", "spindle-stopped");
 
   if (rapid && (need_length_offset_ || (at_safe_height_ && tool_ >= 0))) {
     // From the safe height: position in X Y (and the rotaries) with the work offset, then
@@ -168,7 +170,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   e_.modal_word('Z', z);
   if (mv.has_rotary) rotary_words();
   if (!rapid) {
-    if (mv.inverse_time > 0) e_.word('F', mv.inverse_time);
+    if (mv.inverse_time > 0) write_feed(mv.inverse_time, ir::FeedMode::InverseTime, loc);
     else feed_word(loc);
   }
   e_.end();
@@ -456,7 +458,9 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
     }
     if (want.dwell > 0)
       e_.code(k.cycle_dwell_word, TemplateVars().with(Var::Seconds, want.dwell).with(Var::Milliseconds, want.dwell * 1000));
-    e_.word('F', want.feed);
+    if (tap ? !write_tap_feed(want.feed, c.pitch * k_, spindle_rpm_, c.depth * k_, loc)
+            : !write_feed(want.feed, mode, c.feed > 0 || !feed_loc_.valid() ? loc : feed_loc_))
+      return;
     e_.end();
     cycle_ = want;
     cycle_active_ = true;

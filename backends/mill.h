@@ -49,6 +49,9 @@ class MillBackend : public ProgramWriter {
   bool clamped_ = false;
   bool tcp_on_ = false;
   bool at_safe_height_ = true;  // nothing moved since the last safe retract
+  void retract_for_stop(SourceLoc loc) override {
+    if (!at_safe_height_ && tool_ >= 0) retract(loc);
+  }
 };
 
 }  // namespace clpc

@@ -6,9 +6,9 @@
 //              macro computes the offset on the control (docs/offsets.md).
 #include <cmath>
 
-#include "backends/format.h"
+#include "machine/format.h"
 #include "backends/mill.h"
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc {
 

@@ -1,9 +1,10 @@
 // What every backend shares: the program frame, header, spindle, coolant, dwell, stops,
 // comments and feeds.
 #include "backends/backend.h"
+#include "backends/block_check.h"
 
-#include "backends/format.h"
-#include "ir/params.h"
+#include "machine/format.h"
+#include "support/text.h"
 
 namespace clpc {
 
@@ -30,10 +31,10 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
   info_ = &info;
   k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m_.units);
   for (const std::string& l : m_.program_start) e_.line(l);
-  if (m_.program_number > 0) {
+  if (const long number = program_number(info); number > 0) {
     std::string o = "O";
-    int64_t q = m_.program_number;  // the number as it is if the format cannot scale it
-    quantize(double(m_.program_number), m_.format('O'), q);
+    int64_t q = number;  // the number as it is if the format cannot scale it
+    quantize(double(number), m_.format('O'), q);
     append_quantized(q, m_.format('O'), o);
     if (m_.comments.enabled && !info.part_name.empty()) {
       std::string c = e_.clean_comment(info.part_name);
@@ -43,31 +44,28 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
   } else if (!info.part_name.empty()) {
     e_.comment(info.part_name);
   }
-  if (m_.header) {
-    e_.comment("MACHINE: " + m_.name + (m_.description.empty() ? "" : " - " + m_.description));
-    if (!info.source_name.empty()) {
-      std::string base = info.source_name;
-      if (size_t s = base.rfind('/'); s != std::string::npos) base = base.substr(s + 1);
-      e_.comment("SOURCE: " + base);
-    }
-    e_.comment(std::string("UNITS: ") + (m_.units == ir::Units::Inch ? "INCH" : "MM"));
-    for (const ir::ToolInfo& t : info.tools) e_.comment(tool_comment(t));
-  }
+  write_header(info);
   e_.begin({});
   e_.code(m_.units == ir::Units::Inch ? m_.codes.units_inch : m_.codes.units_mm);
   e_.end();
   blocks(m_.safe_start, {});
+  write_smoothing(true);
   start_program();
 }
 
 void ProgramWriter::end() {
   cancel_cycle({});
-  // The finish sequence, less a spindle or coolant stop the program has already made.
-  for (const CodeTemplate& t : m_.finish) {
+  write_smoothing(false);
+  // The finish sequence, less a spindle or coolant stop the program has already made; the
+  // park blocks before its last block (the program end, M30).
+  for (size_t i = 0; i < m_.finish.size(); ++i) {
+    const CodeTemplate& t = m_.finish[i];
+    if (m_.park && i + 1 == m_.finish.size()) blocks(m_.park_blocks, {});
     if (spindle_ == ir::SpindleDir::Off && t.text == m_.codes.spindle_off.text) continue;
     if (coolant_ == ir::CoolantKind::Off && t.text == m_.codes.coolant_off.text) continue;
     blocks({t}, {});
   }
+  if (m_.park && m_.finish.empty()) blocks(m_.park_blocks, {});
   after_finish();
   for (const std::string& l : m_.program_end) e_.line(l);
 }
@@ -114,6 +112,9 @@ void ProgramWriter::absolute_code() {
 }
 
 void ProgramWriter::operation(const ir::Operation& op) {
+  // program.optional_stop = "operation": M01 before each operation after one that moved, at
+  // its first record that does something (a tool change writes it after its own retract).
+  if (!op.continued && m_.optional_stop == Machine::OptionalStop::Operation && cut_since_stop_) stop_pending_ = true;
   if (!op.continued && !op.name.empty()) e_.comment(op.name);
   for (const ir::Instr& in : op.body) visit(op, in);
 }
@@ -123,6 +124,24 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
   std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
+        if constexpr (!std::is_same_v<T, ir::Comment> && !std::is_same_v<T, ir::Feed> && !std::is_same_v<T, ir::SetFrame> &&
+                      !std::is_same_v<T, ir::SelectOffset> && !std::is_same_v<T, ir::Passthrough> &&
+                      !std::is_same_v<T, ir::ToolChange> && !std::is_same_v<T, ir::ToolPreselect> &&
+                      !std::is_same_v<T, ir::CutterComp> && !std::is_same_v<T, ir::GrooveMark> &&
+                      !std::is_same_v<T, ir::CycleOn> && !std::is_same_v<T, ir::CycleOff>)
+          if (stop_pending_) optional_stop_between_operations(loc);
+        // Something that moves the tool: the coolant a tool change turned off comes back first.
+        if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::Arc> || std::is_same_v<T, ir::Groove>) {
+          restore_coolant(loc);
+          cut_since_stop_ = true;
+        } else if constexpr (std::is_same_v<T, ir::Move>) {
+          if (x.kind != ir::MoveKind::From) {
+            restore_coolant(loc);
+            cut_since_stop_ = true;
+          }
+        } else if constexpr (std::is_same_v<T, ir::Coolant>) {
+          coolant_restore_ = false;  // the CL says what it wants
+        }
         if constexpr (std::is_same_v<T, ir::Hole>) {
           write_hole(op, x, loc);
           return;
@@ -149,7 +168,18 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         }
         if constexpr (std::is_same_v<T, ir::CycleOn> || std::is_same_v<T, ir::CycleOff>) {
           cancel_cycle(loc);  // a new cycle starts with all its words; OFF ends the run
+          in_cycle_ = std::is_same_v<T, ir::CycleOn>;
           return;
+        }
+        // drill-cycles turns every GOTO of a cycle into a hole or the moves it takes: a plain
+        // move inside a cycle would be cut as a move to the hole's top, the hole not drilled.
+        if constexpr (std::is_same_v<T, ir::Move>) {
+          if (in_cycle_ && x.kind != ir::MoveKind::From) {
+            d_.error(loc, "a canned cycle's hole reached the program as a plain move: machine '" + m_.name +
+                              "' needs 'drill-cycles' in its pipeline");
+            in_cycle_ = false;
+            return;
+          }
         }
         // Anything else that moves or changes the machine ends a cycle run first.
         if constexpr (!std::is_same_v<T, ir::Feed> && !std::is_same_v<T, ir::Comment> &&
@@ -172,6 +202,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           feed_mode_ = x.mode;
           feed_ = x.value;
           feed_known_ = true;
+          feed_loc_ = loc;
         } else if constexpr (std::is_same_v<T, ir::Coolant>) {
           write_coolant(x, loc);
         } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
@@ -179,13 +210,23 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         } else if constexpr (std::is_same_v<T, ir::Dwell>) {
           write_dwell(x, loc);
         } else if constexpr (std::is_same_v<T, ir::Stop>) {
-          e_.begin(loc);
-          e_.code(x.kind == ir::StopKind::Optional ? m_.codes.optional_stop : m_.codes.stop);
-          e_.end();
+          write_stop(x, loc);
         } else if constexpr (std::is_same_v<T, ir::Comment>) {
           e_.comment(op.str(x.text));
         } else if constexpr (std::is_same_v<T, ir::Insert>) {
-          e_.line(op.str(x.text));
+          std::string why;
+          std::string_view text = op.str(x.text);
+          if (m_.inserts != Machine::Inserts::Raw && !is_control_block(text, why)) {
+            const std::string msg = "INSERT '" + std::string(text) + "' is no block the control reads (" + why + ")";
+            if (m_.inserts == Machine::Inserts::Error) {
+              d_.error(loc, msg + "; program.inserts = \"error\"");
+              return;
+            }
+            d_.warning(loc, msg + ": written as a comment (program.inserts = \"raw\" writes it as it is)", "insert");
+            e_.comment(text);
+            return;
+          }
+          e_.line(text);
           // The inserted line may do anything: write every modal word again after it.
           motion_ = Motion::None;
           e_.forget_all();
@@ -229,8 +270,35 @@ void ProgramWriter::write_groove(const ir::Operation&, const ir::Groove&, Source
   d_.error(loc, "machine '" + m_.name + "' is not a lathe: it has no groove cycles");
 }
 
+void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
+  if (!s.setup) {
+    e_.begin(loc);
+    e_.code(s.kind == ir::StopKind::Optional ? m_.codes.optional_stop : m_.codes.stop);
+    e_.end();
+    return;
+  }
+  // The operator turns the part over: tool clear, spindle and coolant off, then on again.
+  const ir::SpindleDir dir = spindle_;
+  const double rpm = spindle_rpm_;
+  const ir::CoolantKind coolant = coolant_;
+  retract_for_stop(loc);
+  if (dir != ir::SpindleDir::Off) write_spindle(ir::Spindle{0, ir::SpindleMode::Rpm, ir::SpindleDir::Off, 0}, loc);
+  if (coolant != ir::CoolantKind::Off) write_coolant(ir::Coolant{ir::CoolantKind::Off}, loc);
+  e_.begin(loc);
+  e_.code(m_.codes.stop);
+  e_.end();
+  if (dir != ir::SpindleDir::Off) write_spindle(ir::Spindle{rpm, ir::SpindleMode::Rpm, dir, 0}, loc);
+  if (coolant != ir::CoolantKind::Off) write_coolant(ir::Coolant{coolant}, loc);
+}
+
 void ProgramWriter::write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc) {
-  d_.error(loc, std::string("ROTATE: machine '") + m_.name + "' has no " + r.axis + " axis to index");
+  // A table sent to 0 on a machine with no table: the part stays as it was set up.
+  if (!r.incremental && r.angle == 0) {
+    d_.warning(loc, "the rotary table is sent to 0 but machine '" + m_.name + "' has none: nothing to do", "rotary-index");
+    return;
+  }
+  d_.error(loc, std::string("rotary indexing (ROTATE, ROTABL): machine '") + m_.name + "' has no " +
+                    (r.axis == '?' ? std::string("rotary table") : std::string(1, r.axis) + " axis") + " to index");
 }
 
 void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
@@ -245,11 +313,23 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     d_.error(loc, "machine '" + m_.name + "' is a mill: constant surface speed (SPINDL/SFM, SMM) needs a lathe");
     return;
   }
+  if (!spindle_within_limit(s.speed, loc)) {
+    spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
+    return;
+  }
   e_.word('S', s.speed);
   e_.code(s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
   spindle_ = s.dir;
   spindle_rpm_ = s.speed;
   e_.end();
+}
+
+bool ProgramWriter::spindle_within_limit(double rpm, SourceLoc loc) {
+  const double limit = m_.spindle_limit();
+  if (limit <= 0 || rpm <= limit) return true;
+  d_.error(loc, "SPINDL: " + num_text(rpm) + " rpm is above machine '" + m_.name + "''s spindle limit of " + num_text(limit) +
+                    " rpm (max_rpm)");
+  return false;
 }
 
 void ProgramWriter::write_feed_mode(ir::FeedMode mode) {
@@ -277,9 +357,69 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
   double f = feed_mode_ == ir::FeedMode::InverseTime ? feed_ : feed_ * k_;
   if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerMinute && f > m_.max_feed) f = m_.max_feed;
   if (!m_.modal.feed || !feed_written_ || feed_mode_ == ir::FeedMode::InverseTime) {
-    e_.word('F', f);
+    if (!write_feed(f, feed_mode_, feed_loc_.valid() ? feed_loc_ : loc)) return false;
     feed_written_ = true;
   }
+  return true;
+}
+
+namespace {
+
+std::string feed_unit(ir::FeedMode mode, ir::Units u) {
+  if (mode == ir::FeedMode::InverseTime) return "1/min";
+  return std::string(u == ir::Units::Inch ? "in" : "mm") + (mode == ir::FeedMode::PerRev ? "/rev" : "/min");
+}
+
+const char* feed_key(ir::FeedMode mode) {
+  return mode == ir::FeedMode::PerRev ? "feeds.per_rev" : mode == ir::FeedMode::InverseTime ? "feeds.inverse_time" : "feeds.per_minute";
+}
+
+}  // namespace
+
+bool ProgramWriter::write_feed(double value, ir::FeedMode mode, SourceLoc cl) {
+  const AddressFormat& f = m_.feed_format(mode);
+  int64_t q;
+  if (!quantize(value, f, q)) {
+    d_.error(cl, "feed out of range: " + num_text(value) + " " + feed_unit(mode, m_.units));
+    return false;
+  }
+  const double written = dequantize(q, f);
+  if (q == 0 || std::abs(written - value) > m_.feeds.max_rounding * std::abs(value)) {
+    std::string text;
+    append_quantized(q, f, text);
+    d_.error(cl, "the feed of " + num_text(value) + " " + feed_unit(mode, m_.units) + " would be written F" + text + " (" +
+                     feed_key(mode) + ": " + std::to_string(f.decimals) + (f.decimals == 1 ? " decimal" : " decimals") + "): " +
+                     (q == 0 ? std::string("it rounds to zero")
+                             : "rounding changes it by more than " + num_text(m_.feeds.max_rounding * 100) + "%") +
+                     "; give " + feed_key(mode) + " more decimals");
+    return false;
+  }
+  e_.argument('F', value, f);
+  return true;
+}
+
+bool ProgramWriter::write_tap_feed(double value, double pitch, double rpm, double depth, SourceLoc cl) {
+  const AddressFormat& f = m_.feeds.tap;
+  int64_t q;
+  if (!quantize(value, f, q)) {
+    d_.error(cl, "tap feed out of range: " + num_text(value));
+    return false;
+  }
+  const double written = dequantize(q, f);
+  const double lead = m_.cycles.tap_per_rev ? written : written / rpm;  // the pitch the control cuts
+  const double turns = depth / pitch;
+  const double drift = std::abs(lead - pitch) * turns;  // where the tap is off its thread at the bottom
+  const double increment = std::abs(dequantize(1, m_.format('Z')));
+  if (q == 0 || drift >= 0.5 * increment) {
+    std::string text;
+    append_quantized(q, f, text);
+    d_.error(cl, "the tap's pitch of " + num_text(pitch) + (m_.units == ir::Units::Inch ? " in" : " mm") + " would be written F" +
+                     text + " (feeds.tap: " + std::to_string(f.decimals) + (f.decimals == 1 ? " decimal" : " decimals") +
+                     "): the tap would advance " + num_text(std::round(lead * 1e6) / 1e6) + " a turn and be " +
+                     num_text(std::round(drift * 1e6) / 1e6) + " off its thread at the bottom; give feeds.tap more decimals");
+    return false;
+  }
+  e_.argument('F', value, f);
   return true;
 }
 
@@ -295,7 +435,7 @@ void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
     case ir::CoolantKind::Tap: t = &k.coolant_tap; break;
   }
   if (t->empty()) {
-    d_.warning(loc, "machine '" + m_.name + "' has no code for this coolant; flood coolant used", "coolant kind");
+    d_.warning(loc, "machine '" + m_.name + "' has no code for this coolant; flood coolant used", "coolant");
     t = &k.coolant_flood;
   }
   e_.begin(loc);

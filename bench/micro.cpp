@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "backends/backend.h"
-#include "backends/machine_loader.h"
-#include "backends/output.h"
+#include "machine/machine_loader.h"
+#include "support/output.h"
 #include "grammar/parse.h"
-#include "ir/lower.h"
-#include "ir/tables.h"
+#include "lower/lower.h"
+#include "lower/prescan.h"
 #include "passes/pass.h"
 
 using namespace clpc;

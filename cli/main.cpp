@@ -1,6 +1,10 @@
 // clpc: the command line.
 #include <unistd.h>
 
+#include <climits>
+#include <cstdlib>
+#include <map>
+
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <condition_variable>
@@ -9,12 +13,13 @@
 #include <sstream>
 #include <thread>
 
-#include "backends/machine_loader.h"
-#include "backends/output.h"
-#include "cli/driver.h"
-#include "cli/plot.h"
-#include "cli/verify.h"
+#include "cli/usage.h"
+#include "driver/driver.h"
+#include "driver/readback_commands.h"
 #include "passes/pass.h"
+#include "support/output.h"
+#include "support/suggest.h"
+#include "machine/machine_loader.h"
 
 using namespace clpc;
 
@@ -29,6 +34,15 @@ bool load_machines(MachineRegistry& reg, const std::vector<std::string>& files, 
   return ok;
 }
 
+// An output path as one file: its folder resolved (a./b.nc and a/b.nc are one file).
+std::string canonical_output(const std::string& path) {
+  size_t slash = path.rfind('/');
+  std::string dir = slash == std::string::npos ? "." : path.substr(0, slash + (slash == 0));
+  char buf[PATH_MAX];
+  if (!realpath(dir.c_str(), buf)) return path;
+  return std::string(buf) + "/" + (slash == std::string::npos ? path : path.substr(slash + 1));
+}
+
 std::optional<ir::Units> parse_units(const std::string& s) {
   if (s == "mm") return ir::Units::Mm;
   if (s == "inch") return ir::Units::Inch;
@@ -38,35 +52,54 @@ std::optional<ir::Units> parse_units(const std::string& s) {
 // Several files at once: `jobs` workers take the next file in turn; each file's diagnostics
 // are held and printed whole, in input order, as soon as the files before it are done. No
 // progress bars (they would fight over the terminal).
+// What a run of several files found, for the line it ends with.
+struct Totals {
+  bool ok = true;
+  size_t errors = 0, warnings = 0;
+  void add(const CompileResult& r) {
+    ok = ok && r.ok;
+    errors += r.errors;
+    warnings += r.warnings;
+  }
+  // "2 errors, 1 warning" on standard error when there were any; the exit status.
+  int finish() const {
+    if (errors || warnings)
+      std::cerr << "clpc: " << errors << (errors == 1 ? " error, " : " errors, ") << warnings
+                << (warnings == 1 ? " warning" : " warnings") << "\n";
+    return ok ? 0 : 1;
+  }
+};
+
 template <class OutputFor>
-bool compile_parallel(const std::vector<std::string>& inputs, OutputFor output_for, const Machine& m, CompileOptions opt,
-                      unsigned jobs) {
+Totals compile_parallel(const std::vector<std::string>& inputs, OutputFor output_for, const Machine& m, CompileOptions opt,
+                        unsigned jobs) {
   opt.progress = false;
   const size_t n = inputs.size();
   std::vector<std::string> diags(n);
-  std::vector<char> done(n, 0), ok(n, 0);
+  std::vector<char> done(n, 0);
+  std::vector<CompileResult> results(n);
   std::mutex lock;
   std::condition_variable finished;
   std::atomic<size_t> next{0};
   auto worker = [&] {
     for (size_t i; (i = next.fetch_add(1)) < n;) {
       std::ostringstream err;
-      bool r = compile_file(inputs[i], output_for(inputs[i]), m, opt, err).ok;
+      CompileResult r = compile_file(inputs[i], output_for(inputs[i]), m, opt, err);
       std::lock_guard<std::mutex> g(lock);
       diags[i] = err.str();
-      ok[i] = r;
+      results[i] = r;
       done[i] = 1;
       finished.notify_all();
     }
   };
   std::vector<std::thread> pool;
   for (unsigned j = 0; j < std::min<size_t>(jobs, n); ++j) pool.emplace_back(worker);
-  bool all = true;
+  Totals all;
   for (size_t i = 0; i < n; ++i) {
     std::unique_lock<std::mutex> g(lock);
     finished.wait(g, [&] { return done[i] != 0; });
     std::cerr << diags[i];
-    all = all && ok[i];
+    all.add(results[i]);
   }
   for (std::thread& t : pool) t.join();
   return all;
@@ -83,14 +116,20 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> inputs, machine_files;
   std::string machine_name, output, emit = "gcode", print_after, input_units;
-  bool werror = false, verify_ir = false;
+  bool werror = false, verify_ir = false, force_family = false;
+  std::vector<std::string> wflags;
 
   auto add_target = [&](CLI::App* c) {
     c->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
   };
+  MachineRegistry::Job job;
   auto add_machine_files = [&](CLI::App* c) {
     c->add_option("--machines", machine_files, "Machine descriptions (TOML) adding to or replacing the built-in ones")
         ->check(CLI::ExistingFile);
+  };
+  auto add_job = [&](CLI::App* c) {
+    c->add_option("--set", job.sets, "KEY=VALUE: change one machine key for this job (program.optional_stop=operation, units=inch; docs/machines.md)");
+    c->add_option("--job", job.files, "A TOML file whose [job] table changes machine keys for this job")->check(CLI::ExistingFile);
   };
   std::string input_encoding = "utf-8";
   auto add_input_options = [&](CLI::App* c) {
@@ -99,12 +138,17 @@ int main(int argc, char** argv) {
     c->add_option("--input-encoding", input_encoding, "Encoding of comments and text in the CL data (default utf-8)")
         ->check(CLI::IsMember({"utf-8", "latin1"}));
     c->add_flag("--Werror", werror, "Treat warnings as errors");
+    c->add_option("-W", wflags, "-Wno-NAME: do not give warning NAME (names: docs/reliability.md); -Werror as --Werror");
+    c->add_flag("--force-family", force_family, "Post lathe CL data for a mill, or mill data for a lathe");
   };
 
   CLI::App* compile = app.add_subcommand("compile", "Compile CL files into G-code for one machine");
   compile->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
   add_target(compile);
   compile->add_option("-o,--output", output, "Output file ('-' = standard output); default: INPUT with the machine's extension");
+  std::string output_dir;
+  compile->add_option("--output-dir", output_dir, "Write each program into this folder (named as INPUT, with the machine's extension)")
+      ->check(CLI::ExistingDirectory);
   compile->add_option("--emit", emit, "What to write")->check(CLI::IsMember({"gcode", "ir"}));
   compile->add_option("--print-after", print_after, "Print the IR after this pass ('lower', a pass name or 'all') to stderr");
   compile->add_flag("--verify-ir", verify_ir, "Check the IR's invariants after every pass");
@@ -112,12 +156,14 @@ int main(int argc, char** argv) {
   compile->add_option("-j,--jobs", jobs, "Compile this many files at once (each file's diagnostics stay together, in input order)")
       ->check(CLI::Range(1u, 256u));
   add_machine_files(compile);
+  add_job(compile);
   add_input_options(compile);
 
   CLI::App* check = app.add_subcommand("check", "Report problems in CL files without writing anything");
   check->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
   check->add_option("-t,--target", machine_name, "Also check against this machine");
   add_machine_files(check);
+  add_job(check);
   add_input_options(check);
 
   std::string verify_input;
@@ -136,6 +182,7 @@ int main(int argc, char** argv) {
   verify->add_option("--program", verify_program, "Check this program (say, one edited by hand) against the CL instead of clpc's own")
       ->check(CLI::ExistingFile);
   add_machine_files(verify);
+  add_job(verify);
   add_input_options(verify);
 
   std::string plot_input, plot_program;
@@ -148,6 +195,7 @@ int main(int argc, char** argv) {
   plot->add_option("--width", plot_width, "Width in pixels")->check(CLI::Range(200, 20000));
   plot->add_option("--height", plot_height, "Height in pixels")->check(CLI::Range(200, 20000));
   add_machine_files(plot);
+  add_job(plot);
   add_input_options(plot);
 
   CLI::App* machines = app.add_subcommand("machines", "List the machines clpc knows");
@@ -156,14 +204,14 @@ int main(int argc, char** argv) {
   CLI::App* explain = app.add_subcommand("explain", "Print a machine's resolved description (TOML)");
   explain->add_option("MACHINE", machine_name, "Machine name, or a TOML file with one machine")->required();
   add_machine_files(explain);
+  add_job(explain);
 
   CLI::App* passes = app.add_subcommand("passes", "List the passes a pipeline may use, with their contracts");
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? kOk : kUsage;
+    return report_parse_error(app, e, argc, argv, std::cout, std::cerr);
   }
 
   Diagnostics diags(&std::cerr);
@@ -181,7 +229,7 @@ int main(int argc, char** argv) {
   }
   if (*explain) {
     if (!load_machines(reg, machine_files, diags)) return kFailed;
-    auto m = reg.resolve(machine_name, diags);
+    auto m = reg.resolve(machine_name, diags, job);
     if (!m) return kFailed;
     std::cout << explain_machine(*m);
     return kOk;
@@ -194,15 +242,36 @@ int main(int argc, char** argv) {
   opt.input_units = parse_units(input_units);
   opt.progress = true;  // shown only on a terminal, for large inputs
   opt.latin1 = input_encoding == "latin1";
+  opt.force_family = force_family;
+  for (const std::string& w : wflags) {
+    if (w == "error") {
+      opt.werror = true;
+      continue;
+    }
+    std::string name = w.rfind("no-", 0) == 0 ? w.substr(3) : std::string();
+    if (!is_warning_name(name)) {
+      std::vector<std::string> all;
+      for (const WarningName& n : warning_names()) all.push_back(std::string("no-") + n.name);
+      std::string near = closest(w, all);
+      std::cerr << "clpc: error: -W" << w << ": no such warning switch (-Wno-NAME, -Werror)"
+                << (near.empty() ? std::string() : "; did you mean '-W" + near + "'?") << "\n";
+      return kUsage;
+    }
+    opt.no_warnings.push_back(name);
+  }
   if (!print_after.empty() && print_after != "lower" && print_after != "all" && !find_pass(print_after)) {
     std::cerr << "clpc: error: --print-after: no pass named '" << print_after << "' (see 'clpc passes')\n";
     return kUsage;
   }
 
+  if (machine_name.empty() && !job.empty()) {
+    std::cerr << "clpc: error: --set and --job change a machine: name it with -t\n";
+    return kUsage;
+  }
   std::optional<Machine> machine;
   if (!machine_name.empty()) {
     if (!load_machines(reg, machine_files, diags)) return kFailed;
-    machine = reg.resolve(machine_name, diags);
+    machine = reg.resolve(machine_name, diags, job);
     if (!machine) return kFailed;
   }
 
@@ -220,11 +289,11 @@ int main(int argc, char** argv) {
   }
 
   if (*plot) {
-    PlotOptions po;
+    PlotFileOptions po;
     po.compile = opt;
     po.program = plot_program;
-    po.width = plot_width;
-    po.height = plot_height;
+    po.plot.width = plot_width;
+    po.plot.height = plot_height;
     std::string out = output;
     if (out.empty()) {
       Machine svg = *machine;
@@ -235,30 +304,56 @@ int main(int argc, char** argv) {
   }
 
   if (*check) {
-    opt.emit = Emit::Nothing;
-    bool ok = true;
+    // With a machine, everything compile does, the backend's checks included.
+    opt.emit = machine ? Emit::Check : Emit::Nothing;
+    Totals t;
     for (const std::string& in : inputs) {
       Machine m = machine ? *machine : default_machine(Family::Mill, ir::Units::Mm);
       if (!machine) m.pipeline = {"arc-direction"};
-      CompileResult r = compile_file(in, "-", m, opt, std::cerr);
-      ok = ok && r.ok;
+      t.add(compile_file(in, "-", m, opt, std::cerr));
     }
-    return ok ? kOk : kFailed;
+    return t.finish() == 0 ? kOk : kFailed;
   }
 
   // compile
   opt.emit = emit == "ir" ? Emit::Ir : Emit::Gcode;
+  opt.say_replaced = true;
   if (!output.empty() && inputs.size() > 1 && output != "-") {
     std::cerr << "clpc: error: -o names one output but " << inputs.size() << " inputs were given\n";
     return kUsage;
   }
-  auto output_for = [&](const std::string& in) {
-    return !output.empty() ? output : opt.emit == Emit::Ir ? "-" : default_output(in, *machine);
-  };
-  if (jobs <= 1 || inputs.size() <= 1) {
-    bool ok = true;
-    for (const std::string& in : inputs) ok = compile_file(in, output_for(in), *machine, opt, std::cerr).ok && ok;
-    return ok ? kOk : kFailed;
+  if (!output.empty() && !output_dir.empty()) {
+    std::cerr << "clpc: error: -o and --output-dir: name the output, or the folder for it, not both\n";
+    return kUsage;
   }
-  return compile_parallel(inputs, output_for, *machine, opt, jobs) ? kOk : kFailed;
+  auto output_for = [&](const std::string& in) -> std::string {
+    if (!output.empty()) return output;
+    if (opt.emit == Emit::Ir) return "-";
+    std::string out = default_output(in, *machine);
+    if (output_dir.empty() || out == "-") return out;
+    size_t slash = out.rfind('/');
+    return output_dir + "/" + (slash == std::string::npos ? out : out.substr(slash + 1));
+  };
+  // Two inputs that map to one output (Creo's numbered versions, part.ncl.1 and part.ncl.2):
+  // the second would replace the first. Refused before anything is written.
+  if (output != "-" && opt.emit == Emit::Gcode) {
+    std::map<std::string, std::string> first;  // output -> the input that writes it
+    for (const std::string& in : inputs) {
+      const std::string out = output_for(in);
+      if (out == "-") continue;
+      auto [it, fresh] = first.emplace(canonical_output(out), in);
+      if (!fresh) {
+        std::cerr << "clpc: error: '" << it->second << "' and '" << in << "' would both be written to '" << out
+                  << "': compile them one at a time with -o, or into other folders with --output-dir\n";
+        return kUsage;
+      }
+    }
+  }
+  Totals t;
+  if (jobs <= 1 || inputs.size() <= 1) {
+    for (const std::string& in : inputs) t.add(compile_file(in, output_for(in), *machine, opt, std::cerr));
+  } else {
+    t = compile_parallel(inputs, output_for, *machine, opt, jobs);
+  }
+  return t.finish() == 0 ? kOk : kFailed;
 }

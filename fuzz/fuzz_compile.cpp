@@ -2,17 +2,15 @@
 // of each built-in machine's pipeline and its backend (output dropped) — on any bytes.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "backends/backend.h"
-#include "backends/machine_loader.h"
-#include "backends/output.h"
-#include "grammar/parse.h"
-#include "ir/lower.h"
-#include "ir/tables.h"
-#include "ir/verify.h"
-#include "passes/pass_manager.h"
+#include "machine/machine_loader.h"
+#include "support/output.h"
+#include "driver/pipeline.h"
+#include "lower/prescan.h"
 
 namespace {
 
@@ -28,22 +26,22 @@ const std::vector<clpc::Machine>& machines() {
   return m;
 }
 
-struct Run : clpc::OperationSink {
-  clpc::PassManager& pm;
-  clpc::Backend& be;
-  clpc::Diagnostics& d;
-  Run(clpc::PassManager& p, clpc::Backend& b, clpc::Diagnostics& dd) : pm(p), be(b), d(dd) {}
-  void operation(clpc::ir::Operation& op) override {
-    pm.run(op);
-    if (!d.has_errors()) be.operation(op);
-  }
-};
-
 }  // namespace
 
+// An input that starts with 0xFF is the rest of it over and over, past 1.5 MB: a file of several
+// read windows (the lexer refills, its splices and text kept across them, operations in
+// chunks), on one machine so that each run stays short.
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
+  std::string big;
+  const bool repeat = size > 1 && data[0] == 0xFF;
+  if (repeat) {
+    text.remove_prefix(1);
+    while (big.size() < 1536 * 1024) big.append(text);
+    text = big;
+  }
   for (const clpc::Machine& m : machines()) {
+    if (repeat && m.name != "fanuc-mill") continue;
     clpc::SourceFile src;
     src.open_memory("fuzz.cls", text);
     clpc::Diagnostics d(nullptr);
@@ -53,15 +51,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       clpc::OutputFile out;
       out.open_null();
       auto be = clpc::make_backend(m, out, d);
-      clpc::PassContext ctx{info, m, d};
-      clpc::PassManager pm(ctx, m.pipeline, {}, nullptr, /*verify=*/true);
-      pm.begin();
-      be->begin(info);
-      Run run(pm, *be, d);
-      clpc::Lowerer low(info, d, run);
-      clpc::parse_cl(src, d, low);
-      low.finish();
-      if (!d.has_errors()) be->end();
+      // The compile's own pipeline, on this thread, its IR checked after every pass.
+      auto verify_ir = clpc::make_verify_ir();
+      clpc::PipelineOptions po;
+      po.schedule = clpc::Schedule::Single;
+      po.instruments = {verify_ir.get()};
+      clpc::Pipeline(m, m.pipeline, info, d, po).run(src, *be);
     } catch (const clpc::FatalError&) {
     }
   }

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "backends/machine_loader.h"
+#include "machine/machine_loader.h"
 #include "passes/pass.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

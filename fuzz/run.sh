@@ -35,6 +35,10 @@ seed_cl() {
 }
 seed_cl "$corpus/parse"
 seed_cl "$corpus/compile"
+# Seeds of the repeating form (a first byte 0xFF: the rest over and over, past a read window).
+for f in tests/golden/creo_mill.ncl examples/bracket.cls; do
+  for t in parse compile; do { printf '\xff'; cat "$f"; } >"$corpus/$t/repeat-$(basename "$f")"; done
+done
 # One machine per seed file.
 python3 - "$corpus/machine" machines.toml tests/machines/*.toml examples/*.toml tests/offsets/machines.toml <<'PY'
 import re, sys, os

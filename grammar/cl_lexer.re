@@ -12,6 +12,7 @@ namespace clpc::grammar {
 namespace {
 
 constexpr size_t kWindow = 1 << 20;  // read window; a token may use up to kMaxToken of it
+constexpr int kMaxDepth = 16;        // nested parameter groups
 
 std::string describe(unsigned char c) {
   if (c == 0) return "NUL byte";
@@ -22,6 +23,54 @@ std::string describe(unsigned char c) {
     return buf;
   }
   return std::string("'") + char(c) + "'";
+}
+
+bool is_ws(unsigned char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\r'; }
+bool is_letter(unsigned char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_'; }
+
+// Splices the continuations out of the complete lines in [p, e): a "$" followed by blanks (and
+// perhaps a "$$" comment) up to the line end joins the next line to it with nothing between,
+// so a number or word cut anywhere (CATIA cuts at column 72) is whole again. A "$" inside a
+// "$$" comment does not continue; a "$$->" data comment does (Creo's CSYS spans lines). The
+// text moves down in place; `mark(at, removed)` hears of each splice. Returns the new end.
+template <class Mark>
+unsigned char* splice_lines(unsigned char* p, unsigned char* e, Mark&& mark) {
+  unsigned char* w = p;
+  while (p < e) {
+    auto* nl = static_cast<unsigned char*>(std::memchr(p, '\n', size_t(e - p)));
+    unsigned char* le = nl ? nl : e;
+    unsigned char* next = nl ? nl + 1 : e;
+    unsigned char* cut = nullptr;
+    if (nl && std::memchr(p, '$', size_t(le - p))) {
+      unsigned char* q = p;
+      while (q < le && is_ws(*q)) ++q;
+      if (le - q >= 4 && std::memcmp(q, "$$->", 4) == 0) {
+        unsigned char* r = q + 4;
+        while (r < le && is_ws(*r)) ++r;
+        q = r < le && is_letter(*r) ? r : le;  // a data record: scan it; else all comment
+      } else {
+        q = p;
+      }
+      while (q < le) {
+        auto* d = static_cast<unsigned char*>(std::memchr(q, '$', size_t(le - q)));
+        if (!d) break;
+        if (d + 1 < le && d[1] == '$') break;  // a comment: nothing after it continues
+        unsigned char* t = d + 1;
+        while (t < le && is_ws(*t)) ++t;
+        if (t == le || (le - t >= 2 && t[0] == '$' && t[1] == '$')) {
+          cut = d;
+          break;
+        }
+        q = d + 1;
+      }
+    }
+    unsigned char* keep_end = cut ? cut : next;
+    if (w != p) std::memmove(w, p, size_t(keep_end - p));
+    w += keep_end - p;
+    if (cut) mark(w, size_t(next - cut));
+    p = next;
+  }
+  return w;
 }
 
 }  // namespace
@@ -40,12 +89,6 @@ std::string describe(unsigned char c) {
   nl      = "\n";
   mword   = [A-Za-z_] [A-Za-z0-9_-]*;
   majorw  = mword ([ \t]+ mword)*;
-  num     = [+-]? ([0-9]+ ("." [0-9]*)? | "." [0-9]+) ([eE] [+-]? [0-9]+)?;
-  numlike = [+.0-9-] [A-Za-z0-9_.+-]*;
-  pchar   = [A-Za-z0-9_.#@-];
-  pword   = [A-Za-z_#@] pchar* ([ \t]+ pchar+)*;
-  dword   = [0-9]+ [A-Za-z] [A-Za-z_] pchar*;  // APT minor words such as 1STPECK
-  cont    = "$" ws* ("$$" [^\n\x00]*)? nl;
   text    = [^\n\x00]*;
 */
 
@@ -65,13 +108,19 @@ Lexer::Lexer(SourceFile& src, Diagnostics* diags, const bool* wanted)
       arena_(new char[arena_for(src.size())]),
       arena_cap_(arena_for(src.size())) {
   cur_ = lim_ = tok_ = mar_ = ctx_ = buf_.get();
+  raw_end_ = buf_.get();
   buf_[0] = 0;
   src_.note_line_start(1, 0);
 }
 
+// Reads more of the file. The rules see only spliced text, and only whole lines of it (so a
+// continuation is always seen with the line end after it): what follows the last line end
+// waits, unspliced, in [lim_, raw_end_) for the next read — unless the window is full of one
+// line, or the file has ended.
 int Lexer::fill() {
   if (eof_) return 1;
   unsigned char* b = buf_.get();
+  if (raw_end_ > lim_) b[lim_ - b] = saved_;
   if (size_t(cur_ - tok_) > kMaxToken) {
     // The token is too long to keep: drop what we have of it and remember. The rule that
     // ends up matching reports it and skips the record.
@@ -80,40 +129,109 @@ int Lexer::fill() {
     tok_ = cur_;
   }
   size_t drop = size_t(tok_ - b);
-  size_t keep = size_t(lim_ - tok_);
   if (drop != 0) {
-    std::memmove(b, tok_, keep);
+    std::memmove(b, tok_, size_t(raw_end_ - tok_));
     auto shift = [&](const unsigned char*& p) { p = p >= tok_ ? p - drop : b; };
     shift(cur_);
     shift(mar_);
     shift(ctx_);
+    lim_ -= drop;
+    raw_end_ -= drop;
     tok_ = b;
-    lim_ = b + keep;
     base_ += drop;
-    b[keep] = 0;  // the sentinel must follow the data even when nothing more arrives
   }
-  long n = src_.read_at(read_pos_, reinterpret_cast<char*>(b + keep), cap_ - keep);
-  if (n <= 0) {
-    eof_ = true;
+  const unsigned char* old_lim = lim_;
+  for (;;) {
+    size_t room = cap_ - size_t(raw_end_ - b);
+    long n = room ? src_.read_at(read_pos_, reinterpret_cast<char*>(raw_end_), room) : 0;
     if (n < 0 && diags_) diags_->error(loc_of(cur_), "read error in " + src_.name());
-    return 1;
+    if (n > 0) {
+      read_pos_ += uint64_t(n);
+      src_.reached(read_pos_);
+      raw_end_ += n;
+    }
+    const bool end = room != 0 && n <= 0;
+    unsigned char* upto = raw_end_;
+    if (!end && room != 0) {
+      unsigned char* s = const_cast<unsigned char*>(lim_);
+      unsigned char* last_nl = nullptr;
+      for (unsigned char* q = raw_end_; q > s;)
+        if (*--q == '\n') {
+          last_nl = q;
+          break;
+        }
+      upto = last_nl ? last_nl + 1 : s;
+    }
+    unsigned char* from = const_cast<unsigned char*>(lim_);
+    if (upto > from) {
+      unsigned char* w = splice_lines(from, upto, [&](unsigned char* at, size_t removed) {
+        splices_.push_back({base_ + uint64_t(at - b), uint32_t(removed)});
+      });
+      if (w != upto) {
+        std::memmove(w, upto, size_t(raw_end_ - upto));
+        raw_end_ -= upto - w;
+      }
+      lim_ = w;
+    }
+    if (end) {
+      eof_ = true;
+      // A continuation on the last line continues into nothing: give its '$' back, for the
+      // rules to report.
+      if (!splices_.empty() && splices_.back().at == base_ + uint64_t(lim_ - b)) {
+        Splice& s = splices_.back();
+        b[lim_ - b] = '$';
+        ++lim_;
+        ++s.at;
+        --s.removed;
+        if (raw_end_ < lim_) raw_end_ = b + (lim_ - b);
+      }
+    }
+    if (lim_ > old_lim || end || room == 0) break;
   }
-  read_pos_ += uint64_t(n);
-  src_.reached(read_pos_);
-  lim_ = b + keep + n;
-  b[keep + size_t(n)] = 0;
-  return 0;
+  unsigned char* l = b + (lim_ - b);
+  saved_ = raw_end_ > l ? *l : 0;
+  *l = 0;  // the sentinel must follow the data even when nothing more arrives
+  return lim_ > old_lim ? 0 : 1;
+}
+
+void Lexer::pass_splices(uint64_t before) {
+  while (splice_head_ < splices_.size() && splices_[splice_head_].at < before) {
+    const Splice& s = splices_[splice_head_++];
+    removed_passed_ += s.removed;
+    ++line_;
+    line_start_ = s.at;
+    src_.note_line_start(line_, s.at + removed_passed_);
+  }
+  if (splice_head_ != 0 && splice_head_ == splices_.size()) {
+    splices_.clear();
+    splice_head_ = 0;
+  }
 }
 
 void Lexer::newline(const unsigned char* after) {
+  uint64_t a = abs(after);
+  pass_splices(a);
   ++line_;
-  line_start_ = abs(after);
-  src_.note_line_start(line_, line_start_);
+  line_start_ = a;
+  src_.note_line_start(line_, a + removed_passed_);
+}
+
+SourceLoc Lexer::loc_of(const unsigned char* p) const {
+  uint64_t a = abs(p);
+  uint32_t line = line_;
+  uint64_t start = line_start_;
+  for (size_t i = splice_head_; i < splices_.size() && splices_[i].at <= a; ++i) {
+    ++line;
+    start = splices_[i].at;
+  }
+  uint64_t col = a >= start ? a - start + 1 : 1;
+  return {line, uint32_t(std::min<uint64_t>(col, UINT32_MAX))};
 }
 
 namespace {
 
-// A number as the grammar's `num` writes it; returns its end, or null.
+// A number: digits with an optional point, sign and exponent (12, 12., .5, -55., 1.25E-3).
+// Returns its end, or null.
 const unsigned char* match_num(const unsigned char* p, const unsigned char* e) {
   if (p < e && (*p == '+' || *p == '-')) ++p;
   const unsigned char* digits = p;
@@ -165,15 +283,39 @@ const unsigned char* invalid_utf8(const unsigned char* b, const unsigned char* e
   return nullptr;
 }
 
-bool is_ws(unsigned char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\r'; }
+// NX's information window frames a CLSF listing with lines that are no records: a header of
+// "Information listing created by<TAB>user", "Date<TAB>...", "Current work part<TAB>...",
+// "Node name<TAB>..." and a last line "Tool Path Listing has N lines." (nx-course/ in the
+// corpus). They are skipped without a word.
+bool is_listing_line(const unsigned char* b, const unsigned char* e) {
+  std::string_view line(reinterpret_cast<const char*>(b), size_t(e - b));
+  for (std::string_view head : {"Information listing created by\t", "Date\t", "Current work part\t", "Node name\t"})
+    if (line.substr(0, head.size()) == head) return true;
+  std::string_view tail = "Tool Path Listing has ";
+  if (line.substr(0, tail.size()) != tail) return false;
+  line.remove_prefix(tail.size());
+  size_t digits = 0;
+  while (digits < line.size() && line[digits] >= '0' && line[digits] <= '9') ++digits;
+  if (digits == 0) return false;
+  line.remove_prefix(digits);
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
+  return line == " lines." || line == " line.";
+}
 
 }  // namespace
+
+bool Lexer::listing_line() const {
+  const unsigned char* e = static_cast<const unsigned char*>(std::memchr(tok_, '\n', size_t(lim_ - tok_)));
+  return is_listing_line(tok_, e ? e : lim_);
+}
 
 bool Lexer::simple_record(Simple& s) {
   if (!simple_on_ || wanted_ || mode_ != Mode::LineStart || pending_ || at_end_) return false;
   const unsigned char* p = cur_;
   const unsigned char* nl = static_cast<const unsigned char*>(std::memchr(p, '\n', size_t(lim_ - p)));
   if (!nl || size_t(nl - p) > kMaxToken) return false;
+  // A line that a continuation joined: its columns need loc_of, the grammar's way.
+  if (splice_head_ < splices_.size() && splices_[splice_head_].at <= abs(nl)) return false;
   static constexpr struct {
     const char* word;
     size_t len;
@@ -212,32 +354,28 @@ bool Lexer::simple_record(Simple& s) {
   return true;
 }
 
-SourceLoc Lexer::loc_of(const unsigned char* p) const {
-  uint64_t a = abs(p);
-  uint64_t col = a >= line_start_ ? a - line_start_ + 1 : 1;
-  return {line_, uint32_t(std::min<uint64_t>(col, UINT32_MAX))};
-}
-
 std::string Lexer::too_long() const {
   return "line too long: a word, number or text of more than " + std::to_string(kMaxToken) + " characters";
 }
 
-// Comments and free text are UTF-8 (ASCII in practice): a byte that is not is reported where
-// it is, unless the file was declared Latin-1 (old CAM systems), where every byte is a letter.
+// Comments and free text are UTF-8 (ASCII in practice). A byte that is not (a Windows code page,
+// CAMWorks) is a warning where it is: text carries no motion, and the program's comments are
+// ASCII anyway. A file declared Latin-1 (--input-encoding latin1) has no such bytes.
 void Lexer::check_text(const unsigned char* b, const unsigned char* e, const char* what) {
-  if (latin1_) return;
+  if (latin1_ || !diags_) return;
   if (const unsigned char* bad = invalid_utf8(b, e)) {
     char hex[8];
     std::snprintf(hex, sizeof hex, "0x%02X", *bad);
-    report(loc_of(bad), std::string("invalid UTF-8 in a ") + what + ": byte " + hex +
-                            " (if the file is Latin-1, --input-encoding latin1 reads it)");
+    diags_->warning(loc_of(bad), std::string("invalid UTF-8 in a ") + what + ": byte " + hex +
+                                     ", read as a one-byte code page (--input-encoding latin1 says so for the file)",
+                    "invalid-utf8");
   }
 }
 
 void Lexer::report(SourceLoc loc, const std::string& msg) {
   if (!diags_) return;
   if (data_comment_)
-    diags_->warning(loc, "malformed '$$->' data comment ignored: " + msg, "malformed data comment");
+    diags_->warning(loc, "malformed '$$->' data comment ignored: " + msg, "data-comment");
   else
     diags_->error(loc, msg);
 }
@@ -261,10 +399,25 @@ Lexer::Symbol Lexer::error_token(SourceLoc loc, const std::string& msg) {
   return Parser::make_YYerror(loc);
 }
 
+// A line that starts with a word clpc does not know and goes on as no record does ("Date
+// 12-Jan", a sentence typed into the file): it carries nothing a post could use, so it is
+// skipped with a warning, not an error. (A known major word written wrong is an error.)
+Lexer::Symbol Lexer::not_a_record() {
+  if (diags_ && !data_comment_)
+    diags_->warning(record_start_, "not a CL record (a word that is no major word, then neither '/' nor the line end): "
+                                   "the line is ignored",
+                    "not-a-record");
+  mode_ = Mode::SkipRecord;
+  return Parser::make_YYerror(record_start_);
+}
+
 Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned char* e) {
   record_start_ = loc_of(b);
   arena_used_ = 0;
   arena_full_ = false;
+  depth_ = 0;
+  numbers_end_ = 0;
+  known_major_ = id != MajorId::Unknown;
   MajorTok t;
   t.id = id;
   t.text = id == MajorId::Unknown ? keep(b, e) : major_spelling(id);
@@ -273,7 +426,7 @@ Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned ch
   return Parser::make_MAJOR(t, record_start_);
 }
 
-// PARTNO, PPRINT, INSERT, REMARK: the rest of the line, after an optional '/', is text.
+// PARTNO, PPRINT, INSERT, REMARK, TPRINT: the rest of the line, after an optional '/', is text.
 Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
   const unsigned char* b = tok_ + keyword_len;
   const unsigned char* e = cur_;
@@ -288,38 +441,22 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
   return m;
 }
 
+// To the end of the record: its line (continuations are spliced away already).
 bool Lexer::skip_record() {
-  bool continued = false;   // this line ends in a continuation '$'
-  bool in_comment = false;  // past "$$" on this line
   for (;;) {
     tok_ = cur_;
     if (cur_ >= lim_) {
       if (fill() != 0) return false;
       continue;
     }
-    size_t avail = size_t(lim_ - cur_);
-    auto* nl = static_cast<const unsigned char*>(std::memchr(cur_, '\n', avail));
-    const unsigned char* end = nl ? nl : lim_;
-    if (!continued && !in_comment) {
-      auto* d = static_cast<const unsigned char*>(std::memchr(cur_, '$', size_t(end - cur_)));
-      if (d) {
-        if (d + 1 >= lim_) {  // need the next byte to tell "$" from "$$"
-          cur_ = d;
-          tok_ = d;
-          if (fill() != 0) return false;
-          continue;
-        }
-        if (d[1] == '$') in_comment = true; else continued = true;
-      }
-    }
+    auto* nl = static_cast<const unsigned char*>(std::memchr(cur_, '\n', size_t(lim_ - cur_)));
     if (!nl) {
       cur_ = lim_;
       continue;
     }
     cur_ = nl + 1;
     newline(cur_);
-    if (!continued) return true;
-    continued = in_comment = false;
+    return true;
   }
 }
 
@@ -374,7 +511,6 @@ Lexer::Symbol Lexer::lex_line_start() {
       }
       ws+ { continue; }
       nl  { newline(cur_); continue; }
-      cont { for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1); continue; }
 
       "$$->" [ \t]* / [A-Za-z_] { data_mark = true; continue; }
       "$$" {
@@ -390,6 +526,7 @@ Lexer::Symbol Lexer::lex_line_start() {
       'PPRINT' [ \t/] text { FREE_TEXT(Pprint, 6) }
       'INSERT' [ \t/] text { FREE_TEXT(Insert, 6) }
       'REMARK' [ \t/] text { FREE_TEXT(Remark, 6) }
+      'TPRINT' [ \t/] text { FREE_TEXT(Tprint, 6) }
 
       'GOTO'        { MAJOR(Goto) }
       'FROM'        { MAJOR(From) }
@@ -427,6 +564,7 @@ Lexer::Symbol Lexer::lex_line_start() {
       'PPRINT'      { MAJOR(Pprint) }
       'INSERT'      { MAJOR(Insert) }
       'REMARK'      { MAJOR(Remark) }
+      'TPRINT'      { MAJOR(Tprint) }
       'CYCLE'       { MAJOR(Cycle) }
       'DEFSUB'      { MAJOR(Defsub) }
       'ENDSUB'      { MAJOR(Endsub) }
@@ -447,7 +585,32 @@ Lexer::Symbol Lexer::lex_line_start() {
       'PREFUN'      { MAJOR(Prefun) }
       'ORIGIN'      { MAJOR(Origin) }
       'THREAD'      { MAJOR(Thread) }
-      majorw        { MAJOR(Unknown) }
+      'TLAXIS'      { MAJOR(Tlaxis) }
+      'TOOLNO'      { MAJOR(Toolno) }
+      'MOVARC'      { MAJOR(Movarc) }
+      'GOFWD'       { MAJOR(Gofwd) }
+      'GOLFT'       { MAJOR(Golft) }
+      'GORGT'       { MAJOR(Gorgt) }
+      'GOBACK'      { MAJOR(Goback) }
+      'GOUP'        { MAJOR(Goup) }
+      'GODOWN'      { MAJOR(Godown) }
+      'INDIRV'      { MAJOR(Indirv) }
+      'INDIRP'      { MAJOR(Indirp) }
+      'ROTABL'      { MAJOR(Rotabl) }
+      'ROTHED'      { MAJOR(Rothed) }
+      'TRACUT'      { MAJOR(Tracut) }
+      'COPY'        { MAJOR(Copy) }
+      'INDEX'       { MAJOR(Index) }
+      'PSIS'        { MAJOR(Psis) }
+      'AUTOPS'      { MAJOR(Autops) }
+      'INTOL'       { MAJOR(Intol) }
+      'OUTTOL'      { MAJOR(Outtol) }
+      'TOLER'       { MAJOR(Toler) }
+      'COMMENT'     { MAJOR(Comment) }
+      majorw        {
+        if (listing_line()) { skip_record(); continue; }
+        MAJOR(Unknown)
+      }
 
       * {
         if (wanted_) { skip_record(); continue; }
@@ -463,84 +626,172 @@ Lexer::Symbol Lexer::lex_after_major() {
     /*!re2c
       $    { mode_ = Mode::LineStart; return Parser::make_EOL(loc_of(tok_)); }
       ws+  { continue; }
-      cont {
-        SourceLoc dollar = loc_of(tok_);
-        for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1);
-        if (cur_ >= lim_ && fill() != 0)
-          return error_token(dollar, "unterminated continuation: '$' at the end of the file");
-        continue;
-      }
       nl   { SourceLoc at = loc_of(tok_); newline(cur_); mode_ = Mode::LineStart; return Parser::make_EOL(at); }
       "/"  { mode_ = Mode::Params; return Parser::make_SLASH(loc_of(tok_)); }
+      "," ws* mword ws* / "/" {
+        // TLON,GOFWD/...: a word before the major word.
+        const unsigned char* w = tok_ + 1;
+        while (is_ws(*w)) ++w;
+        const unsigned char* we = w;
+        while (we < cur_ && !is_ws(*we)) ++we;
+        pending_.emplace(Parser::make_WORD(keep(w, we), loc_of(w)));
+        return Parser::make_COMMA(loc_of(tok_));
+      }
       "$$" { mode_ = Mode::CommentText; return lex_comment(); }
       "$" ws* {
         if (cur_ >= lim_ && fill() != 0)
           return error_token(loc_of(tok_), "unterminated continuation: '$' at the end of the file");
-        return error_token(loc_of(tok_), "'$' continues a record only at the end of a line");
+        if (!known_major_) return not_a_record();
+        return error_token(loc_of(tok_), "expected '/' or the end of the record, found '$'");
       }
-      * { return error_token(loc_of(tok_), "expected '/' or the end of the record, found " + describe(*tok_)); }
+      * {
+        if (!known_major_) return not_a_record();
+        return error_token(loc_of(tok_), "expected '/' or the end of the record, found " + describe(*tok_));
+      }
     */
   }
+}
+
+// A number token for [b, e) (a whole number as match_num reads it).
+Lexer::Symbol Lexer::number_token(const unsigned char* b, const unsigned char* e, bool& bad) {
+  bad = false;
+  const char* s = reinterpret_cast<const char*>(b);
+  const char* end_text = reinterpret_cast<const char*>(e);
+  const char* digits = *s == '+' ? s + 1 : s;
+  double v = 0;
+  auto [end, ec] = std::from_chars(digits, end_text, v);
+  if (ec == std::errc::result_out_of_range) {
+    // Underflow reads as zero; overflow is an error.
+    const char* exp = digits;
+    while (exp < end_text && *exp != 'e' && *exp != 'E') ++exp;
+    if (exp < end_text && exp[1] != '-') {
+      bad = true;
+      return error_token(loc_of(b), "number out of range: '" + std::string(s, end_text) + "'");
+    }
+    v = 0;
+  } else if (ec != std::errc() || end != end_text) {
+    bad = true;
+    return error_token(loc_of(b), "bad number '" + std::string(s, end_text) + "'");
+  }
+  return Parser::make_NUMBER(NumTok{v, keep(b, e)}, loc_of(b));
+}
+
+// A parameter that is not punctuation, from tok_: everything up to the next ',' (or the line
+// end, a "$$" comment, the ')' of an open group), less trailing blanks. Names are names: it is
+// a number only if it is one as a whole, otherwise a word whatever it starts with
+// (6_KONTUR_125, 1STPECK, T1 End Mill D 10); lowering asks for numbers where the record's
+// grammar has them. Numbers apart by blanks ("1.0 2.0", CAMWorks) are numbers one by one.
+Lexer::Symbol Lexer::lex_run() {
+  if (overflow_) return error_token(overflow_at_, too_long());
+  const unsigned char* e = cur_;
+  for (;;) {
+    if (e >= lim_) {
+      cur_ = e;
+      if (fill() != 0) {
+        e = cur_;
+        break;
+      }
+      e = cur_;
+      continue;
+    }
+    unsigned char c = *e;
+    if (c == ',' || c == '\n') break;
+    if (c == ')' && depth_ > 0) break;
+    if (c == '$' && e + 1 < lim_ && e[1] == '$') break;
+    if (c < 0x20 && !is_ws(c)) {
+      cur_ = e;
+      return error_token(loc_of(e), "unexpected " + describe(c) + " in a record");
+    }
+    ++e;
+  }
+  if (overflow_) return error_token(overflow_at_, too_long());
+  cur_ = e;
+  const unsigned char* t = e;
+  while (t > tok_ && is_ws(t[-1])) --t;
+  if (t - tok_ == 1 && *tok_ == '$' && e >= lim_)
+    return error_token(loc_of(tok_), "unterminated continuation: '$' at the end of the file");
+  bool bad = false;
+  if (match_num(tok_, t) == t) return number_token(tok_, t, bad);
+  // Blank-separated numbers?
+  const unsigned char* first_end = nullptr;
+  bool all = true;
+  for (const unsigned char* p = tok_; p < t;) {
+    const unsigned char* ne = match_num(p, t);
+    if (!ne || (ne < t && !is_ws(*ne))) {
+      all = false;
+      break;
+    }
+    if (!first_end) first_end = ne;
+    p = ne;
+    while (p < t && is_ws(*p)) ++p;
+  }
+  if (all && first_end) {
+    numbers_end_ = abs(t);
+    cur_ = first_end;
+    return number_token(tok_, first_end, bad);
+  }
+  check_text(tok_, t, "word");
+  return Parser::make_WORD(keep(tok_, t), loc_of(tok_));
 }
 
 Lexer::Symbol Lexer::lex_params() {
   for (;;) {
     tok_ = cur_;
+    if (numbers_end_ != 0) {
+      // Inside "1.0 2.0 3.0": a comma between each two.
+      if (abs(cur_) < numbers_end_) {
+        while (is_ws(*cur_)) ++cur_;
+        if (abs(cur_) < numbers_end_) {
+          const unsigned char* ne = match_num(cur_, lim_);
+          tok_ = cur_;
+          cur_ = ne;
+          bool bad = false;
+          pending_.emplace(number_token(tok_, ne, bad));
+          if (bad) {
+            Symbol err = std::move(*pending_);
+            pending_.reset();
+            numbers_end_ = 0;
+            return err;
+          }
+          return Parser::make_COMMA(loc_of(tok_));
+        }
+      }
+      numbers_end_ = 0;
+    }
     /*!re2c
       $    { mode_ = Mode::LineStart; return Parser::make_EOL(loc_of(tok_)); }
       ws+  { continue; }
-      cont {
-        SourceLoc dollar = loc_of(tok_);
-        for (auto* p = tok_; p < cur_; ++p) if (*p == '\n') newline(p + 1);
-        if (cur_ >= lim_ && fill() != 0)
-          return error_token(dollar, "unterminated continuation: '$' at the end of the file");
-        continue;
-      }
       nl   { SourceLoc at = loc_of(tok_); newline(cur_); mode_ = Mode::LineStart; return Parser::make_EOL(at); }
       ","  { return Parser::make_COMMA(loc_of(tok_)); }
       "$$" { mode_ = Mode::CommentText; return lex_comment(); }
-      "$" ws* {
-        if (cur_ >= lim_ && fill() != 0)
-          return error_token(loc_of(tok_), "unterminated continuation: '$' at the end of the file");
-        return error_token(loc_of(tok_), "'$' continues a record only at the end of a line");
-      }
-      num {
-        if (overflow_) return error_token(overflow_at_, too_long());
-        const char* b = reinterpret_cast<const char*>(tok_);
-        const char* e = reinterpret_cast<const char*>(cur_);
-        const char* digits = *b == '+' ? b + 1 : b;
-        double v = 0;
-        auto [end, ec] = std::from_chars(digits, e, v);
-        if (ec == std::errc::result_out_of_range) {
-          // Underflow reads as zero; overflow is an error.
-          const char* exp = digits;
-          while (exp < e && *exp != 'e' && *exp != 'E') ++exp;
-          if (exp < e && exp[1] != '-')
-            return error_token(loc_of(tok_), "number out of range: '" + std::string(lexeme()) + "'");
-          v = 0;
-        } else if (ec != std::errc() || end != e) {
-          return error_token(loc_of(tok_), "bad number '" + std::string(lexeme()) + "'");
-        }
-        return Parser::make_NUMBER(v, loc_of(tok_));
-      }
-      dword {
-        if (overflow_) return error_token(overflow_at_, too_long());
-        return Parser::make_WORD(keep(tok_, cur_), loc_of(tok_));
-      }
-      numlike {
-        if (overflow_) return error_token(overflow_at_, too_long());
-        return error_token(loc_of(tok_), "bad number '" + std::string(lexeme()) + "'");
-      }
-      pword {
-        if (overflow_) return error_token(overflow_at_, too_long());
-        return Parser::make_WORD(keep(tok_, cur_), loc_of(tok_));
-      }
       ['] [^'\n\x00]* ['] | ["] [^"\n\x00]* ["] {
         if (overflow_) return error_token(overflow_at_, too_long());
+        check_text(tok_ + 1, cur_ - 1, "string");
         return Parser::make_STRING(keep(tok_ + 1, cur_ - 1), loc_of(tok_));
       }
       ['"] { return error_token(loc_of(tok_), "unterminated string"); }
-      * { return error_token(loc_of(tok_), "unexpected " + describe(*tok_) + " in a record"); }
+      "(" ws* mword ws* "/" {
+        if (++depth_ > kMaxDepth) return error_token(loc_of(tok_), "parentheses nest more than 16 deep");
+        const unsigned char* w = tok_ + 1;
+        while (is_ws(*w)) ++w;
+        const unsigned char* we = w;
+        while (we < cur_ && !is_ws(*we) && *we != '/') ++we;
+        return Parser::make_GROUP(keep(w, we), loc_of(tok_));
+      }
+      "(" {
+        if (++depth_ > kMaxDepth) return error_token(loc_of(tok_), "parentheses nest more than 16 deep");
+        return Parser::make_LPAREN(loc_of(tok_));
+      }
+      ")" {
+        if (depth_ > 0) {
+          --depth_;
+          return Parser::make_RPAREN(loc_of(tok_));
+        }
+        cur_ = tok_;
+        return lex_run();
+      }
+      "\x00" { return error_token(loc_of(tok_), "unexpected NUL byte in a record"); }
+      * { cur_ = tok_; return lex_run(); }
     */
   }
 }

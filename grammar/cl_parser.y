@@ -1,10 +1,12 @@
 // The APT/CLSF statement grammar. It knows the shape of a CL file (records of a major word,
 // an optional slash and comma-separated parameters, comments, free text) and nothing of
-// what records mean: that is lowering's job (ir/lower*.cpp).
+// what records mean: that is lowering's job (lower/lower*.cpp).
 //
-//   PARTNO text            free text after PARTNO, PPRINT, INSERT, REMARK
+//   PARTNO text            free text after PARTNO, PPRINT, INSERT, REMARK, TPRINT
 //   RAPID                  bare major word (a slash may follow: RAPID/)
-//   GOTO / 1, 2., .5       major word, slash, parameters (number | word | 'string')
+//   GOTO / 1, 2., .5       major word, slash, parameters (number | word | 'string' | nothing)
+//   TLON,GOFWD/ ...        words before the major word (APT motion modifiers)
+//   ... (CIRCLE/ 1, 2), .. a parameter group: a name and parameters in parentheses
 //   $$ anything            comment, alone or after a record
 //   $$-> CSYS / 1, ...     Creo data comment: a record marked as written inside "$$->"
 //
@@ -23,7 +25,7 @@
 
 %code requires {
 #include <string_view>
-#include "ir/source.h"
+#include "support/source.h"
 #include "grammar/record.h"
 namespace clpc::grammar {
 class ParseState;
@@ -31,6 +33,10 @@ struct MajorTok {
   MajorId id = MajorId::Unknown;
   std::string_view text;
   bool data_comment = false;
+};
+struct NumTok {
+  double value = 0;
+  std::string_view text;  // as written
 };
 }  // namespace clpc::grammar
 }
@@ -44,8 +50,11 @@ struct MajorTok {
 %token END 0 "end of file"
 %token EOL "end of line"
 %token SLASH "'/'"
+%token LPAREN "'('"
+%token RPAREN "')'"
+%token <std::string_view> GROUP "'(' and a name"
 %token COMMA "','"
-%token <double> NUMBER "number"
+%token <NumTok> NUMBER "number"
 %token <std::string_view> WORD "word"
 %token <std::string_view> STRING "quoted string"
 %token <std::string_view> TEXT "text"
@@ -76,24 +85,36 @@ comment
 
 statement
   : head
-  | head SLASH              { st.slash(); }
   | head SLASH params       { st.slash(); }
   | head TEXT               { st.text($2); }
   ;
 
 head
   : MAJOR                   { st.begin($1, @1); }
+  | head COMMA WORD         { st.head_word($3, @3); }
   ;
 
+// "GOTO/" has one empty parameter, which end_statement drops with the other trailing ones.
 params
-  : param
-  | params COMMA param
+  : param_or_nothing
+  | params COMMA param_or_nothing
+  ;
+
+param_or_nothing
+  : %empty                  { st.empty(@$); }
+  | param
   ;
 
 param
-  : NUMBER                  { st.number($1, @1); }
+  : NUMBER                  { st.number($1.value, $1.text, @1); }
   | WORD                    { st.word($1, @1, Param::Kind::Word); }
   | STRING                  { st.word($1, @1, Param::Kind::String); }
+  | group_open params RPAREN { st.group_end(); }
+  ;
+
+group_open
+  : GROUP                   { st.group_begin($1, @1); }
+  | LPAREN                  { st.group_begin({}, @1); }
   ;
 
 %%

@@ -1,6 +1,7 @@
 // The CL lexer (generated from cl_lexer.re by re2c). It reads the file through a fixed
-// window (no whole-file copy), tracks line and column, folds "$" continuations away and
-// copies the text of words into a per-record arena so the parser can hold them.
+// window (no whole-file copy), splices "$" continuations out of the text as it reads it (so a
+// number or word cut at column 72 joins up again), tracks line and column of the physical
+// lines, and copies the text of words into a per-record arena so the parser can hold them.
 #pragma once
 
 #include <cstdint>
@@ -8,10 +9,11 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "grammar/cl_parser.hpp"
-#include "ir/diagnostics.h"
-#include "ir/source.h"
+#include "support/diagnostics.h"
+#include "support/source.h"
 
 namespace clpc::grammar {
 
@@ -56,9 +58,14 @@ class Lexer {
   Symbol lex_params();
   Symbol lex_comment();
   Symbol lex_after_comment();
+  Symbol lex_run();           // a parameter that is not punctuation: a number or a name
+  Symbol number_token(const unsigned char* b, const unsigned char* e, bool& bad);
+  Symbol not_a_record();
+  bool listing_line() const;  // NX's information-window lines around a CLSF listing
 
   int fill();                       // YYFILL: 0 when more input arrived
   void newline(const unsigned char* after);
+  void pass_splices(uint64_t before);  // counts the lines spliced away before `before`
   SourceLoc loc_of(const unsigned char* p) const;
   uint64_t abs(const unsigned char* p) const { return base_ + uint64_t(p - buf_.get()); }
   std::string_view keep(const unsigned char* b, const unsigned char* e);
@@ -76,7 +83,9 @@ class Lexer {
   std::unique_ptr<unsigned char[]> buf_;
   size_t cap_;
   const unsigned char* cur_;
-  const unsigned char* lim_;
+  const unsigned char* lim_;       // end of the spliced text the rules may read
+  unsigned char* raw_end_;         // [lim_, raw_end_): read, not yet spliced (a line's start)
+  unsigned char saved_ = 0;        // the byte the sentinel at lim_ covers
   const unsigned char* tok_;
   const unsigned char* mar_;
   const unsigned char* ctx_;
@@ -87,8 +96,21 @@ class Lexer {
   SourceLoc overflow_at_;   // where that token began
   std::string too_long() const;
 
+  // A continuation ("$", blanks, an optional "$$" comment, the line end) removed from the text:
+  // the next physical line's bytes start at `at` (an offset in the spliced text).
+  struct Splice {
+    uint64_t at;
+    uint32_t removed;
+  };
+  std::vector<Splice> splices_;   // not yet passed by the lexer, in order
+  size_t splice_head_ = 0;
+  uint64_t removed_passed_ = 0;   // bytes removed by the splices passed: file offset - text offset
+
   uint32_t line_ = 1;
-  uint64_t line_start_ = 0;  // file offset where the current line starts
+  uint64_t line_start_ = 0;  // offset in the spliced text where the current line starts
+  int depth_ = 0;            // open parentheses in the current record
+  uint64_t numbers_end_ = 0; // inside "1.0 2.0 3.0" (numbers apart by blanks): where the run ends
+  bool known_major_ = false; // the current record's major word is one clpc knows
   Mode mode_ = Mode::LineStart;
   bool data_comment_ = false;
   bool at_end_ = false;

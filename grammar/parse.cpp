@@ -9,6 +9,8 @@ namespace grammar {
 void ParseState::begin(const MajorTok& m, SourceLoc loc) {
   in_record_ = true;
   params_.clear();
+  head_.clear();
+  groups_.clear();
   too_many_ = false;
   rec_ = Record{};
   rec_.kind = Record::Kind::Statement;
@@ -18,7 +20,23 @@ void ParseState::begin(const MajorTok& m, SourceLoc loc) {
   rec_.loc = loc;
 }
 
-void ParseState::number(double v, SourceLoc loc) {
+// TLON,GOFWD/...: the words before the last are the record's head; the last is its major.
+void ParseState::head_word(std::string_view word, SourceLoc loc) {
+  if (head_.size() >= kMaxHead) {
+    if (!too_many_) lexer.report(loc, "more than 8 words before the record's '/'");
+    too_many_ = true;
+    return;
+  }
+  Param h;
+  h.kind = Param::Kind::Word;
+  h.text = rec_.major;
+  h.loc = rec_.loc;
+  head_.push_back(h);
+  rec_.major = word;
+  rec_.id = major_id(word);
+}
+
+void ParseState::number(double v, std::string_view text, SourceLoc loc) {
   if (params_.size() >= kMaxParams) {
     if (!too_many_) lexer.report(loc, "record has more than 4096 parameters");
     too_many_ = true;
@@ -27,7 +45,22 @@ void ParseState::number(double v, SourceLoc loc) {
   Param& p = params_.emplace_back();
   p.kind = Param::Kind::Number;
   p.number = v;
+  p.text = text;
   p.loc = loc;
+}
+
+void ParseState::group_begin(std::string_view name, SourceLoc loc) {
+  word(name, loc, Param::Kind::Group);
+  if (!too_many_) groups_.push_back(uint32_t(params_.size() - 1));
+}
+
+// Trailing empty parameters say nothing (GOTO/1,2,3, and CAMWorks' trailing commas).
+void ParseState::group_end() {
+  if (too_many_ || groups_.empty()) return;
+  uint32_t g = groups_.back();
+  groups_.pop_back();
+  while (params_.size() > g + 1 && params_.back().is_empty()) params_.pop_back();
+  params_[g].group_size = uint32_t(params_.size() - g - 1);
 }
 
 void ParseState::word(std::string_view text, SourceLoc loc, Param::Kind kind) {
@@ -48,7 +81,7 @@ void ParseState::simple_record(const Lexer::Simple& s) {
   m.id = s.id;
   m.text = major_spelling(s.id);
   begin(m, s.start);
-  for (size_t i = 0; i < s.n; ++i) number(s.value[i], {s.start.line, s.col[i]});
+  for (size_t i = 0; i < s.n; ++i) number(s.value[i], {}, {s.start.line, s.col[i]});
   slash();
   end_statement(s.end);
 }
@@ -56,7 +89,9 @@ void ParseState::simple_record(const Lexer::Simple& s) {
 void ParseState::end_statement(SourceLoc end) {
   in_record_ = false;
   if (too_many_) return;
+  while (!params_.empty() && params_.back().is_empty()) params_.pop_back();
   rec_.params = params_;
+  rec_.head = head_;
   rec_.end = end;
   sink_.record(rec_);
 }

@@ -2,8 +2,8 @@
 #pragma once
 
 #include "grammar/record.h"
-#include "ir/diagnostics.h"
-#include "ir/source.h"
+#include "support/diagnostics.h"
+#include "support/source.h"
 
 namespace clpc {
 

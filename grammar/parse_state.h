@@ -18,9 +18,13 @@ class ParseState {
   Lexer lexer;
 
   void begin(const MajorTok& m, SourceLoc loc);
+  void head_word(std::string_view word, SourceLoc loc);
   void slash() { rec_.has_slash = true; }
-  void number(double v, SourceLoc loc);
+  void number(double v, std::string_view text, SourceLoc loc);
   void word(std::string_view text, SourceLoc loc, Param::Kind kind);
+  void empty(SourceLoc loc) { word({}, loc, Param::Kind::Empty); }
+  void group_begin(std::string_view name, SourceLoc loc);
+  void group_end();
   void text(std::string_view t) { rec_.text = t; }
   void end_statement(SourceLoc end);
   void comment(std::string_view text, SourceLoc loc);
@@ -35,12 +39,15 @@ class ParseState {
   void syntax_error(SourceLoc loc, const std::string& msg);
 
   static constexpr size_t kMaxParams = 4096;
+  static constexpr size_t kMaxHead = 8;
 
  private:
   Diagnostics* diags_;
   RecordSink& sink_;
   Record rec_;
   std::vector<Param> params_;
+  std::vector<Param> head_;
+  std::vector<uint32_t> groups_;  // indices in params_ of the open groups
   bool too_many_ = false;
   bool in_record_ = false;
 };

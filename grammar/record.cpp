@@ -13,6 +13,14 @@ std::string_view major_spelling(MajorId id) {
   return "?";
 }
 
+MajorId major_id(std::string_view word) {
+#define X(id, spelling) \
+  if (iequals(word, spelling)) return MajorId::id;
+#include "grammar/majors.def"
+#undef X
+  return MajorId::Unknown;
+}
+
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {

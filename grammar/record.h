@@ -6,7 +6,7 @@
 #include <span>
 #include <string_view>
 
-#include "ir/source.h"
+#include "support/source.h"
 
 namespace clpc {
 
@@ -18,19 +18,36 @@ enum class MajorId : uint8_t {
 };
 
 std::string_view major_spelling(MajorId id);
+// The id of a major word as written (any case), or Unknown.
+MajorId major_id(std::string_view word);
 
 // ASCII case-insensitive equality (CL words are upper case by convention, not by rule).
 bool iequals(std::string_view a, std::string_view b);
 
+// A record's parameter. Names are names: whatever is not a number as a whole is a word, so a
+// parameter only becomes a number where lowering asks for one (docs/cl-input.md).
 struct Param {
-  enum class Kind : uint8_t { Number, Word, String };
+  enum class Kind : uint8_t {
+    Number,
+    Word,    // any text that is not a number: CLW, 1STPECK, 6_KONTUR_125, T1 End Mill D 10
+    String,  // 'quoted' or "quoted"
+    Empty,   // nothing between two commas (CATIA: TOOLNO/2,MILL,2,0,20.,150.,,90.)
+    Group,   // (NAME/ ... ) or ( ... ): the next `group_size` parameters are inside it
+  };
   Kind kind = Kind::Number;
   double number = 0;
-  std::string_view text;  // the word or string; for numbers, the digits as written
+  std::string_view text;  // the word or string, the group's name; for numbers the digits as
+                          // written when the record went through the grammar (simple records:
+                          // empty)
   SourceLoc loc;
+  uint32_t group_size = 0;
   bool is_number() const { return kind == Kind::Number; }
   bool is_word() const { return kind == Kind::Word; }
+  bool is_empty() const { return kind == Kind::Empty; }
+  bool is_group() const { return kind == Kind::Group; }
   bool is(std::string_view word) const { return kind == Kind::Word && iequals(text, word); }
+  // A name at this position: a word or string as written, a number as written.
+  std::string_view name() const { return text; }
 };
 
 struct Record {
@@ -43,6 +60,7 @@ struct Record {
   bool data_comment = false;  // written as "$$-> MAJOR / ..." (Creo)
   bool has_slash = false;
   std::string_view major;     // as written, for messages and passthrough
+  std::span<const Param> head;  // words before the major word: TLON in TLON,GOFWD/(...)
   std::span<const Param> params;
   std::string_view text;      // free text or comment text
   SourceLoc loc;              // of the major word (or of "$$")

@@ -1,30 +1,33 @@
-#include <cctype>
 #include "ir/ir.h"
 
-#include <charconv>
 #include <cmath>
 
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc {
 
-std::string upper(std::string_view s) {
-  std::string u(s);
-  for (char& c : u) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return u;
-}
-
-std::string num_text(double v) {
-  if (v == 0) return "0";  // also folds -0
-  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(int64_t(v));
-  char buf[32];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, ec == std::errc() ? end : buf);
-}
-
 namespace ir {
 
+int register_index(int cl) {
+  if (cl >= 54 && cl <= 59) return cl - 53;
+  if (cl >= 101 && cl <= 1000) return cl - 100 + 6;
+  return 0;
+}
+
 std::string_view units_name(Units u) { return u == Units::Inch ? "inch" : "mm"; }
+
+std::string_view cam_system_name(CamSystem s) {
+  switch (s) {
+    case CamSystem::Nx: return "NX";
+    case CamSystem::Creo: return "Creo";
+    case CamSystem::Catia: return "CATIA";
+    case CamSystem::Fusion: return "Fusion";
+    case CamSystem::SolidWorks: return "SolidWorks CAM";
+    case CamSystem::Ncl: return "NCL";
+    case CamSystem::Unknown: break;
+  }
+  return "an unknown CAM system";
+}
 
 std::string_view cycle_kind_name(CycleKind k) {
   switch (k) {
@@ -40,6 +43,20 @@ std::string_view cycle_kind_name(CycleKind k) {
     case CycleKind::BackBore: return "back-bore";
   }
   return "?";
+}
+
+Frame Frame::inverse() const {
+  Frame f;
+  f.rotation = rotation.transpose();
+  f.origin = -(f.rotation * origin);
+  return f;
+}
+
+Frame compose(const Frame& outer, const Frame& inner) {
+  Frame f;
+  f.rotation = outer.rotation * inner.rotation;
+  f.origin = outer.rotation * inner.origin + outer.origin;
+  return f;
 }
 
 bool Frame::is_identity(double tol) const {

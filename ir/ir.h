@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include "ir/source.h"
+#include "support/source.h"
 
 namespace clpc::ir {
 
@@ -32,7 +32,11 @@ struct Frame {
   bool is_identity(double tol = 1e-9) const;
   bool same_as(const Frame& o, double lin_tol, double rot_tol = 1e-9) const;
   Vec3 z_axis() const { return rotation.col(2); }
+  Vec3 point(const Vec3& p) const { return rotation * p + origin; }
+  Frame inverse() const;
 };
+// outer after inner: the frame of a frame given in `outer`'s coordinates.
+Frame compose(const Frame& outer, const Frame& inner);
 
 // A slice of Operation::text.
 struct TextRef {
@@ -68,7 +72,15 @@ enum class ArcLayout : uint8_t {
   Creo7,    // xc,yc,zc,i,j,k,r: Creo / Pro/E NCL, APT
   NoRadius6,  // xc,yc,zc,i,j,k: SolidWorks CAM APT
   Synthetic,  // made by a pass
+  Worded,     // CIRCLE/...,CLW|CCLW|CLOCKWISE|COUNTERCLOCKWISE: the sense written (CAMWorks)
+  Movarc,     // MOVARC/xc,yc,zc,i,j,k,r,ANGLE,a: Fusion; the end point from the angle
+  Contour,    // TLON,GOFWD/(CIRCLE/...),ON,(LINE/...): CATIA; the sense from INDIRV
 };
+
+// The CAM system that wrote the file, as far as its first lines tell (the pre-scan): each has
+// its own CIRCLE convention and cycle vocabulary (docs/cl-input.md).
+enum class CamSystem : uint8_t { Unknown, Nx, Creo, Catia, Fusion, SolidWorks, Ncl };
+std::string_view cam_system_name(CamSystem s);
 
 struct Arc {
   Vec3 start;     // previous tool tip
@@ -134,6 +146,10 @@ struct Dwell {
 enum class StopKind : uint8_t { Optional, Program };
 struct Stop {
   StopKind kind = StopKind::Program;
+  // A stop for the operator to set the part up anew (offset-table: a frame a machine without
+  // rotaries cannot reach): the tool retracts and the spindle and coolant stop before it and
+  // start again after it.
+  bool setup = false;
 };
 
 struct Comment {
@@ -309,6 +325,10 @@ struct FrameUse {
   bool no_record = false;    // an operation with no frame record: the base frame
 };
 
+// The machine register index of a CL register: 54..59 -> 1..6 (G54..G59), 101.. -> 7..
+// (the first extended register: G154 P1 / G54.1 P1); 0 if it is neither.
+int register_index(int cl_register);
+
 // One entry of the work-offset table (the offset-table pass).
 struct WorkOffset {
   int index = 0;             // machine register: 1 = G54 ... 6 = G59, 7.. extended
@@ -321,6 +341,7 @@ struct WorkOffset {
   std::array<double, 2> rotary{0, 0};  // the rotaries' positions for this frame
   Vec3 machine = Vec3::Zero();  // the frame origin in machine coordinates there (output units)
   double seed_a = 0, seed_c = 0;  // the seed paper's A = |atan2(r32, r33)|, C = atan2(r21, r11)
+  int setup = 0;  // machines without rotaries: the setup (part orientation) it belongs to, 1 = Z up
 };
 
 struct ProgramInfo {
@@ -329,8 +350,18 @@ struct ProgramInfo {
   Units units = Units::Mm;
   bool units_given = false;    // a UNITS record was present
   std::string units_reason;    // how units were decided when not given
+  std::string units_doubt;     // why the numbers look like the other unit ("" if they do not)
   std::vector<ToolInfo> tools;  // in order of first use
-  bool lathe = false;           // MACHIN/TURN
+  std::vector<int> tool_changes;  // the tool numbers in the order they are loaded (for preselects)
+  bool preselects_given = false;  // the CL preselects tools itself (LOADTL/...,PRESEL)
+  bool lathe = false;           // the file says it is for a lathe (see family_said)
+  // What the file says of the machine it is for, where (docs/cl-input.md, "Mill or lathe"):
+  // "" when it says nothing, or both (mill-turn).
+  std::string family_said;      // "lathe" or "mill"
+  std::string family_record;    // "MACHIN/TURN", "TOOLNO/1,TURN", ...
+  SourceLoc family_loc;
+  CamSystem cam = CamSystem::Unknown;
+  std::string cam_evidence;     // what told: "line 1: $$*CATIA0", ...
   // Operations that name a tool but load none by number (NX TOOL PATH without LOAD/TOOL):
   // the line of their TOOL PATH record and the number the pre-scan gave the tool.
   std::vector<std::pair<uint32_t, int>> named_tool_ops;

@@ -1,6 +1,6 @@
 #include "ir/printer.h"
 
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc::ir {
 
@@ -23,6 +23,9 @@ const char* layout_name(ArcLayout l) {
     case ArcLayout::Creo7: return "creo7";
     case ArcLayout::NoRadius6: return "noradius6";
     case ArcLayout::Synthetic: return "synthetic";
+    case ArcLayout::Worded: return "worded";
+    case ArcLayout::Movarc: return "movarc";
+    case ArcLayout::Contour: return "contour";
   }
   return "?";
 }

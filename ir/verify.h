@@ -3,7 +3,7 @@
 
 #include <string_view>
 
-#include "ir/diagnostics.h"
+#include "support/diagnostics.h"
 #include "ir/ir.h"
 
 namespace clpc {

@@ -1,10 +1,13 @@
 // arc-direction: decides which way each CL arc turns.
 //
-// Contract. Expects arcs as lowered: start, end, centre, axis, and the CAM convention's
-// hint (ir/lower_motion.cpp). Guarantees every arc has dir Ccw or Cw about its axis and its
-// sweep in degrees (full turns included). Geometry that decides (intermediate points, the
-// tangent of the cutting move entering or leaving the arc) wins over the convention, with a
-// warning where they disagree; an arc neither decides is an error.
+// Contract. Expects arcs as lowered: start, end, centre, axis, and the sense the CL gives
+// (`hint`: the CAM system's CIRCLE convention, a sense word, MOVARC's angle, INDIRV; see
+// lower/lower_motion.cpp). Guarantees every arc has dir Ccw or Cw about its axis and its sweep in
+// degrees (full turns included). The CL's sense decides; geometry (intermediate points, the
+// tangent of the cutting move entering or leaving the arc) only confirms it: where it
+// disagrees (a cusp, a plunge onto the arc) a warning names both readings and the CL's sense
+// is cut. Only an arc with no sense from the CL (made by a pass) is decided by geometry, and
+// one nothing decides is an error.
 #include "passes/arc_direction.h"
 
 #include <cmath>
@@ -20,12 +23,15 @@ constexpr double kTangentCos = 0.985;  // within ~10 degrees counts as tangent
 
 const char* dir_word(ir::ArcDir d) { return d == ir::ArcDir::Ccw ? "counter-clockwise" : "clockwise"; }
 
-const char* convention_text(ir::ArcLayout l) {
-  switch (l) {
-    case ir::ArcLayout::Nx11: return "the NX/Makino convention (the axis of clockwise rotation)";
-    case ir::ArcLayout::Creo7: return "the Creo/APT convention (right-hand rule about the axis)";
-    default: return "the CIRCLE's convention";
+std::string convention_text(const ir::Arc& a, ir::CamSystem cam) {
+  switch (a.layout) {
+    case ir::ArcLayout::Worded: return "the CIRCLE's sense word";
+    case ir::ArcLayout::Movarc: return "MOVARC's angle (right-hand rule about its axis)";
+    case ir::ArcLayout::Contour: return "the direction it sets off in (INDIRV)";
+    default: break;
   }
+  if (a.hint == ir::ArcDir::Cw) return "the NX CLSF convention (the axis of clockwise rotation)";
+  return "the right-hand rule about the CIRCLE's axis (" + std::string(ir::cam_system_name(cam)) + ")";
 }
 
 void vote(ArcEvidence& e, ir::ArcDir d, const char* why) {
@@ -98,19 +104,20 @@ class ArcDirection : public Pass {
               PassContext& ctx, double min_len) {
     ArcEvidence e = arc_evidence(op, a, in, out, min_len);
     ir::ArcDir geo = e.geometry();
-    if (geo != ir::ArcDir::Unknown) {
-      if (a.hint != ir::ArcDir::Unknown && a.hint != geo) {
-        const std::string& why = geo == ir::ArcDir::Ccw ? e.ccw_why : e.cw_why;
-        ctx.diags.warning(loc,
-                          std::string("CIRCLE: ") + convention_text(a.layout) + " says " + dir_word(a.hint) + ", but " +
-                              why + " only if it turns " + dir_word(geo) + "; following the geometry",
-                          "arc convention overruled");
-      }
-      a.dir = geo;
-      return;
-    }
     if (a.hint != ir::ArcDir::Unknown) {
       a.dir = a.hint;
+      if (geo != ir::ArcDir::Unknown && geo != a.hint) {
+        const std::string& why = geo == ir::ArcDir::Ccw ? e.ccw_why : e.cw_why;
+        ctx.diags.warning(loc,
+                          "arc: " + convention_text(a, ctx.info.cam) + " says " + dir_word(a.hint) + ", and it is cut " +
+                              dir_word(a.hint) + "; but " + why + " only if it turns " + dir_word(geo) +
+                              " (a cusp or a plunge onto the arc?)",
+                          "arc-geometry");
+      }
+      return;
+    }
+    if (geo != ir::ArcDir::Unknown) {
+      a.dir = geo;
       return;
     }
     if (e.conflicting())

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "ir/arc_geometry.h"
-#include "ir/params.h"
+#include "support/text.h"
 
 namespace clpc::arcedit {
 

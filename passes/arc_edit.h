@@ -5,7 +5,7 @@
 #include <iterator>
 #include <vector>
 
-#include "ir/diagnostics.h"
+#include "support/diagnostics.h"
 #include "ir/ir.h"
 
 namespace clpc::arcedit {

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "backends/machine.h"
-#include "ir/diagnostics.h"
+#include "machine/machine.h"
+#include "support/diagnostics.h"
 #include "ir/ir.h"
 
 namespace clpc {

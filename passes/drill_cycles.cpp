@@ -50,6 +50,8 @@ class DrillCycles : public Pass {
         expand_ = !machine_has(ctx.machine.codes, *active_) || ctx.machine.is_lathe();
         have_start_ = have_pos_;
         start_ = pos_;
+        first_hole_ = true;
+        cycle_on_at_ = out.size();
         if (!expand_) out.push_back(std::move(in));
         continue;
       }
@@ -81,6 +83,25 @@ class DrillCycles : public Pass {
       h.spec = uint32_t(spec_in_op);
       // The level the tool starts from, above this hole: where it was when the cycle began.
       double initial = have_start_ ? (start_ - h.point).dot(h.axis) : active_->clearance;
+      if (first_hole_ && have_start_ && active_->retract >= 0 && std::abs(initial - active_->retract) > 1e-9) {
+        // RTRCTO/RETURN sets the level the cycle returns to (G98 returns to where it started):
+        // the tool goes there first, before the cycle starts: up on the spot, or down over the hole.
+        ir::Move up;
+        up.kind = ir::MoveKind::Rapid;
+        up.axis = h.axis;
+        std::vector<ir::Instr> first;
+        if (active_->retract > initial) {
+          up.point = start_ + h.axis * (active_->retract - initial);
+        } else {
+          up.point = h.point + h.axis * initial;
+          first.push_back({in.loc, up});
+          up.point = h.point + h.axis * active_->retract;
+        }
+        first.push_back({in.loc, up});
+        out.insert(out.begin() + std::ptrdiff_t(std::min(cycle_on_at_, out.size())), first.begin(), first.end());
+        initial = active_->retract;
+      }
+      first_hole_ = false;
       h.initial = active_->retract >= 0 ? active_->retract : std::max(initial, active_->clearance);
       if (expand_) {
         ExpandContext x{ctx.machine.cycles.peck_clearance * ctx.from_output(), feed_.value, feed_.mode, have_feed_,
@@ -99,7 +120,7 @@ class DrillCycles : public Pass {
     }
     if (active_ && op.last_chunk) {
       ctx.diags.warning(op.body.empty() ? op.loc : op.body.back().loc,
-                        "CYCLE without CYCLE/OFF at the end of the operation: cancelled here", "cycle without off");
+                        "CYCLE without CYCLE/OFF at the end of the operation: cancelled here", "cycle");
       close(out, op.body.empty() ? op.loc : op.body.back().loc, true, ctx);
     }
     op.body.swap(out);
@@ -118,6 +139,8 @@ class DrillCycles : public Pass {
   bool expand_ = false;
   ir::Vec3 pos_ = ir::Vec3::Zero(), start_ = ir::Vec3::Zero();
   bool have_pos_ = false, have_start_ = false;
+  bool first_hole_ = false;  // the next hole is the cycle's first
+  size_t cycle_on_at_ = 0;   // where in this chunk's output the cycle began
   ir::Feed feed_;
   bool have_feed_ = false;
   ir::Spindle spindle_;

@@ -70,7 +70,7 @@ class GrooveCycles : public Pass {
         process(op, region, &spec, in.loc, ctx, out);
         if (j == body.size())
           ctx.diags.warning(in.loc, "groove CYCLE without CYCLE/OFF at the end of the operation: ended here",
-                            "cycle without off");
+                            "cycle");
         i = j + 1;
         continue;
       }
@@ -249,7 +249,7 @@ class GrooveCycles : public Pass {
       if (record)
         ctx.diags.warning(loc, std::string("CYCLE/") + (record->face ? "FACE" : "RADIUS") +
                                    ": the motion is not a groove the cycle reproduces; it is written as motion",
-                          "groove not collapsed");
+                          "groove");
       for (ir::Instr& in : region) {
         if (std::holds_alternative<ir::GrooveMark>(in.op)) continue;
         track(in);

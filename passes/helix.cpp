@@ -1,7 +1,8 @@
 // helix: an arc whose end leaves its plane is a helix. Kept as one G02/G03 with the linear
 // axis where the machine allows helical arcs and the sweep is within its helix limit; split
 // into equal pieces of at most that sweep; linearised within tolerance on machines with no
-// helical arcs. Multi-turn arcs (NX TIMES,n) are split so no block turns more than allowed.
+// helical arcs. Multi-turn arcs (NX TIMES,n) are split so no block turns more than allowed,
+// nor more than half a turn.
 //
 // Contract. Expects: decided arcs (arc-direction). Guarantees: no arc has extra turns; every
 // helical arc has sweep <= arcs.helix_max_sweep on a machine with arcs.helical, and there are
@@ -34,6 +35,9 @@ class Helix : public Pass {
         return true;
       }
       double limit = helical ? s.helix_max_sweep : s.max_sweep;
+      // A multi-turn arc goes in half turns at most: a piece of nearly a whole turn has a chord
+      // too short to place its centre within an increment once its ends are rounded.
+      if (a->extra_turns > 0) limit = std::min(limit, 180.0);
       int n = int(std::ceil(a->sweep / limit - 1e-9));
       if (n <= 1 && a->extra_turns == 0) return false;
       arcedit::split(*a, std::max(n, 1), in.loc, out);

@@ -1,7 +1,7 @@
 // kinematics (five-axis): tool axes become rotary positions, points become what the control
 // is given.
 //
-// For each tool axis the model gives every rotary solution (backends/kinematics.cpp); the pass
+// For each tool axis the model gives every rotary solution (machine/kinematics.cpp); the pass
 // takes, of those within the limits, the one with the least rotary travel from where the
 // machine is (the machine's preferred sign breaks ties; the first one prefers it). Continuous
 // axes are wound or kept modulo 360 as the machine says; at the vertical singularity the free
@@ -25,10 +25,10 @@
 #include <cmath>
 #include <optional>
 
-#include "backends/kinematics.h"
+#include "machine/kinematics.h"
 #include "passes/arc_edit.h"
 #include "passes/cycle_expand.h"
-#include "ir/params.h"
+#include "support/text.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -56,6 +56,7 @@ class Kinematics : public Pass {
     if (!k_.has_rotaries()) return;
     d_ = &ctx.diags;
     ctx_ = &ctx;
+    apply_indexing(op);
     std::vector<ir::Instr>& out = scratch_;  // kept: no allocation per operation
     out.clear();
     out.reserve(op.body.size() + 8);
@@ -64,7 +65,7 @@ class Kinematics : public Pass {
     bool indexed = true;
     // The offset table positions 3+2 operations itself (the first chunk holds its
     // RotaryPosition); the later chunks of such an operation are positioned too.
-    if (!op.continued) positioned_ = op_mode_known_ = false;
+    if (!op.continued) positioned_ = op_mode_known_ = moved_in_op_ = false;
     for (const ir::Instr& in : op.body) {
       if (std::holds_alternative<ir::RotaryPosition>(in.op)) positioned_ = true;
       const Vec3* a = nullptr;
@@ -117,11 +118,6 @@ class Kinematics : public Pass {
         feed_known_ = true;
       }
       if (auto* s = std::get_if<ir::Spindle>(&in.op)) spindle_ = *s;
-      if (std::holds_alternative<ir::RotaryIndex>(in.op)) {
-        d_->error(in.loc, "ROTATE (rotary indexing between subroutine calls) is not supported: have the CAM system "
-                          "write the rotated tool path (e.g. as MULTAX tool axes)");
-        continue;
-      }
       if (auto* m = std::get_if<ir::Move>(&in.op)) {
         if (m->kind == ir::MoveKind::From) {
           prev_tip_ = m->point;
@@ -152,6 +148,41 @@ class Kinematics : public Pass {
   }
 
  private:
+  // --- rotary indexing by record (kin::RotaryIndexing) -----------------------------------------
+
+  void apply_indexing(ir::Operation& op) {
+    for (auto it = op.body.begin(); it != op.body.end();) {
+      if (auto* ri = std::get_if<ir::RotaryIndex>(&it->op)) {
+        std::string why;
+        if (!indexing_.apply(k_, *ri, why))
+          d_->error(it->loc, "rotary indexing (ROTATE, ROTABL) on machine '" + ctx_->machine.name + "': " + why);
+        it = op.body.erase(it);
+        continue;
+      }
+      if (indexing_.on) turn(indexing_.rotation, *it, op);
+      ++it;
+    }
+  }
+
+  static void turn(const ir::Mat3& R, ir::Instr& in, ir::Operation& op) {
+    if (auto* m = std::get_if<ir::Move>(&in.op)) {
+      m->point = R * m->point;
+      m->axis = R * m->axis;
+    } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+      a->start = R * a->start;
+      a->end = R * a->end;
+      a->center = R * a->center;
+      a->axis = R * a->axis;
+      a->tool_axis = R * a->tool_axis;
+      for (uint32_t k = 0; k < a->via_count; ++k) op.points[a->via_begin + k] = R * op.points[a->via_begin + k];
+    } else if (auto* h = std::get_if<ir::Hole>(&in.op)) {
+      h->point = R * h->point;
+      h->axis = R * h->axis;
+    }
+  }
+
+  kin::RotaryIndexing indexing_;
+
   // --- choosing among solutions --------------------------------------------------------------
 
   using Choice = kin::Choice;
@@ -256,7 +287,8 @@ class Kinematics : public Pass {
       if (!same) {
         Choice c = choose(axis);
         if (!c.found) return no_solution(axis, loc);
-        if (c.jump && !k_.retract_on_limit) return jump_error(c, axis, loc);
+        // A jump to another solution is no hazard here: indexing turns the rotaries with the tool
+        // retracted first (the backend's safe retract before a clamped RotaryPosition).
         // Rotaries move only with the modes that forbid it off.
         if (dwo_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
         if (tcp_on_ && !want_tcp) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
@@ -312,6 +344,18 @@ class Kinematics : public Pass {
 
   void motion(ir::Move m, SourceLoc loc, std::vector<ir::Instr>& out) {
     const bool simultaneous = !mode_indexed_;
+    if (simultaneous && !moved_in_op_ && have_cur_) {
+      // An operation starts from where the last one left the rotaries: when going on from there
+      // means a jump, the rotaries are positioned first, with the tool retracted (as for 3+2).
+      Choice c = choose(m.axis);
+      if (c.found && c.jump) {
+        modes_off(out, loc);
+        out.push_back({loc, ir::RotaryPosition{c.a, true}});
+        set_current(c.a, &m.axis);
+        have_prev_ = false;
+      }
+    }
+    moved_in_op_ = true;
     if (!prepare(simultaneous, m.axis, loc, out)) return;
     kin::Angles a = cur_;
     if (simultaneous) cross_singularity(m, loc, out);
@@ -368,6 +412,9 @@ class Kinematics : public Pass {
     mid.point = prev_tip_ + t * (m.point - prev_tip_);
     mid.axis = *s;
     mid.kind = ir::MoveKind::Feed;
+    // Without TCPC the way there is split within tolerance, as any move (the rotation would take
+    // the tip off the CL line).
+    if (!tcp(true)) subdivide(prev_tip_, prev_axis_, cur_, mid.point, mid.axis, here.a, loc, out, 0);
     emit(mid, here.a, true, loc, out);
     // Turn the free axis to the branch the rest of the move takes, on the spot.
     Choice next = choose(m.axis);
@@ -452,7 +499,7 @@ class Kinematics : public Pass {
   // Retract along the current tool axis, turn to `a` there, come back along the new axis.
   void retract_rotate(const kin::Angles& a, const ir::Move& to, SourceLoc loc, std::vector<ir::Instr>& out) {
     if (!have_prev_) return;
-    d_->warning(loc, "the rotary axes must jump here: retracting, rotating and re-engaging", "retract rotate");
+    d_->warning(loc, "the rotary axes must jump here: retracting, rotating and re-engaging", "retract-rotate");
     ir::Move up;
     up.point = prev_tip_ + prev_axis_ * k_.retract_distance;
     up.axis = prev_axis_;
@@ -569,6 +616,7 @@ class Kinematics : public Pass {
   mutable kin::Angles table_for_{0, 0};
   mutable bool table_known_ = false;
   mutable Vec3 cur_axis_ = Vec3::UnitZ();  // the tool axis at cur_, part frame
+  bool moved_in_op_ = false;  // this operation has had motion
   mutable bool cur_axis_known_ = false;
   mutable kin::Angles turned_for_{0, 0};
   mutable bool turned_known_ = false, turned_ = false;

@@ -12,8 +12,8 @@
 // as its description tells.
 #include <cmath>
 
-#include "backends/kinematics.h"
-#include "ir/params.h"
+#include "machine/kinematics.h"
+#include "support/text.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -132,7 +132,10 @@ class Limits : public Pass {
         reported_[i] = true;
         ctx.diags.error(loc, std::string("the program's ") + names[i] + " positions now span " +
                                  num_text(std::round(span * 1e4) / 1e4) + unit + ", more than the machine's " + num_text(travel) +
-                                 unit + " of travel: it cannot fit wherever the part is set up");
+                                 unit + " of travel: it cannot fit wherever the part is set up" +
+                                 (ctx.info.units_doubt.empty()
+                                      ? std::string()
+                                      : " (are the CL's units right? " + ctx.info.units_doubt + "; see --input-units)"));
       }
     }
   }

@@ -1,7 +1,7 @@
 // offset-table: every work offset the CL defines, gathered before the program is written, and
 // each operation's motion put into its offset's frame.
 //
-// The pre-scan gives every frame record in file order (ir/tables.cpp): SET registers with the
+// The pre-scan gives every frame record in file order (lower/prescan.cpp): SET registers with the
 // CAMERA (or CSYS, MSYS) frame next to them, and — when the machine asks for one offset per
 // frame (offsets.per_frame) — the frames of NX MSYS, Creo $$-> CSYS and APT CSYS, and the base
 // frame of operations with none. Equal frames share a register; a SET keeps its register;
@@ -24,9 +24,8 @@
 #include <cmath>
 #include <set>
 
-#include "backends/kinematics.h"
-#include "ir/frame_records.h"
-#include "ir/params.h"
+#include "machine/kinematics.h"
+#include "support/text.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -45,9 +44,19 @@ class OffsetTablePass : public Pass {
     const double f = ctx.from_output();
     auto& table = ctx.info.offsets;
     table.clear();
+    // A frame whose Z the machine cannot turn the tool to (any Z but the program's on a machine
+    // without rotaries; beyond the rotary limits, a part turned over, on one with) is a setup of
+    // its own: the part set up again with that Z up, in a register of its own, after a stop.
+    auto reachable = [&](const Vec3& z) {
+      return k_.has_rotaries() ? kin::choose(k_, z, nullptr, true).found : (z - Vec3::UnitZ()).norm() <= 1e-9;
+    };
     bool any_set = false;
-    for (const ir::FrameUse& u : ctx.info.frames) any_set = any_set || u.set_register != 0;
-    if (!s.per_frame && !any_set) return;
+    setups_ = false;
+    for (const ir::FrameUse& u : ctx.info.frames) {
+      any_set = any_set || u.set_register != 0;
+      setups_ = setups_ || !reachable(u.frame.z_axis());
+    }
+    if (!s.per_frame && !any_set && !setups_) return;
     for (const RotaryAxis& r : k_.rotaries)
       if (!r.table) {
         ctx.diags.error({}, "work offsets per frame need rotary axes on the table side; machine '" + ctx.machine.name +
@@ -56,13 +65,14 @@ class OffsetTablePass : public Pass {
       }
     std::set<int> used;
     for (const ir::FrameUse& u : ctx.info.frames)
-      if (u.set_register) used.insert(register_index(u.set_register));
+      if (u.set_register) used.insert(ir::register_index(u.set_register));
     const int standard = s.standard_last - s.standard_first + 1;
     const int max_index = standard + s.extended_count;
     const double h = s.reference_height * f;  // program units
     const double to_out = 1 / f;
+    std::vector<Vec3> setup_axes{Vec3::UnitZ()};
     for (const ir::FrameUse& u : ctx.info.frames) {
-      if (!s.per_frame && u.set_register == 0) continue;
+      if (!s.per_frame && !setups_ && u.set_register == 0) continue;
       if (find(table, u.frame, u.set_register)) continue;
       if (u.set_register) {
         bool clash = false;
@@ -75,7 +85,7 @@ class OffsetTablePass : public Pass {
           }
         if (clash) continue;
       }
-      int index = u.set_register ? register_index(u.set_register) : 0;
+      int index = u.set_register ? ir::register_index(u.set_register) : 0;
       if (!index) {
         index = s.default_index;
         while (used.count(index)) ++index;
@@ -97,26 +107,28 @@ class OffsetTablePass : public Pass {
       w.seed_a = std::abs(std::atan2(R(2, 1), R(2, 2))) * 180 / kPi;
       w.seed_c = std::atan2(R(1, 0), R(0, 0)) * 180 / kPi;
       Vec3 z = R.col(2);
-      if (k_.has_rotaries()) {
+      if (k_.has_rotaries() && reachable(z)) {
         kin::Choice c = kin::choose(k_, z, nullptr, true);
-        if (!c.found) {
-          ctx.diags.error(u.loc, "work-offset table: no position of machine '" + ctx.machine.name +
-                                     "''s rotary axes within their limits turns this frame's Z (" + num_text(z.x()) + ", " +
-                                     num_text(z.y()) + ", " + num_text(z.z()) + ") to the spindle");
-          continue;
-        }
         w.has_rotary = true;
         w.rotary = c.a;
         w.machine = kin::table_point(k_, c.a, u.frame.origin + Vec3(0, 0, h)) * to_out;
+        w.setup = setups_ ? 1 : 0;
         if (s.table == OffsetTable::G65Macro) check_seed(ctx, w);
       } else {
-        if ((R - ir::Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-9 && s.table != OffsetTable::None) {
-          ctx.diags.error(u.loc, "work-offset table: machine '" + ctx.machine.name +
-                                     "' has no rotary axes to turn this frame up; with offsets.table = \"none\" each frame "
-                                     "is a setup of its own, its offset set on the machine");
+        const bool turned = (R - ir::Mat3::Identity()).cwiseAbs().maxCoeff() > 1e-9;
+        if (turned && s.table != OffsetTable::None) {
+          ctx.diags.error(u.loc, "work-offset table: machine '" + ctx.machine.name + "' " +
+                                     (k_.has_rotaries() ? "cannot turn the tool to this frame's Z within its rotary limits"
+                                                        : "has no rotary axes to turn this frame up") +
+                                     "; with offsets.table = \"none\" such a frame is a setup of its own, its offset "
+                                     "set on the machine");
           continue;
         }
         w.machine = (u.frame.origin + Vec3(0, 0, h)) * to_out;
+        size_t k = 0;
+        while (k < setup_axes.size() && (setup_axes[k] - z).norm() > 1e-9) ++k;
+        if (k == setup_axes.size()) setup_axes.push_back(z);
+        w.setup = int(k + 1);
       }
       if (s.table == OffsetTable::G65Macro && index > standard) {
         ctx.diags.error(u.loc, "work-offset table: the seed's macro sets G54-G59 only (G10 L2 P1-P6); this frame needs register " +
@@ -131,7 +143,7 @@ class OffsetTablePass : public Pass {
     const auto& table = ctx.info.offsets;
     if (table.empty()) return;
     // Frames and registers are modal, across operations; SET pairs with the frame record next
-    // to it in its operation, as in the pre-scan (ir/tables.cpp).
+    // to it in its operation, as in the pre-scan (lower/prescan.cpp).
     std::vector<ir::Instr>& out = scratch_;  // kept: no allocation per operation
     out.clear();
     out.reserve(op.body.size() + 4);
@@ -207,7 +219,7 @@ class OffsetTablePass : public Pass {
       ctx.diags.warning(w.loc, "the seed's G65 macro computes this offset for A" + num_text(std::round(w.seed_a * 1e4) / 1e4) + " C" +
                                    num_text(std::round(w.seed_c * 1e4) / 1e4) + " (an A/C table), not for where the rotaries go; "
                                    "offsets.table = \"g10\" computes it for the machine",
-                        "seed macro angles");
+                        "seed-macro");
   }
 
   // Whether the SET at i pairs with a frame record after it in its operation (before another
@@ -224,7 +236,7 @@ class OffsetTablePass : public Pass {
   // At an operation's first motion (or the first after a frame or register change): select
   // the register, and if all the motion from here to the operation's end is along the frame's
   // Z, position the rotaries and put the points in the frame.
-  void activate(const ir::Operation& op, size_t from, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
+  void activate(ir::Operation& op, size_t from, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
     active_ = true;
     transform_ = false;
     const ir::WorkOffset* w = find(ctx.info.offsets, frame_, reg_);
@@ -233,16 +245,41 @@ class OffsetTablePass : public Pass {
         ctx.diags.error(loc, "work-offset table: no register for the frame this motion is in (motion before the first "
                              "frame record of a file without TOOL PATH or FEATNO records?)");
       } else if (reg_) {
-        out.push_back({loc, ir::SelectOffset{reg_, register_index(reg_)}});
+        out.push_back({loc, ir::SelectOffset{reg_, ir::register_index(reg_)}});
       }
       return;
     }
     // Selected and positioned before the spindle and coolant of the operation start: the
     // table turns with the tool stopped and dry, as posts do after a tool change.
     auto at = out.begin() + std::ptrdiff_t(std::min(setup_end_, out.size()));
+    if (w->setup != 0 && w->setup != setup_) {
+      // Another setup: a stop for the operator, and what to do in a comment beside it.
+      // Short enough for a control's comment length (Haas: 80).
+      const std::string what = "SETUP " + std::to_string(w->setup) + ": " +
+                               (w->setup == 1 ? std::string("THE PART AS FIRST SET UP")
+                                              : "TURN THE PART SO THE FRAME OF LINE " + std::to_string(w->loc.line) +
+                                                    " HAS Z UP") +
+                               ", REGISTER " + std::to_string(w->index);
+      if (setup_ != 0 || w->setup != 1) {
+        ctx.diags.warning(loc, "machine '" + ctx.machine.name + "' " +
+                                   (k_.has_rotaries() ? "cannot turn the tool to this frame's Z"
+                                                      : std::string("has no rotary axes")) +
+                                   ": this operation is cut in setup " +
+                                   std::to_string(w->setup) + " (register " + std::to_string(w->index) +
+                                   "), the part set up again after an operator stop",
+                          "setup");
+        ir::TextRef t = op.add_text(what);  // in this chunk's pool
+        at = out.insert(at, {loc, ir::Comment{t}}) + 1;
+        if (setup_ != 0) {
+          ir::Stop stop;
+          stop.setup = true;
+          at = out.insert(at, {loc, stop}) + 1;
+        }
+      }
+      setup_ = w->setup;
+    }
     at = out.insert(at, {loc, ir::SelectOffset{w->set_register, w->index}}) + 1;
-    // The frame's Z in the model; MSYS points (and tool axes) are already in the frame.
-    const bool local = source_ == ir::FrameSource::Msys;
+    // The frame's Z in the program frame, where lowering puts every point and tool axis.
     const Vec3 z_model = frame_.rotation.col(2);
     indexed_ = true;
     for (size_t j = from; j < op.body.size(); ++j) {
@@ -253,17 +290,15 @@ class OffsetTablePass : public Pass {
       else if (auto* arc = std::get_if<ir::Arc>(&in.op)) a = &arc->tool_axis;
       else if (auto* h = std::get_if<ir::Hole>(&in.op)) a = &h->axis;
       if (!a) continue;
-      Vec3 am = local ? Vec3(frame_.rotation * *a) : *a;
-      if ((am - z_model).norm() > 1e-9) indexed_ = false;
+      if ((*a - z_model).norm() > 1e-9) indexed_ = false;
     }
     if (!indexed_) {
       if (!frame_.is_identity(1e-9))
         ctx.diags.warning(loc, "this operation's tool axis is not its frame's Z: it is written in the base frame, for the "
-                               "kinematics pass", "not 3+2");
+                               "kinematics pass", "not-3plus2");
       return;
     }
     transform_ = true;
-    local_ = local;
     if (w->has_rotary) {
       out.insert(at, {loc, ir::RotaryPosition{w->rotary, true}});
       T_ = kin::table_rotation(k_, w->rotary);
@@ -272,11 +307,8 @@ class OffsetTablePass : public Pass {
     }
   }
 
-  Vec3 point(const Vec3& p) const {
-    Vec3 model = local_ ? Vec3(frame_.rotation * p + frame_.origin) : p;
-    return T_ * (model - frame_.origin);
-  }
-  Vec3 dir(const Vec3& v) const { return T_ * (local_ ? Vec3(frame_.rotation * v) : v); }
+  Vec3 point(const Vec3& p) const { return T_ * (p - frame_.origin); }
+  Vec3 dir(const Vec3& v) const { return T_ * v; }
 
   void apply(ir::Instr& in) const {
     if (auto* m = std::get_if<ir::Move>(&in.op)) {
@@ -307,10 +339,12 @@ class OffsetTablePass : public Pass {
   ir::Frame frame_;
   ir::FrameSource source_ = ir::FrameSource::Csys;
   int reg_ = 0;       // the SET register in force (0: none)
+  bool setups_ = false;  // frames become setups (a machine without rotaries)
+  int setup_ = 0;        // the setup the part is in (0: none yet)
   int pending_ = 0;   // a SET waiting for the frame record after it
   size_t setup_end_ = 0;  // in this chunk's output: after its tool change or last motion
   bool unpaired_ = false;  // the last frame record has no SET yet
-  bool active_ = false, indexed_ = false, transform_ = false, local_ = false;
+  bool active_ = false, indexed_ = false, transform_ = false;
   ir::Mat3 T_ = ir::Mat3::Identity();
 };
 

@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "backends/machine.h"
-#include "ir/diagnostics.h"
+#include "machine/machine.h"
+#include "support/diagnostics.h"
 #include "ir/ir.h"
 
 namespace clpc {
@@ -47,5 +47,8 @@ struct PassInfo {
 const std::vector<PassInfo>& all_passes();
 const PassInfo* find_pass(std::string_view name);
 std::vector<std::string> pass_names();
+// The passes of `pipeline` that give the CL its meaning (arcs decided, cycles made holes), in
+// its order: verify's reference is the CL run through these alone.
+std::vector<std::string> reference_passes(const std::vector<std::string>& pipeline);
 
 }  // namespace clpc

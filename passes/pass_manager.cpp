@@ -1,8 +1,10 @@
 #include "passes/pass_manager.h"
 
-#include "backends/format.h"
+#include <sstream>
+
 #include "ir/printer.h"
 #include "ir/verify.h"
+#include "machine/format.h"
 
 namespace clpc {
 
@@ -13,13 +15,6 @@ double PassContext::resolution() const {
   return std::abs(inc) * from_output();
 }
 
-PassManager::PassManager(PassContext& ctx, const std::vector<std::string>& pipeline, std::string print_after,
-                         std::ostream* print_to, bool verify)
-    : ctx_(ctx), print_after_(std::move(print_after)), print_to_(print_to), verify_(verify) {
-  for (const std::string& n : pipeline)
-    if (const PassInfo* p = find_pass(n)) passes_.emplace_back(p, p->make());
-}
-
 KinematicsSettings PassContext::kinematics() const {
   KinematicsSettings k = machine.kinematics;
   const double f = from_output();
@@ -27,6 +22,46 @@ KinematicsSettings PassContext::kinematics() const {
   k.pivot *= f;
   k.retract_distance *= f;
   return k;
+}
+
+namespace {
+
+class PrintAfter : public PassInstrument {
+ public:
+  explicit PrintAfter(std::string name) : name_(std::move(name)) {}
+  void after_lower(const ir::Operation& op, PassContext& ctx) override {
+    if (name_ == "lower") print("lower", op, ctx);
+  }
+  void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) override {
+    if (name_ == pass.name || name_ == "all") print(pass.name, op, ctx);
+  }
+
+ private:
+  static void print(std::string_view after, const ir::Operation& op, PassContext& ctx) {
+    std::ostringstream o;
+    o << "; after " << after << "\n";
+    ir::print_operation(o, op);
+    ctx.diags.text(o.str());
+  }
+  std::string name_;
+};
+
+class VerifyIr : public PassInstrument {
+ public:
+  void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) override {
+    verify_operation(op, pass.name, ctx.diags);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<PassInstrument> make_print_after(std::string name) { return std::make_unique<PrintAfter>(std::move(name)); }
+std::unique_ptr<PassInstrument> make_verify_ir() { return std::make_unique<VerifyIr>(); }
+
+PassManager::PassManager(PassContext& ctx, const std::vector<std::string>& pipeline, std::vector<PassInstrument*> instruments)
+    : ctx_(ctx), instruments_(std::move(instruments)) {
+  for (const std::string& n : pipeline)
+    if (const PassInfo* p = find_pass(n)) passes_.emplace_back(p, p->make());
 }
 
 size_t PassManager::split_point() const {
@@ -42,18 +77,12 @@ void PassManager::begin() {
 void PassManager::run(ir::Operation& op) { run(op, 0, passes_.size(), ctx_); }
 
 void PassManager::run(ir::Operation& op, size_t from, size_t to, PassContext& ctx) {
-  if (from == 0 && print_to_ && print_after_ == "lower") {
-    *print_to_ << "; after lower\n";
-    ir::print_operation(*print_to_, op);
-  }
-  for (size_t i = from; i < to && i < passes_.size(); ++i) {
-    auto& [info, pass] = passes_[i];
+  if (from == 0)
+    for (PassInstrument* i : instruments_) i->after_lower(op, ctx);
+  for (size_t k = from; k < to && k < passes_.size(); ++k) {
+    auto& [info, pass] = passes_[k];
     pass->run(op, ctx);
-    if (verify_) verify_operation(op, info->name, ctx.diags);
-    if (print_to_ && (print_after_ == info->name || print_after_ == "all")) {
-      *print_to_ << "; after " << info->name << "\n";
-      ir::print_operation(*print_to_, op);
-    }
+    for (PassInstrument* i : instruments_) i->after_pass(*info, op, ctx);
   }
 }
 

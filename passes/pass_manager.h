@@ -1,9 +1,8 @@
-// Runs a machine's pipeline over each operation; can print the IR after a named pass and
-// check the IR's invariants between passes.
+// Runs a machine's pipeline over each operation, with instruments that look on (LLVM's pass
+// instrumentation): the IR printed after a pass, its invariants checked.
 #pragma once
 
 #include <memory>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -11,11 +10,24 @@
 
 namespace clpc {
 
+// Looks at the IR as the passes leave it. Instruments run on whichever thread runs the pass,
+// so they report through the context's Diagnostics (text() for the IR), which keeps their
+// output in order with the diagnostics whatever the schedule.
+class PassInstrument {
+ public:
+  virtual ~PassInstrument() = default;
+  virtual void after_lower(const ir::Operation& op, PassContext& ctx) {}
+  virtual void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) {}
+};
+
+// --print-after: the IR after the pass `name` ("lower", a pass name, or "all").
+std::unique_ptr<PassInstrument> make_print_after(std::string name);
+// --verify-ir: the IR's invariants after every pass (ir/verify.h).
+std::unique_ptr<PassInstrument> make_verify_ir();
+
 class PassManager {
  public:
-  // `print_after`: a pass name, or "all"; the IR after it is printed to `print_to`.
-  PassManager(PassContext& ctx, const std::vector<std::string>& pipeline, std::string print_after = {},
-              std::ostream* print_to = nullptr, bool verify = false);
+  PassManager(PassContext& ctx, const std::vector<std::string>& pipeline, std::vector<PassInstrument*> instruments = {});
   void begin();
   void run(ir::Operation& op);
   // Passes [from, to) of the pipeline, with another context (the same program and machine,
@@ -29,9 +41,7 @@ class PassManager {
  private:
   PassContext& ctx_;
   std::vector<std::pair<const PassInfo*, std::unique_ptr<Pass>>> passes_;
-  std::string print_after_;
-  std::ostream* print_to_;
-  bool verify_;
+  std::vector<PassInstrument*> instruments_;
 };
 
 }  // namespace clpc

@@ -64,3 +64,14 @@ std::vector<std::string> pass_names() {
 }
 
 }  // namespace clpc
+
+namespace clpc {
+
+std::vector<std::string> reference_passes(const std::vector<std::string>& pipeline) {
+  std::vector<std::string> out;
+  for (const std::string& p : pipeline)
+    if (p == "arc-direction" || p == "drill-cycles") out.push_back(p);
+  return out;
+}
+
+}  // namespace clpc

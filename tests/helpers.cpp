@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "ir/params.h"
+#include "lower/params.h"
 #include "ir/printer.h"
 #include "passes/pass_manager.h"
 
@@ -38,6 +38,21 @@ TempDir::~TempDir() {
 
 namespace {
 
+void show_params(std::ostream& o, std::span<const Param> ps) {
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    o << (i ? "," : "");
+    if (p.is_number()) o << num_text(p.number);
+    else if (p.kind == Param::Kind::String) o << "'" << p.text << "'";
+    else if (p.is_group()) {
+      o << "(" << p.text << (p.text.empty() ? "" : "/");
+      show_params(o, ps.subspan(i + 1, std::min<size_t>(p.group_size, ps.size() - i - 1)));
+      o << ")";
+      i += p.group_size;
+    } else o << p.text;
+  }
+}
+
 std::string show(const Record& r) {
   std::ostringstream o;
   o << r.loc.line << ":" << r.loc.col << " ";
@@ -46,15 +61,10 @@ std::string show(const Record& r) {
     return o.str();
   }
   if (r.data_comment) o << "$$-> ";
+  for (const Param& h : r.head) o << h.text << ",";
   o << r.major;
   if (r.has_slash) o << "/";
-  for (size_t i = 0; i < r.params.size(); ++i) {
-    const Param& p = r.params[i];
-    o << (i ? "," : "");
-    if (p.is_number()) o << num_text(p.number);
-    else if (p.kind == Param::Kind::String) o << "'" << p.text << "'";
-    else o << p.text;
-  }
+  show_params(o, r.params);
   if (!r.text.empty()) o << " [" << r.text << "]";
   return o.str();
 }
@@ -107,7 +117,8 @@ Lowered lower_text(const std::string& text, const std::vector<std::string>& pass
   l.info = prescan_program(src, po);
   Machine generic = default_machine(Family::Mill, ir::Units::Mm);
   PassContext ctx{l.info, m ? *m : generic, d};
-  PassManager pm(ctx, passes, {}, nullptr, true);
+  auto verify_ir = make_verify_ir();
+  PassManager pm(ctx, passes, {verify_ir.get()});
   pm.begin();
   KeepOps k;
   k.pm = &pm;
@@ -182,7 +193,8 @@ std::vector<std::string> corpus_files() {
   for (auto& e : std::filesystem::recursive_directory_iterator(d)) {
     if (!e.is_regular_file()) continue;
     std::string n = e.path().filename().string();
-    if (n == "LICENSE" || n == "MANIFEST.md" || e.path().extension() == ".tap") continue;
+    if (n.rfind("LICENSE", 0) == 0 || n == "MANIFEST.md" || e.path().extension() == ".tap") continue;
+    if (e.path().parent_path().filename() == "licenses") continue;
     files.push_back(e.path().string());
   }
   std::sort(files.begin(), files.end());

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "backends/machine_loader.h"
-#include "cli/driver.h"
+#include "machine/machine_loader.h"
+#include "driver/driver.h"
 #include "grammar/parse.h"
-#include "ir/diagnostics.h"
-#include "ir/lower.h"
-#include "ir/tables.h"
+#include "support/diagnostics.h"
+#include "lower/lower.h"
+#include "lower/prescan.h"
 #include "passes/pass.h"
 
 namespace clpc::test {

@@ -1,6 +1,7 @@
 // The evidence behind each CAM dialect's arc convention (docs/arcs.md): over every arc of the
 // corpus, where the tangent of the neighbouring cutting moves decides a direction, it must
-// agree with the convention lowering assumes for that CIRCLE layout.
+// agree with the sense lowering reads for it (the CAM system's CIRCLE convention; INDIRV for
+// CATIA's contours).
 #include "helpers.h"
 #include "passes/arc_direction.h"
 
@@ -38,7 +39,11 @@ TEST(ArcConventions, CorpusGeometryAgreesWithEachDialectsConvention) {
           if (std::holds_alternative<ir::Arc>(op.body[j].op)) break;
         }
         ArcEvidence e = arc_evidence(op, *a, incoming, out, min_len);
-        std::string key = a->layout == ir::ArcLayout::Nx11 ? "nx11 (NX, Makino)" : a->layout == ir::ArcLayout::Creo7 ? "creo7 (Creo)" : "noradius6";
+        const char* form = a->layout == ir::ArcLayout::Nx11      ? "CIRCLE, 11 values"
+                           : a->layout == ir::ArcLayout::Creo7   ? "CIRCLE, 7 values"
+                           : a->layout == ir::ArcLayout::Contour ? "TLON,GOFWD circle"
+                                                                 : "other";
+        std::string key = std::string(ir::cam_system_name(l.info.cam)) + ", " + form;
         Tally& t = by_layout[key];
         ++t.arcs;
         if (e.conflicting()) ++t.conflicting;
@@ -54,11 +59,12 @@ TEST(ArcConventions, CorpusGeometryAgreesWithEachDialectsConvention) {
     }
   }
   for (auto& [layout, t] : by_layout) {
-    std::printf("%-18s %4d arcs: geometry agrees with the convention %4d, disagrees %d, undecided %d, conflicting %d\n",
+    std::printf("%-26s %4d arcs: geometry agrees with the convention %4d, disagrees %d, undecided %d, conflicting %d\n",
                 layout.c_str(), t.arcs, t.agree, t.disagree, t.undecided, t.conflicting);
     EXPECT_EQ(t.disagree, 0);
     EXPECT_GT(t.agree, t.arcs / 4) << layout << ": too little evidence";
   }
-  EXPECT_EQ(by_layout.count("nx11 (NX, Makino)"), 1u);
-  EXPECT_EQ(by_layout.count("creo7 (Creo)"), 1u);
+  EXPECT_EQ(by_layout.count("NX, CIRCLE, 11 values"), 1u);
+  EXPECT_EQ(by_layout.count("Creo, CIRCLE, 7 values"), 1u);
+  EXPECT_EQ(by_layout.count("CATIA, TLON,GOFWD circle"), 1u);
 }

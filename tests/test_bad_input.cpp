@@ -80,15 +80,19 @@ TEST(BadInput, NulBytes) {
   expect_refused(compile_bytes("nul.cls", kHead + std::string("GOTO/1,2\0,3\n", 12)), "nul.cls:5:9: error: unexpected NUL byte in a record");
 }
 
-// Comments and text must be UTF-8: a Latin-1 byte is an error at its place, which names the
-// way out; declared Latin-1, the file compiles.
+// Comments and text are UTF-8; a byte of a one-byte code page (CAMWorks writes Windows code
+// pages) is a warning at its place, which names the way to say so: text carries no motion.
 TEST(BadInput, InvalidUtf8InComments) {
   const std::string cl = kHead + "$$ caf\xE9 cr\xE8me\nPPRINT bad \xFF text\nRAPID\nGOTO/1,2,3\nGOTO/4,5,6\n";
   Outcome o = compile_bytes("utf8.cls", cl);
-  expect_refused(o, "utf8.cls:5:7: error: invalid UTF-8 in a comment: byte 0xE9 (if the file is Latin-1, --input-encoding latin1 reads it)");
-  EXPECT_THAT(o.err, HasSubstr("utf8.cls:6:12: error: invalid UTF-8 in a text: byte 0xFF"));
+  EXPECT_EQ(o.status, 0) << o.err;
+  EXPECT_THAT(o.err, HasSubstr("utf8.cls:5:7: warning: invalid UTF-8 in a comment: byte 0xE9, read as a one-byte code page "
+                               "(--input-encoding latin1 says so for the file)"));
+  EXPECT_THAT(o.err, HasSubstr("utf8.cls:6:12: warning: invalid UTF-8 in a text: byte 0xFF"));
+  EXPECT_THAT(compile_bytes("utf8.cls", cl, "--Werror").status, 1);
   Outcome ok = compile_bytes("utf8.cls", cl, "--input-encoding latin1");
   EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_EQ(ok.err.find("invalid UTF-8"), std::string::npos);
   EXPECT_TRUE(ok.output_written);
   // Valid UTF-8 is fine as it is.
   EXPECT_EQ(compile_bytes("ok.cls", kHead + "$$ caf\xC3\xA9\nRAPID\nGOTO/1,2,3\n").status, 0);
@@ -97,8 +101,8 @@ TEST(BadInput, InvalidUtf8InComments) {
 TEST(BadInput, NumbersThatAreNot) {
   expect_refused(compile_bytes("a.cls", kHead + "GOTO/1e999,0,0\n"), "a.cls:5:6: error: number out of range: '1e999'");
   expect_refused(compile_bytes("b.cls", kHead + "GOTO/nan,0,0\n"), "b.cls:5:6: error: GOTO: expected a number, found 'nan'");
-  expect_refused(compile_bytes("c.cls", kHead + "GOTO/--1,0,0\n"), "c.cls:5:6: error: bad number '--1'");
-  expect_refused(compile_bytes("d.cls", kHead + "GOTO/1.2.3,0,0\n"), "d.cls:5:6: error: bad number '1.2.3'");
+  expect_refused(compile_bytes("c.cls", kHead + "GOTO/--1,0,0\n"), "c.cls:5:6: error: GOTO: expected a number, found '--1'");
+  expect_refused(compile_bytes("d.cls", kHead + "GOTO/1.2.3,0,0\n"), "d.cls:5:6: error: GOTO: expected a number, found '1.2.3'");
   expect_refused(compile_bytes("e.cls", kHead + "GOTO/inf,0,0\n"), "e.cls:5:6: error: GOTO: expected a number, found 'inf'");
 }
 
@@ -111,7 +115,12 @@ TEST(BadInput, CircleWithoutGoto) {
 // a program for the tool already in the spindle.
 TEST(BadInput, GotoBeforeAnyToolIsLoaded) {
   expect_refused(compile_bytes("notool.cls", "UNITS/MM\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/1,0,0\nLOADTL/1\nSPINDL/RPM,100,CLW\nGOTO/2,0,0\n"),
-                 "notool.cls:4:1: error: motion before any tool is loaded; the file loads T1 at line 6 later");
+                 "notool.cls:5:1: error: motion before any tool is loaded; the file loads T1 at line 6 later");
+  // A rapid there is where the tool starts (CATIA writes its start point before the first tool).
+  Outcome start = compile_bytes("start.cls", "UNITS/MM\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nLOADTL/1\nSPINDL/RPM,100,CLW\nGOTO/2,0,0\n");
+  EXPECT_EQ(start.status, 0) << start.err;
+  EXPECT_THAT(start.err, HasSubstr("start.cls:4:1: warning: rapid motion before the first tool change (T1 at line 5) is taken as "
+                                   "the start point (as FROM): no motion is written for it"));
   Outcome none = compile_bytes("none.cls", "UNITS/MM\nSPINDL/RPM,100,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/1,0,0\n");
   EXPECT_EQ(none.status, 0) << none.err;
 }

@@ -65,7 +65,8 @@ TEST(Cli, ErrorKeepsTheOldOutputAndLeavesNoTemporary) {
   write_file(t.path("bad.nc"), "old program\n");
   RunResult r = run_clpc("compile " + t.path("bad.cls") + " -t fanuc-mill");
   EXPECT_EQ(r.status, 1);
-  EXPECT_EQ(r.err, t.path("bad.cls") + ":2:12: error: GOTO needs 3 or 6 values (x,y,z[,i,j,k]), found 4\n 2 | GOTO/1,2,3,4\n   |            ^\n");
+  EXPECT_EQ(r.err, t.path("bad.cls") + ":2:12: error: GOTO needs 3 or 6 values (x,y,z[,i,j,k]), found 4\n 2 | GOTO/1,2,3,4\n   |            ^\n"
+                   "clpc: 1 error, 0 warnings\n");
   EXPECT_EQ(read_file(t.path("bad.nc")), "old program\n");
   int files = 0;
   for (auto& e : std::filesystem::directory_iterator(std::filesystem::path(t.path("")))) files += e.is_regular_file();

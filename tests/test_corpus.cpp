@@ -1,5 +1,10 @@
-// Sweeps the real CL files in ../shared/corpus: the front end reads them all, and every
-// machine compiles the files it applies to. Skips (and says why) when the corpus is absent.
+// Sweeps the real CL files in ../shared/corpus (tests/corpus_cases.h): each is posted on the
+// machine it fits and its program passes `clpc verify`, or it is refused with the located error
+// the table gives. Skips (and says why) when the corpus is absent.
+#include <set>
+
+#include "driver/readback_commands.h"
+#include "corpus_cases.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -10,61 +15,99 @@ namespace {
 #define REQUIRE_CORPUS()                                                                       \
   if (corpus_dir().empty()) GTEST_SKIP() << "no corpus at " << CLPC_CORPUS_DIR << ": sweep skipped"
 
+// The built-in machines, and the test machines of tests/machines/.
+Machine corpus_machine(const std::string& name) {
+  std::string extra;
+  for (auto& e : std::filesystem::directory_iterator(std::string(CLPC_SOURCE_DIR) + "/tests/machines"))
+    if (e.path().extension() == ".toml" && e.path().filename() != "shop_mill.toml") extra += read_file(e.path().string()) + "\n";
+  return machine(name, extra);
+}
+
+CompileOptions options_for(const CorpusCase& c) {
+  CompileOptions o;
+  if (std::string(c.input_units) == "mm") o.input_units = ir::Units::Mm;
+  if (std::string(c.input_units) == "inch") o.input_units = ir::Units::Inch;
+  return o;
+}
+
 }  // namespace
 
 TEST(Corpus, Found) {
   REQUIRE_CORPUS();
-  EXPECT_GE(corpus_files().size(), 20u);
+  EXPECT_GE(corpus_files().size(), 38u);
 }
 
-TEST(Corpus, CheckAcceptsEveryFile) {
+// Every corpus file has its line in the table, and every line its file.
+TEST(Corpus, EveryFileHasItsCase) {
   REQUIRE_CORPUS();
-  for (const std::string& f : corpus_files()) {
+  std::set<std::string> files, cases;
+  for (const std::string& f : corpus_files()) files.insert(f.substr(corpus_dir().size() + 1));
+  for (const CorpusCase& c : corpus_cases()) cases.insert(c.file);
+  EXPECT_EQ(files, cases);
+}
+
+// The front end and lowering (clpc check without a machine) read every file; the refused files
+// give their error there already when it is the CL's own.
+TEST(Corpus, CheckReadsEveryFile) {
+  REQUIRE_CORPUS();
+  for (const CorpusCase& c : corpus_cases()) {
+    SCOPED_TRACE(c.file);
     Machine m = default_machine(Family::Mill, ir::Units::Mm);
     m.pipeline = {"arc-direction"};
-    CompileOptions opt;
+    CompileOptions opt = options_for(c);
     opt.emit = Emit::Nothing;
     std::ostringstream err;
-    CompileResult r = compile_file(f, "-", m, opt, err);
-    EXPECT_TRUE(r.ok) << f << "\n" << err.str();
-    EXPECT_EQ(r.errors, 0u) << f;
+    CompileResult r = compile_file(corpus_dir() + "/" + c.file, "-", m, opt, err);
+    if (*c.error) EXPECT_NE(err.str().find(c.error), std::string::npos) << err.str();
+    else EXPECT_TRUE(r.ok) << err.str();
   }
 }
 
-// Every milling file becomes a complete Haas program, but two the UMC-750 cannot run, which
-// clpc refuses with the reason:
-//   helical.ncl.1 says UNITS/INCHES, but its numbers are millimetres (a 10-inch cutter at
-//     5 rpm): read as inches it spans more Y than the machine has. With --input-units mm it
-//     compiles.
-//   dwnhole.ncl.3 indexes an A axis between subroutine calls (ROTATE/AAXIS); the UMC has none.
-TEST(Corpus, HaasCompilesEveryMillingFile) {
+// Posted and verified, or refused as the table says.
+TEST(Corpus, EveryFilePostedAndVerifiedOrRefusedWithItsError) {
   REQUIRE_CORPUS();
-  Machine haas = machine("haas-umc750");
-  int compiled = 0;
-  for (const std::string& f : corpus_files()) {
-    if (is_lathe_file(f)) continue;
-    Compiled c = compile_path(f, haas);
-    if (f.find("helical.ncl.1") != std::string::npos) {
-      EXPECT_FALSE(c.ok);
-      EXPECT_NE(c.diags.find("error: the program's Y positions now span 22.6636 in, more than the machine's 20 in of travel"),
-                std::string::npos)
-          << c.diags;
-      CompileOptions mm;
-      mm.input_units = ir::Units::Mm;
-      Compiled again = compile_path(f, haas, mm);
-      EXPECT_TRUE(again.ok) << again.diags;
+  int posted = 0, refused = 0;
+  double worst_mm = 0;
+  for (const CorpusCase& c : corpus_cases()) {
+    const std::string path = corpus_dir() + "/" + c.file;
+    const Machine m = corpus_machine(c.machine);
+    SCOPED_TRACE(std::string(c.file) + " on " + c.machine);
+    if (*c.error) {
+      Compiled r = compile_path(path, m, options_for(c));
+      EXPECT_FALSE(r.ok);
+      EXPECT_NE(r.diags.find(path + c.error), std::string::npos) << r.diags;
+      ++refused;
       continue;
     }
-    if (f.find("dwnhole.ncl.3") != std::string::npos) {
-      EXPECT_FALSE(c.ok);
-      EXPECT_NE(c.diags.find(":215:1: error: ROTATE (rotary indexing between subroutine calls) is not supported"),
-                std::string::npos)
-          << c.diags;
-      continue;
-    }
-    EXPECT_TRUE(c.ok) << f << "\n" << c.diags;
-    EXPECT_NE(c.output.find("M30\n%\n"), std::string::npos) << f;
-    ++compiled;
+    VerifyOptions vo;
+    vo.compile = options_for(c);
+    std::ostringstream err;
+    VerifyReport rep = verify_file(path, m, vo, err);
+    EXPECT_TRUE(rep.compiled) << err.str();
+    EXPECT_TRUE(rep.ok) << err.str();
+    EXPECT_GT(rep.cl_points + rep.cl_arcs + rep.cl_holes, 0);
+    worst_mm = std::max(worst_mm, rep.max_deviation * ir::mm_per_unit(m.units));
+    ++posted;
   }
-  EXPECT_EQ(compiled, 14);
+  std::printf("corpus: %d files posted and verified, %d refused with their located error; worst deviation %.4f mm\n",
+              posted, refused, worst_mm);
+  EXPECT_EQ(posted + refused, int(corpus_cases().size()));
+}
+
+// helical.ncl.1 says UNITS/INCHES, but its numbers are millimetres: read as inches it spans more
+// than the UMC-750 travels, and the diagnostic says why and names --input-units.
+TEST(Corpus, UnitsThatContradictTheDataAreNamed) {
+  REQUIRE_CORPUS();
+  const std::string path = corpus_dir() + "/nist/helical.ncl.1";
+  Compiled c = compile_path(path, machine("haas-umc750"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_NE(c.diags.find(path + ": warning: the file says its units are inches, but tool T1 would be 10 in across (254 mm): "
+                                "if its numbers are millimetres, --input-units mm reads them so"),
+            std::string::npos)
+      << c.diags;
+  EXPECT_NE(c.diags.find(path + ":35:1: error: the program's Y positions now span 22.6636 in, more than the machine's 20 in of "
+                                "travel: it cannot fit wherever the part is set up (are the CL's units right? tool T1 would be "
+                                "10 in across (254 mm); see --input-units)"),
+            std::string::npos)
+      << c.diags;
 }

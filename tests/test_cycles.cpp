@@ -1,6 +1,6 @@
 // Drilling, tapping and boring cycles: each kind, each dialect's parameter order, errors,
 // expansion where the machine lacks a cycle, and the holes read back from the G-code.
-#include "backends/gcode_interp.h"
+#include "readback/gcode_interp.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -140,16 +140,25 @@ TEST(CycleErrors, NegativePeck) {
             "1:25: CYCLE: the peck must not be negative, found -1");
 }
 
+// DEEP without a step (Creo, APT) is drilled in one go, with a warning; a chip-breaking cycle
+// without one is an error.
 TEST(CycleErrors, PeckCycleWithoutPeck) {
-  EXPECT_EQ(first_error(lower_text("CYCLE/DEEP,DEPTH,5,CLEAR,2\n").diags),
-            "1:1: CYCLE/DEEP: a peck cycle needs a peck depth (STEP or 1STPECK) greater than zero");
+  Lowered deep = lower_text("CYCLE/DEEP,DEPTH,5,CLEAR,2\n");
+  EXPECT_EQ(first_error(deep.diags), "");
+  ASSERT_EQ(deep.diags.size(), 1u);
+  EXPECT_EQ(deep.diags[0].message, "CYCLE/DEEP with no peck depth (STEP, 1STPECK, INCR): drilled to the depth in one go");
+  EXPECT_THAT(deep.ir, HasSubstr("cycle-on drill depth 5 clear 2"));
+  EXPECT_EQ(first_error(lower_text("CYCLE/BRKCHP,DEPTH,5,CLEAR,2\n").diags),
+            "1:1: CYCLE/BRKCHP: a peck cycle needs a peck depth (STEP, 1STPECK or INCR) greater than zero");
 }
 
 TEST(CycleErrors, UnknownWordAndStrayNumber) {
   EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,DEPTH,5,SIDEWAYS,2\n").diags), "1:21: CYCLE: unknown word 'SIDEWAYS'");
-  EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,5,CLEAR,2\n").diags), "1:13: CYCLE: the number 5 has no keyword before it");
+  EXPECT_EQ(first_error(lower_text("CYCLE/DRILL,DEPTH,5,2,CLEAR,2\n").diags),
+            "1:21: CYCLE: the number 2 has no keyword before it");
   EXPECT_EQ(first_error(lower_text("CYCLE/SPIRAL,DEPTH,5\n").diags),
-            "1:7: CYCLE: unknown cycle 'SPIRAL' (DRILL, DEEP, DEEP2, BRKCHP, TAP, BORE, REAM, CSINK, FACE or OFF)");
+            "1:7: CYCLE: unknown cycle 'SPIRAL' (DRILL, DEEP, DEEP2, BRKCHP, TAP, BORE, REAM, CSINK, FACE, SPOT, ON, INIT "
+            "or OFF)");
 }
 
 TEST(CycleErrors, CycleWithoutOffWarnsAndCancels) {

@@ -1,7 +1,7 @@
 // Number formats (integer arithmetic) and the emitter's words, modal suppression, numbering
 // and comments.
 #include "backends/emitter.h"
-#include "backends/format.h"
+#include "machine/format.h"
 #include "helpers.h"
 
 using namespace clpc;

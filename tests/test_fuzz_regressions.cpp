@@ -3,7 +3,7 @@
 // machine loader (*.toml) or the G-code reader (*.nc). They must end, under the sanitizers
 // too, with a program or diagnostics — whichever, but nothing else. fuzz/run.sh says how a
 // finding becomes one of these files.
-#include "backends/gcode_interp.h"
+#include "readback/gcode_interp.h"
 #include "helpers.h"
 
 using namespace clpc;

@@ -1,10 +1,10 @@
 // Lathe grooving: the G74/G75 model, the groove-cycles pass on IR built directly, the
 // CYCLE/FACE|RADIUS records, P/Q scaling, and every collapse the corpus produces read back
 // and compared with the CL motion it replaced.
-#include "backends/gcode_interp.h"
+#include "readback/gcode_interp.h"
 #include "helpers.h"
 #include "ir/groove_model.h"
-#include "ir/params.h"
+#include "support/text.h"
 #include "ir/printer.h"
 #include "passes/pass_manager.h"
 
@@ -53,7 +53,8 @@ Ran run_pass(ir::Operation op) {
   d.set_keep(true);
   ir::ProgramInfo info;
   PassContext ctx{info, m, d};
-  PassManager pm(ctx, {"groove-cycles"}, {}, nullptr, true);
+  auto verify_ir = make_verify_ir();
+  PassManager pm(ctx, {"groove-cycles"}, {verify_ir.get()});
   pm.begin();
   pm.run(op);
   std::ostringstream o;

@@ -3,9 +3,9 @@
 // tool tip and tool axis, in both output modes.
 #include <cmath>
 
-#include "backends/gcode_interp.h"
-#include "backends/kinematics.h"
-#include "cli/verify.h"
+#include "readback/gcode_interp.h"
+#include "machine/kinematics.h"
+#include "driver/readback_commands.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -256,8 +256,8 @@ TEST(KinematicsPass, ThreeAxisMachineRefusesATiltedTool) {
 TEST(KinematicsPass, HeadTableMachineFromToml) {
   // A B head (tilting the spindle about Y, pivot 200 mm) over a C table: the model solves it and
   // the transform puts the pivot where the tip must be.
-  std::string toml = "[bc-head]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"kinematics\", "
-                     "\"arc-legalise\"]\n[bc-head.format]\nB = { decimals = 4 }\nC = { decimals = 4 }\nX = { decimals = 4 }\n"
+  std::string toml = "[bc-head]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+                     "\"kinematics\", \"arc-legalise\"]\n[bc-head.format]\nB = { decimals = 4 }\nC = { decimals = 4 }\nX = { decimals = 4 }\n"
                      "Y = { decimals = 4 }\nZ = { decimals = 4 }\n[bc-head.kinematics]\nsimultaneous = \"transform\"\n"
                      "pivot = 200.0\n[[bc-head.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\nside = \"table\"\n"
                      "cyclic = \"wind\"\n[[bc-head.kinematics.axes]]\nname = \"B\"\naxis = [0.0, 1.0, 0.0]\nside = \"head\"\n"
@@ -308,7 +308,7 @@ CompileOptions short_chunks() {
 
 }  // namespace
 
-// A long operation reaches the pass in chunks (ir/lower.h), each seen alone. Its rotaries are
+// A long operation reaches the pass in chunks (lower/lower.h), each seen alone. Its rotaries are
 // indexed at most once: once a chunk needed simultaneous motion the operation stays so, and
 // a later run of moves at one axis is not clamped and re-indexed mid-cut.
 TEST(KinematicsPass, ALongOperationIndexesAtMostOnceWhateverItsChunks) {

@@ -61,7 +61,7 @@ TEST(Lower, CircleCreoSevenValuesWithContinuation) {
 
 TEST(Lower, CircleSolidWorksSixValuesDerivesRadius) {
   EXPECT_THAT(instrs("GOTO/3,4,0\nCIRCLE/0,0,0,0,0,1\nGOTO/-3,4,0\n"),
-              ElementsAre("feed (3, 4, 0)", "arc ? to (-3, 4, 0) center (0, 0, 0) axis (0, 0, 1) r 5 hint ? noradius6"));
+              ElementsAre("feed (3, 4, 0)", "arc ? to (-3, 4, 0) center (0, 0, 0) axis (0, 0, 1) r 5 hint ccw noradius6"));
 }
 
 TEST(Lower, CircleNxTimesIsExtraTurns) {
@@ -143,12 +143,28 @@ TEST(Lower, TextRecords) {
 }
 
 TEST(Lower, Frames) {
-  EXPECT_THAT(instrs("MSYS/1,2,3,0,1,0,-1,0,0\n$$-> CSYS / 1,0,0,10, 0,1,0,20, 0,0,1,30\nCSYS/1,0,0,0,0,1,0,0,0,0,1,0\n"
-                     "CAMERA/0,0,-1,-7.874, 0,1,0,0, 1,0,0,0\n"),
-              ElementsAre("frame msys origin (1, 2, 3) x (0, 1, 0) y (-1, 0, 0) z (0, 0, 1)",
+  EXPECT_THAT(instrs("MSYS/1,2,3,0,1,0,-1,0,0\nMSYS/1,2,13,0,1,0,-1,0,0\n$$-> CSYS / 1,0,0,10, 0,1,0,20, 0,0,1,30\n"
+                     "CSYS/1,0,0,0,0,1,0,0,0,0,1,0\nCAMERA/0,0,-1,-7.874, 0,1,0,0, 1,0,0,0\n"),
+              ElementsAre("frame msys origin (0, 0, 0) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
+                          "frame msys origin (0, 0, 10) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
                           "frame csys origin (10, 20, 30) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
                           "frame csys origin (0, 0, 0) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)",
                           "frame camera origin (-7.874, 0, 0) x (0, 0, 1) y (0, 1, 0) z (-1, 0, 0)"));
+}
+
+// NX writes points and tool axes in the MSYS; the first MSYS is the program frame, and a GOTO
+// without a tool axis has the frame's Z. Creo/APT frames leave the points as they are but give
+// 3-value GOTOs their Z as the tool axis.
+TEST(Lower, FramesApplyToPointsAndToolAxes) {
+  EXPECT_THAT(instrs("MSYS/5,5,0,1,0,0,0,1,0\nGOTO/1,0,0\nMSYS/15,5,0,0.7071067812,0,-0.7071067812,0,1,0\nGOTO/0,0,5\n"
+                     "GOTO/0,0,4,0,0,1\n"),
+              ElementsAre("frame msys origin (0, 0, 0) x (1, 0, 0) y (0, 1, 0) z (0, 0, 1)", "feed (1, 0, 0)",
+                          "frame msys origin (10, 0, 0) x (0.7071067811865475, 0, -0.7071067811865475) y (0, 1, 0) z "
+                          "(0.7071067811865475, 0, 0.7071067811865475)",
+                          "feed (13.535533905932738, 0, 3.5355339059327373) axis (0.7071067811865475, 0, 0.7071067811865475)",
+                          "feed (12.82842712474619, 0, 2.82842712474619) axis (0.7071067811865475, 0, 0.7071067811865475)"));
+  EXPECT_THAT(instrs("$$-> CSYS / 0,0,1,10, 0,1,0,0, -1,0,0,0\nGOTO/1,2,3\n"),
+              ElementsAre("frame csys origin (10, 0, 0) x (0, 0, -1) y (0, 1, 0) z (1, 0, 0)", "feed (1, 2, 3) axis (1, 0, 0)"));
 }
 
 TEST(Lower, SetWorkOffsetAndMode) {
@@ -163,7 +179,7 @@ TEST(Lower, RotateAndSubroutines) {
 
 TEST(Lower, OperationsFromToolPathAndFeatno) {
   Lowered l = lower_text(
-      "GOTO/0,0,0\nTOOL PATH/ROUGH,TOOL,T\nGOTO/1,0,0\nEND-OF-PATH\n$$-> FEATNO / 32\nGOTO/2,0,0\n$$-> END /\nFINI\n");
+      "FROM/0,0,0\nTOOL PATH/ROUGH,TOOL,T\nGOTO/1,0,0\nEND-OF-PATH\n$$-> FEATNO / 32\nGOTO/2,0,0\n$$-> END /\nFINI\n");
   EXPECT_THAT(l.ir, HasSubstr("operation 1 at 1:1\n"));
   EXPECT_THAT(l.ir, HasSubstr("operation 2 \"ROUGH\" at 2:1\n"));
   EXPECT_THAT(l.ir, HasSubstr("operation 3 \"FEATNO 32\" at 5:6\n"));
@@ -236,6 +252,9 @@ TEST(LowerErrors, SpindleAndFeedWords) {
   EXPECT_EQ(err("SPINDL/RPM,1000,SIDEWAYS\n"), "1:17: SPINDL: unknown word 'SIDEWAYS'");
   EXPECT_EQ(err("FEDRAT/MMPM\n"), "1:12: FEDRAT: no feed value");
   EXPECT_EQ(err("FEDRAT/-5,MMPM\n"), "1:1: FEDRAT: the feed must be greater than zero, found -5");
+  EXPECT_EQ(err("FEDRAT/0.05,MMPT\n"),
+            "1:13: FEDRAT: a feed per tooth (MMPT) needs the cutter's number of teeth, which the CL data does not give; have "
+            "the CAM system write the feed per minute or per revolution");
 }
 
 TEST(LowerErrors, ToolNumber) {
@@ -260,4 +279,47 @@ TEST(LowerErrors, UnitsChange) {
             "3:7: UNITS changes to inch but the program is in mm: clpc needs one unit per file");
 }
 
-TEST(LowerErrors, Nurbs) { EXPECT_EQ(err("NURBS/1\n"), "1:1: NURBS motion is not supported: have the CAM system write it as GOTO points"); }
+TEST(LowerErrors, Nurbs) {
+  EXPECT_EQ(err("NURBS/1\n"),
+            "1:1: 'NURBS' moves the tool and clpc does not read it: NURBS curves are not read; in NX set the operation's "
+            "Machine Control > Motion Output to 'Linear Only' or 'Arcs' (or the post's NURBS output off) and write the "
+            "CLSF again");
+}
+
+// TRACUT moves the motion after it by its matrix until TRACUT/NOMORE; COPY plays an INDEX block
+// again, each copy moved from the last.
+TEST(Lower, TracutAndCopy) {
+  EXPECT_THAT(instrs("TRACUT/0,-1,0,10, 1,0,0,0, 0,0,1,5\nGOTO/1,0,0\nTRACUT/NOMORE\nGOTO/1,0,0\n"),
+              ElementsAre("feed (10, 1, 5)", "feed (1, 0, 0)"));
+  EXPECT_THAT(instrs("INDEX/7\nGOTO/1,0,0\nGOTO/2,0,0\nINDEX/7,NOMORE\nCOPY/7,TRANSL,0,10,0,2\n"),
+              ElementsAre("feed (1, 0, 0)", "feed (2, 0, 0)", "feed (1, 10, 0)", "feed (2, 10, 0)", "feed (1, 20, 0)",
+                          "feed (2, 20, 0)"));
+  EXPECT_THAT(instrs("INDEX/1\nGOTO/1,0,0\nCOPY/1,XYROT,90,1\n"), ElementsAre("feed (1, 0, 0)", "feed (6.123233995736766e-17, 1, 0)"));
+  EXPECT_EQ(first_error(lower_text("COPY/3,SAME,2\n").diags), "1:6: COPY/3: no INDEX/3 block before it");
+  EXPECT_EQ(first_error(lower_text("TRACUT/2,0,0,0, 0,1,0,0, 0,0,1,0\n").diags),
+            "1:8: TRACUT: the matrix must turn and move the motion, not scale or mirror it");
+}
+
+// MOVARC: the end point from the angle about the axis, the sense from its sign.
+TEST(Lower, Movarc) {
+  EXPECT_THAT(instrs("GOTO/10,0,0\nMOVARC/0,0,0,0,0,1,10,ANGLE,90\nGOTO/0,10,5\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (6.123233995736766e-16, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw movarc",
+                          "feed (0, 10, 5)"));
+  EXPECT_THAT(instrs("GOTO/10,0,0\nMOVARC/0,0,0,0,0,1,10,ANGLE,-450\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (3.061616997868383e-15, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint cw movarc turns+1"));
+}
+
+// The CIRCLE convention by the CAM system that wrote the file, not by the count of values.
+TEST(Lower, CircleConventionByCamSystem) {
+  const std::string arc = "GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n";
+  EXPECT_THAT(instrs(arc), ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7"));
+  // NX says clockwise about its axis whatever the layout.
+  EXPECT_THAT(instrs("TOOL PATH/A,TOOL,T\n" + arc + "END-OF-PATH\n"),
+              ElementsAre("tool-change T1", "feed (10, 0, 0)",
+                          "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint cw creo7"));
+  Lowered l = lower_text("$$*CATIA0\n" + arc);
+  EXPECT_EQ(l.info.cam, ir::CamSystem::Catia);
+  EXPECT_EQ(l.info.cam_evidence, "line 1: $$*CATIA0");
+}

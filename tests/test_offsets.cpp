@@ -7,8 +7,8 @@
 #include <random>
 #include <regex>
 
-#include "backends/gcode_interp.h"
-#include "backends/kinematics.h"
+#include "readback/gcode_interp.h"
+#include "machine/kinematics.h"
 #include "helpers.h"
 
 using namespace clpc;

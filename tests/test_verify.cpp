@@ -3,7 +3,7 @@
 // fail, naming the CL record; the report's counts, times and JSON form.
 #include <regex>
 
-#include "cli/verify.h"
+#include "driver/readback_commands.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -188,30 +188,3 @@ TEST_F(VerifyPlate, CommandLine) {
   EXPECT_THAT(bad.err, HasSubstr("\n 12 | GOTO/30,20,-2\n"));
 }
 
-// Every corpus file, on every built-in machine it is meant for: lathe data on the lathe;
-// mill data on the Haas and, if three-axis, on the Fanuc mill. The Haas refuses two files on
-// purpose (tests/test_corpus.cpp says why); they are not verified there.
-TEST(Verify, EveryCorpusFileOnEveryApplicableMachine) {
-  if (corpus_dir().empty()) GTEST_SKIP() << "no corpus";
-  const Machine haas = machine("haas-umc750"), mill = machine("fanuc-mill"), lathe = machine("fanuc-lathe");
-  int verified = 0;
-  double worst_mm = 0;
-  for (const std::string& f : corpus_files()) {
-    std::vector<const Machine*> ms;
-    if (is_lathe_file(f)) ms = {&lathe};
-    else if (is_five_axis_file(f)) ms = {&haas};
-    else ms = {&haas, &mill};
-    for (const Machine* m : ms) {
-      if (m == &haas && (f.find("dwnhole") != std::string::npos || f.find("helical") != std::string::npos)) continue;
-      SCOPED_TRACE(f + " on " + m->name);
-      Checked c = verify(f, *m);
-      EXPECT_TRUE(c.report.compiled) << c.diags;
-      EXPECT_TRUE(c.report.ok) << c.diags;
-      EXPECT_GT(c.report.cl_points + c.report.cl_arcs + c.report.cl_holes, 0);
-      worst_mm = std::max(worst_mm, c.report.max_deviation * ir::mm_per_unit(m->units));
-      ++verified;
-    }
-  }
-  std::printf("verified %d corpus programs; worst deviation %.4f mm\n", verified, worst_mm);
-  EXPECT_GE(verified, 25);
-}

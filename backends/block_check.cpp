@@ -1,0 +1,101 @@
+#include "backends/block_check.h"
+
+#include <cctype>
+
+namespace clpc {
+
+namespace {
+
+bool upper_letter(char c) { return c >= 'A' && c <= 'Z'; }
+bool digit(char c) { return c >= '0' && c <= '9'; }
+bool blank(char c) { return c == ' ' || c == '\t'; }
+
+// A Fanuc custom macro statement: #100 = ..., IF [..] GOTO n, WHILE [..] DO n, END n, GOTO n.
+bool macro_statement(std::string_view t) {
+  auto starts = [&](std::string_view w) { return t.substr(0, w.size()) == w; };
+  if (!(t.size() > 1 && t[0] == '#' && digit(t[1])) && !starts("IF") && !starts("WHILE") && !starts("END") &&
+      !starts("GOTO"))
+    return false;
+  int depth = 0;
+  for (char c : t) {
+    if (c == '[') ++depth;
+    else if (c == ']' && --depth < 0) return false;
+    else if (!(upper_letter(c) || digit(c) || blank(c) || c == '#' || c == '.' || c == '+' || c == '-' || c == '*' ||
+               c == '/' || c == '=' || c == ','))
+      return false;
+  }
+  return depth == 0;
+}
+
+}  // namespace
+
+bool is_control_block(std::string_view t, std::string& why) {
+  while (!t.empty() && blank(t.front())) t.remove_prefix(1);
+  while (!t.empty() && blank(t.back())) t.remove_suffix(1);
+  if (t.empty()) {
+    why = "it is empty";
+    return false;
+  }
+  if (macro_statement(t)) return true;
+  size_t i = 0;
+  if (t[i] == '/') ++i;  // block delete
+  bool words = false;
+  while (i < t.size()) {
+    char c = t[i];
+    if (blank(c)) {
+      ++i;
+      continue;
+    }
+    if (c == '(') {
+      size_t close = t.find(')', i);
+      if (close == std::string_view::npos) {
+        why = "a comment '(' is not closed";
+        return false;
+      }
+      i = close + 1;
+      continue;
+    }
+    if (!upper_letter(c)) {
+      why = std::string("'") + c + "' at column " + std::to_string(i + 1) + " starts no address word";
+      return false;
+    }
+    size_t v = i + 1;
+    if (v < t.size() && t[v] == '#') {  // a variable: G#1, X#24
+      ++v;
+      size_t d = v;
+      while (v < t.size() && digit(t[v])) ++v;
+      if (v == d) {
+        why = std::string("'") + c + "#' has no variable number";
+        return false;
+      }
+    } else if (v < t.size() && t[v] == '[') {  // an expression: X[#1+2.]
+      int depth = 0;
+      for (; v < t.size(); ++v) {
+        if (t[v] == '[') ++depth;
+        else if (t[v] == ']' && --depth == 0) {
+          ++v;
+          break;
+        }
+      }
+      if (depth != 0) {
+        why = std::string("'") + c + "[' is not closed";
+        return false;
+      }
+    } else {
+      if (v < t.size() && (t[v] == '+' || t[v] == '-')) ++v;
+      size_t d = v;
+      bool point = false;
+      while (v < t.size() && (digit(t[v]) || (t[v] == '.' && !point))) point = point || t[v++] == '.';
+      if (v == d || (v == d + 1 && point)) {
+        why = std::string("'") + c + "' at column " + std::to_string(i + 1) + " has no number after it";
+        return false;
+      }
+    }
+    words = true;
+    i = v;
+  }
+  (void)words;  // comments alone are a block too
+  return true;
+}
+
+}  // namespace clpc

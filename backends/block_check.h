@@ -1,0 +1,16 @@
+// Whether a line of text is a block a G-code control reads (INSERT records): what may reach
+// the program raw, and what must become a comment (docs/cl-input.md, "INSERT").
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace clpc {
+
+// True for a block of address words (a letter and a number, a #variable or a [bracketed
+// expression]), comments in parentheses, an optional block delete '/' and N number, and the
+// Fanuc macro statements (#n = ..., IF, WHILE, END, GOTO). Otherwise false, with `why` the
+// first thing that is none of these.
+bool is_control_block(std::string_view text, std::string& why);
+
+}  // namespace clpc

@@ -1,0 +1,99 @@
+#include "driver/readback_commands.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+
+#include "driver/pipeline.h"
+#include "support/progress.h"
+
+namespace clpc {
+
+TempProgram::TempProgram() {
+  const char* dir = std::getenv("TMPDIR");
+  std::string t = std::string(dir && *dir ? dir : "/tmp") + "/clpc-program-XXXXXX";
+  int fd = mkstemp(t.data());
+  if (fd < 0) return;
+  close(fd);
+  path_ = t;
+}
+
+TempProgram::~TempProgram() {
+  if (!path_.empty()) std::remove(path_.c_str());
+}
+
+bool compile_for_readback(const std::string& input, const Machine& m, CompileOptions opt, const std::string& keep,
+                          const std::string& given, std::ostream& err, CompiledProgram& out) {
+  std::string why;
+  if (!out.source.open(input, why)) {
+    err << "clpc: error: " << why << "\n";
+    return false;
+  }
+  const std::string target = keep.empty() ? out.temp.path() : keep;
+  if (target.empty()) {
+    err << "clpc: error: cannot create a temporary file for the program\n";
+    return false;
+  }
+  opt.emit = Emit::Gcode;
+  out.compiled = compile_source(out.source, target, m, opt, err);
+  out.path = given.empty() ? target : given;
+  return out.compiled.ok;
+}
+
+VerifyReport verify_file(const std::string& input, const Machine& m, const VerifyOptions& opt, std::ostream& err) {
+  VerifyReport rep;
+  rep.input = input;
+  rep.machine = m.name;
+  rep.units = m.units;
+  rep.five_axis = m.kinematics.has_rotaries();
+  rep.tolerance = opt.tolerance > 0 ? opt.tolerance : default_tolerance(m);
+  rep.axis_tolerance = opt.axis_tolerance;
+
+  CompiledProgram cp;
+  if (!compile_for_readback(input, m, opt.compile, opt.keep, opt.program, err, cp)) return rep;
+  rep.compiled = true;
+  SourceFile& src = cp.source;
+  std::string why;
+  ProgramReader rd(m, cp.compiled.info);
+  if (!rd.open(cp.path, why)) {
+    err << "clpc: error: " << why << "\n";
+    return rep;
+  }
+  Diagnostics d(&err);
+  d.set_source(&src);
+  Progress progress(input, src.size(), opt.compile.progress);
+  if (progress.active()) {
+    src.on_progress([&](uint64_t at) { progress.update(at); });
+    d.set_before_print([&] { progress.clear(); });
+  }
+  progress.phase("verify");
+  std::unique_ptr<ProgramSink> comparison = make_comparison(m, cp.compiled.info, rd, d, rep);
+  // The reference: the CL as lowered and given its meaning (arcs decided, cycles made holes),
+  // in the program's tables. The compile has reported the CL's own problems.
+  Diagnostics quiet(nullptr);
+  quiet.set_source(&src);
+  ir::ProgramInfo info = cp.compiled.info;
+  PipelineOptions po;
+  po.latin1 = opt.compile.latin1;
+  po.sink_after_errors = true;
+  Pipeline reference(m, reference_passes(m.pipeline), info, quiet, po);
+  try {
+    reference.run(src, *comparison);
+  } catch (const FatalError&) {
+    // More problems than are worth listing: the report says how many were found.
+  }
+  src.on_progress(nullptr);
+  progress.clear();
+  rep.program = rd.totals();
+  rep.ok = rep.problem_count == 0 && rep.max_deviation <= rep.tolerance;
+  return rep;
+}
+
+PlotResult plot_file(const std::string& input, const std::string& output, const Machine& m, const PlotFileOptions& opt,
+                     std::ostream& err) {
+  CompiledProgram cp;
+  if (!compile_for_readback(input, m, opt.compile, {}, opt.program, err, cp)) return {};
+  return plot_program(cp.path, input, cp.compiled.info, output, m, opt.plot, err);
+}
+
+}  // namespace clpc

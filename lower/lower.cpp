@@ -1,0 +1,388 @@
+// The record table: which lowering each major word gets, and operation bookkeeping.
+#include "lower/lower.h"
+
+#include "lower/params.h"
+#include "lower/tool_records.h"
+
+namespace clpc {
+
+Lowerer::Lowerer(const ir::ProgramInfo& info, Diagnostics& diags, OperationSink& sink, LowerOptions opt)
+    : info_(info), d_(diags), sink_(sink), opt_(opt) {
+  op_.body.reserve(std::min<size_t>(opt_.chunk_size, 4096));
+}
+
+void Lowerer::record(const Record& r) {
+  if (defining_sub_ >= 0 && record_subroutine(r)) return;
+  // An open INDEX block keeps what COPY will play again (but not its own INDEX or COPY).
+  if (recording_index_ >= 0 && r.kind == Record::Kind::Statement && r.id != MajorId::Index && r.id != MajorId::Copy &&
+      keep_stored(r))
+    blocks_[recording_index_].push_back(OwnedRecord::of(r));
+  if (r.kind == Record::Kind::Comment) {
+    // Creo brackets explicit groove motion with "$$ GRV ..." and "$$ GRV END": kept for the
+    // groove-cycles pass. Other comments carry nothing clpc uses.
+    std::string_view t = r.text;
+    while (!t.empty() && t.front() == ' ') t.remove_prefix(1);
+    if (t.size() >= 3 && iequals(t.substr(0, 3), "GRV") && (t.size() == 3 || t[3] == ',' || t[3] == ' ')) {
+      std::string_view rest = t.substr(3);
+      while (!rest.empty() && (rest.front() == ' ' || rest.front() == ',')) rest.remove_prefix(1);
+      bool end = rest.size() >= 3 && iequals(rest.substr(0, 3), "END");
+      if (!finished_) {
+        ensure_operation(r.loc);
+        push(r.loc, ir::GrooveMark{!end});
+      }
+    }
+    return;
+  }
+  if (finished_) {
+    if (!warned_after_fini_)
+      d_.warning(r.loc, "records after FINI are ignored", "after-fini");
+    warned_after_fini_ = true;
+    return;
+  }
+  if (r.data_comment) {
+    // Creo "$$->" comments: a few carry data; the rest are comments and stay silent.
+    switch (r.id) {
+      case MajorId::Featno: {
+        ParamReader p(r, d_);
+        std::string name = "FEATNO";
+        if (p.size() > 0 && p[0].is_number()) name += " " + num_text(p[0].number);
+        close_operation();
+        open_operation(std::move(name), r.loc);
+        return;
+      }
+      case MajorId::End: close_operation(); return;
+      case MajorId::Csys: lower_matrix_frame(r, ir::FrameSource::Csys); return;
+      case MajorId::Cutter: read_tool_geometry(r, &d_); return;
+      default: return;
+    }
+  }
+
+  if (!r.head.empty() && !is_contour_motion(r.id)) {
+    unknown(r, "unknown record", true);
+    return;
+  }
+
+  switch (r.id) {
+    case MajorId::Goto: lower_goto(r); return;
+    case MajorId::From: lower_from(r); return;
+    case MajorId::Gohome: lower_gohome(r); return;
+    case MajorId::Godlta: lower_godlta(r); return;
+    case MajorId::Circle: lower_circle(r); return;
+    case MajorId::Movarc: lower_movarc(r); return;
+    case MajorId::Gofwd: case MajorId::Golft: case MajorId::Gorgt: case MajorId::Goback: case MajorId::Goup:
+    case MajorId::Godown:
+      lower_contour(r);
+      return;
+    case MajorId::Indirv: lower_indirv(r); return;
+    case MajorId::Tlaxis: lower_tlaxis(r); return;
+    case MajorId::Rapid: rapid_next_ = true; return;
+
+    case MajorId::ToolPath: {
+      close_operation();
+      std::string name = r.params.empty() ? std::string() : std::string(r.params[0].name());
+      open_operation(std::move(name), r.loc);
+      tool_path_open_ = true;
+      tool_path_loc_ = r.loc;
+      tool_path_name_ = op_.name;
+      op_tool_name_ = tool_name_of_tool_path(r);
+      // NX often names the tool without loading it by number: load the number the pre-scan
+      // gave that name here, before the operation's SPINDL (M06 stops the spindle).
+      if (int n = info_.named_tool_at(r.loc.line); n > 0 && n != tool_) {
+        d_.warning(r.loc, "operation '" + op_.name + "' names tool '" + op_tool_name_ +
+                              "' but loads no tool number; using T" + std::to_string(n),
+                   "tool-by-name");
+        ir::ToolChange tc;
+        tc.tool = n;
+        for (size_t i = 0; i < info_.tools.size(); ++i)
+          if (info_.tools[i].number == n) tc.slot = int(i);
+        tool_ = n;
+        push(r.loc, tc);
+      }
+      return;
+    }
+    case MajorId::EndOfPath:
+      tool_path_open_ = false;
+      close_operation();
+      return;
+
+    case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Select:
+      lower_tool_change(r); return;
+    case MajorId::Tldata: case MajorId::Cutter: read_tool_geometry(r, &d_); return;
+    case MajorId::Spindl: lower_spindle(r); return;
+    case MajorId::Fedrat: lower_feed(r); return;
+    case MajorId::Coolnt: lower_coolant(r); return;
+    case MajorId::Cutcom: lower_cutcom(r); return;
+    case MajorId::Delay: lower_delay(r); return;
+    case MajorId::Opstop: ensure_operation(r.loc); push(r.loc, ir::Stop{ir::StopKind::Optional}); return;
+    case MajorId::Stop: lower_stop(r); return;
+    case MajorId::End: return;  // end of the part program: the program end is written at FINI / end of input
+    case MajorId::Fini:
+      tool_path_open_ = false;  // FINI ends what is open
+      close_operation();
+      finished_ = true;
+      return;
+    case MajorId::Units: case MajorId::Unit: lower_units(r); return;
+
+    case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: {
+      ensure_operation(r.loc);
+      std::string_view text = r.text;
+      std::string joined;
+      if (r.id == MajorId::Comment) {  // COMMENT/'text' (Fusion): its parameters
+        for (const Param& p : r.params) joined += (joined.empty() ? "" : " ") + std::string(p.name());
+        text = joined;
+      }
+      push_text<ir::Comment>(r.loc, text);
+      return;
+    }
+    case MajorId::Insert: lower_insert(r); return;
+    case MajorId::Auxfun: case MajorId::Prefun: {
+      ParamReader p(r, d_);
+      auto code = p.integer(0, r.id == MajorId::Auxfun ? "an M-code number" : "a G-code number", 0, 999);
+      if (!code) return;
+      ensure_operation(r.loc);
+      push_text<ir::Insert>(r.loc, (r.id == MajorId::Auxfun ? "M" : "G") + std::to_string(*code));
+      return;
+    }
+
+    case MajorId::Msys: lower_msys(r); return;
+    case MajorId::Csys: lower_matrix_frame(r, ir::FrameSource::Csys); return;
+    case MajorId::Camera: lower_matrix_frame(r, ir::FrameSource::Camera); return;
+    case MajorId::Set: lower_set(r); return;
+    case MajorId::Rotate: lower_rotate(r); return;
+    case MajorId::Rotabl: lower_rotabl(r); return;
+
+    case MajorId::Defsub: record_subroutine(r); return;
+    case MajorId::Endsub: d_.error(r.loc, "ENDSUB without DEFSUB"); return;
+    case MajorId::Calsub: lower_calsub(r); return;
+
+    // Header facts read by the pre-scan, and records with no meaning for the output.
+    case MajorId::Partno: case MajorId::Machin: case MajorId::Multax: case MajorId::Remark:
+    case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:
+    case MajorId::Clrsrf: case MajorId::Retract: case MajorId::Toolno: case MajorId::Autops:
+    case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler:
+      return;
+    case MajorId::Featno:
+      return;  // only meaningful as a Creo "$$->" comment
+
+    case MajorId::Nurbs: case MajorId::Knot: case MajorId::Cntrl: lower_nurbs(r); return;
+    case MajorId::Cycle: lower_cycle(r); return;
+    case MajorId::Tracut: case MajorId::Copy: case MajorId::Index: lower_transform(r); return;
+    case MajorId::Thread:
+      motion_not_read(r, "a thread cut needs the spindle synchronised with the feed (G32/G76/G92), which clpc does "
+                         "not write yet; post the threading operation separately or have the CAM system write a cycle");
+      return;
+    case MajorId::Indirp: case MajorId::Psis: case MajorId::Rothed:
+      motion_not_read(r, motion_hint(r.major));
+      return;
+    case MajorId::Mode:
+      // MODE/MILL, MODE/TURN (Fusion, Creo mill-turn): which kind of machine, as MACHIN says.
+      if (r.params.size() == 1 && (r.params[0].is("MILL") || r.params[0].is("TURN") || r.params[0].is("LATHE"))) return;
+      unknown(r, "not supported by clpc's machines", true);
+      return;
+    case MajorId::Head: case MajorId::Origin:
+      unknown(r, "not supported by clpc's machines", true);
+      return;
+    case MajorId::Unknown:
+      if (motion_word(r.major)) {
+        motion_not_read(r, motion_hint(r.major));
+        return;
+      }
+      // CAMWorks brackets each operation in OPFEATSTART/name ... OPFEATEND/name.
+      if (iequals(r.major, "OPFEATSTART")) {
+        close_operation();
+        open_operation(r.params.empty() ? std::string() : std::string(r.params[0].name()), r.loc);
+        return;
+      }
+      if (iequals(r.major, "OPFEATEND")) {
+        close_operation();
+        return;
+      }
+      if (iequals(r.major, "BOX")) return;  // the stock (SolidWorks CAM, CAMWorks): nothing to cut
+      unknown(r, "unknown record", true);
+      return;
+  }
+}
+
+void Lowerer::unknown(const Record& r, std::string_view why, bool warn) {
+  if (warn)
+    d_.warning(r.loc, std::string(why) + " '" + std::string(r.major) + "' (passed through as a comment)",
+               why == "unknown record" ? "unknown-record" : "not-supported", upper(r.major));
+  passthrough(r);
+}
+
+// A record without motion that clpc cannot act on: a warning, and the record as a comment.
+void Lowerer::not_read(const Record& r, std::string_view why, std::string_view category) {
+  d_.warning(r.loc, std::string(why) + " (passed through as a comment)", category);
+  passthrough(r);
+}
+
+// A record that moves the tool (or the machine) in a way clpc does not read: never dropped, never
+// guessed (docs/cl-input.md, "Records that carry motion").
+void Lowerer::motion_not_read(const Record& r, std::string_view why) {
+  std::string name;
+  for (const Param& h : r.head) name += std::string(h.text) + ",";
+  name += std::string(r.major);
+  d_.error(r.loc, "'" + name + "' moves the tool and clpc does not read it: " + std::string(why));
+}
+
+namespace {
+
+// APT words that move the tool or change which motion is cut, with what to do instead. A
+// record of one of these that clpc does not read is an error, not a comment.
+struct MotionWord {
+  const char* word;
+  const char* hint;
+};
+constexpr MotionWord kMotionWords[] = {
+    {"GO", "APT startup motion to drive surfaces needs the part model; have the CAM system write GOTO points"},
+    {"PSIS", "APT contouring on a part surface needs the part model; have the CAM system write GOTO points"},
+    {"INDIRP", "APT contouring towards a point; have the CAM system write GOTO points"},
+    {"DNTCUT", "the motion after it is not to be cut; have the CAM system leave that motion out"},
+    {"CUT", "it ends a DNTCUT block; have the CAM system leave the uncut motion out"},
+    {"LOOP", "a repeat of the records that follow; have the CAM system write them out in full"},
+    {"POCKET", "APT pocketing needs the part model; have the CAM system write the pocket as GOTO and CIRCLE records"},
+    {"ARCSLP", "it changes how CIRCLE records are cut; have the CAM system write plain CIRCLE records"},
+    {"ROTHED", "a rotary head positioned by record; have the CAM system write the tool axis on the GOTOs (MULTAX)"},
+    {"MOVE", "a move clpc has no rule for; have the CAM system write GOTO points"},
+};
+
+}  // namespace
+
+bool motion_word(std::string_view major) {
+  for (const MotionWord& w : kMotionWords)
+    if (iequals(major, w.word)) return true;
+  return false;
+}
+
+std::string_view motion_hint(std::string_view major) {
+  for (const MotionWord& w : kMotionWords)
+    if (iequals(major, w.word)) return w.hint;
+  return "have the CAM system write the motion as GOTO and CIRCLE records";
+}
+
+namespace {
+
+// Parameters as text again: numbers as written (or shortest), groups in parentheses.
+void params_text(std::span<const Param> ps, std::string& t) {
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (i) t += ",";
+    if (p.is_group()) {
+      t += "(" + std::string(p.text) + (p.text.empty() ? "" : "/");
+      size_t n = std::min<size_t>(p.group_size, ps.size() - i - 1);
+      params_text(ps.subspan(i + 1, n), t);
+      t += ")";
+      i += n;
+    } else if (p.kind == Param::Kind::String) {
+      t += "'" + std::string(p.text) + "'";
+    } else {
+      t += p.is_number() && p.text.empty() ? num_text(p.number) : std::string(p.text);
+    }
+  }
+}
+
+}  // namespace
+
+void Lowerer::passthrough(const Record& r) {
+  ensure_operation(r.loc);
+  std::string t;
+  for (const Param& h : r.head) t += std::string(h.text) + ",";
+  t += std::string(r.major);
+  if (r.has_slash || !r.params.empty()) t += "/";
+  params_text(r.params, t);
+  push_text<ir::Passthrough>(r.loc, t);
+}
+
+// STOP, STOP/(message): the message as a comment before the stop.
+void Lowerer::lower_stop(const Record& r) {
+  ensure_operation(r.loc);
+  std::string msg;
+  for (const Param& p : r.params)
+    if (!p.is_group() && !p.is_empty()) msg += (msg.empty() ? "" : " ") + std::string(p.name());
+  if (!msg.empty()) push_text<ir::Comment>(r.loc, msg);
+  push(r.loc, ir::Stop{ir::StopKind::Program});
+}
+
+// INSERT/text: a block for the control, checked when written (backends/program_writer.cpp);
+// the APT words for stops become stops.
+void Lowerer::lower_insert(const Record& r) {
+  ensure_operation(r.loc);
+  std::string_view t = r.text;
+  if (iequals(t, "STOP")) {
+    push(r.loc, ir::Stop{ir::StopKind::Program});
+    return;
+  }
+  if (iequals(t, "OPSTOP")) {
+    push(r.loc, ir::Stop{ir::StopKind::Optional});
+    return;
+  }
+  push_text<ir::Insert>(r.loc, t);
+}
+
+void Lowerer::make_room() {
+  if (op_.body.size() >= opt_.chunk_size) flush_chunk();
+}
+
+ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
+  arc_open_ = false;
+  make_room();
+  op_.body.push_back(ir::Instr{loc, std::move(op)});
+  return op_.body.back();
+}
+
+void Lowerer::open_operation(std::string name, SourceLoc loc) {
+  op_.clear();
+  op_.number = ++op_count_;
+  op_.name = std::move(name);
+  op_.loc = loc;
+  op_.continued = false;
+  op_open_ = true;
+  op_tool_name_.clear();
+}
+
+void Lowerer::ensure_operation(SourceLoc loc) {
+  if (!op_open_) open_operation(std::string(), loc);
+}
+
+void Lowerer::flush_chunk() {
+  op_.last_chunk = false;
+  // Read before the sink, which may hand back another operation's storage.
+  uint32_t number = op_.number;
+  std::string name = op_.name;
+  SourceLoc loc = op_.loc;
+  sink_.operation(op_);
+  op_.clear();
+  op_.number = number;
+  op_.name = std::move(name);
+  op_.loc = loc;
+  op_.continued = true;
+}
+
+void Lowerer::close_operation() {
+  cycle_open_ = false;  // the drill-cycles pass cancels (with a warning) what is still on
+  if (pending_arc_) {
+    d_.error(pending_arc_->loc, "CIRCLE is not followed by a GOTO giving its end point");
+    pending_arc_.reset();
+  }
+  arc_open_ = false;
+  if (!op_open_) return;
+  op_.last_chunk = true;
+  sink_.operation(op_);
+  op_.clear();
+  op_open_ = false;
+}
+
+void Lowerer::finish() {
+  if (defining_sub_ >= 0) {
+    d_.error(defining_loc_, "DEFSUB/" + std::to_string(defining_sub_) + " has no ENDSUB");
+    defining_sub_ = -1;
+  }
+  // NX closes every TOOL PATH with END-OF-PATH: a file that ends inside one was cut short, and
+  // the program would stop half way through the operation.
+  if (tool_path_open_)
+    d_.error(tool_path_loc_, "TOOL PATH" + (tool_path_name_.empty() ? std::string() : "/" + tool_path_name_) +
+                                 " has no END-OF-PATH: the file ends inside the operation (was it cut short?)");
+  close_operation();
+}
+
+}  // namespace clpc

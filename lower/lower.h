@@ -1,0 +1,190 @@
+// Lowering: CL records -> IR operations. Dialect quirks (parameter orders, CIRCLE layouts,
+// unit words) are handled here and nowhere else. Records are lowered as they arrive and each
+// finished operation is handed to an OperationSink, so a file of any size is processed one
+// operation at a time.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "grammar/record.h"
+#include "support/diagnostics.h"
+#include "ir/ir.h"
+#include "lower/prescan.h"
+
+namespace clpc {
+
+// GOFWD, GOLFT, ...: APT contour motion (lower/lower_contour.cpp).
+bool is_contour_motion(MajorId id);
+// APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
+bool motion_word(std::string_view major);
+std::string_view motion_hint(std::string_view major);
+// The sense of rotation a CIRCLE's axis stands for (lower/lower_motion.cpp).
+ir::ArcDir circle_convention(ir::CamSystem cam, ir::ArcLayout layout);
+
+class OperationSink {
+ public:
+  virtual ~OperationSink() = default;
+  // The operation may be modified by the sink; it is cleared after the call.
+  virtual void operation(ir::Operation& op) = 0;
+};
+
+struct LowerOptions {
+  // Instructions per operation chunk; longer operations are handed on in pieces so memory
+  // stays bounded whatever the file looks like.
+  size_t chunk_size = 1u << 14;
+};
+
+class Lowerer : public RecordSink {
+ public:
+  Lowerer(const ir::ProgramInfo& info, Diagnostics& diags, OperationSink& sink, LowerOptions opt = {});
+  void record(const Record& r) override;
+  // End of input: closes the open operation and reports what is left unfinished.
+  void finish();
+
+ private:
+  // lower.cpp: operations and dispatch
+  ir::Instr& push(SourceLoc loc, ir::Op op);
+  // An instruction whose text goes in the operation's pool (Comment, Insert, Passthrough):
+  // the pool and the instruction land in the same chunk.
+  template <class T>
+  void push_text(SourceLoc loc, std::string_view text) {
+    make_room();
+    T t;
+    t.text = op_.add_text(text);
+    push(loc, t);
+  }
+  void make_room();  // flushes a full chunk before an instruction that refers to the pools
+  void open_operation(std::string name, SourceLoc loc);
+  void close_operation();
+  void ensure_operation(SourceLoc loc);
+  bool tool_ready(SourceLoc loc, ir::MoveKind kind);
+  void motion_not_read(const Record& r, std::string_view why);
+  void not_read(const Record& r, std::string_view why, std::string_view category);
+  void flush_chunk();
+  void unknown(const Record& r, std::string_view why, bool warn);
+  void passthrough(const Record& r);
+
+  // lower_motion.cpp
+  void lower_goto(const Record& r);
+  void lower_from(const Record& r);
+  void lower_gohome(const Record& r);
+  void lower_godlta(const Record& r);
+  void lower_circle(const Record& r);
+
+  // lower_contour.cpp
+  void lower_movarc(const Record& r);
+  void lower_contour(const Record& r);
+  void lower_indirv(const Record& r);
+  void lower_tlaxis(const Record& r);
+  void push_arc(ir::Arc& a, SourceLoc loc, const char* what);
+  void move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written);
+  bool extend_arc(const ir::Vec3& p);
+  bool on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end);
+
+  // lower_machine.cpp
+  void lower_tool_change(const Record& r);
+  void lower_spindle(const Record& r);
+  void lower_feed(const Record& r);
+  void lower_coolant(const Record& r);
+  void lower_cutcom(const Record& r);
+  void lower_delay(const Record& r);
+  void lower_stop(const Record& r);
+  void lower_insert(const Record& r);
+  void lower_units(const Record& r);
+
+  // lower_frames.cpp
+  void lower_msys(const Record& r);
+  void lower_matrix_frame(const Record& r, ir::FrameSource src);
+  void lower_set(const Record& r);
+  void lower_rotate(const Record& r);
+  void lower_rotabl(const Record& r);
+
+  // lower_transform.cpp
+  void lower_transform(const Record& r);
+  void lower_nurbs(const Record& r);
+  // The transform in force (TRACUT, a COPY being played) on a point or direction the CL gives.
+  ir::Vec3 xf_point(const ir::Vec3& p) const;
+  ir::Vec3 xf_dir(const ir::Vec3& v) const;
+  void update_xf();
+
+  // lower_cycle.cpp, lower_groove.cpp
+  void lower_cycle(const Record& r);
+  void lower_groove_cycle(const Record& r);
+  void start_cycle(const ir::CycleSpec& c, SourceLoc loc, const std::string& name);
+
+  // lower_subs.cpp
+  bool record_subroutine(const Record& r);
+  void lower_calsub(const Record& r);
+
+  const ir::ProgramInfo& info_;
+  Diagnostics& d_;
+  OperationSink& sink_;
+  LowerOptions opt_;
+
+  ir::Operation op_;
+  bool op_open_ = false;
+  bool tool_path_open_ = false;   // an NX TOOL PATH not yet closed by END-OF-PATH
+  SourceLoc tool_path_loc_;
+  std::string tool_path_name_;
+  bool reported_no_tool_ = false;
+  uint32_t op_count_ = 0;
+  std::string op_tool_name_;     // tool named by TOOL PATH, if any
+
+  ir::Vec3 pos_ = ir::Vec3::Zero();
+  bool has_pos_ = false;
+  ir::Vec3 axis_ = ir::Vec3::UnitZ();
+  ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
+  bool has_indirv_ = false;
+  ir::Vec3 direction_ = ir::Vec3::UnitX();  // the way the last motion went at its end
+  bool has_direction_ = false;
+  ir::Vec3 from_ = ir::Vec3::Zero();
+  bool has_from_ = false;
+  bool rapid_next_ = false;
+  int tool_ = -1;                 // tool in the spindle (-1 = none yet)
+  std::optional<ir::Spindle> last_spindle_;
+
+  struct PendingArc {
+    ir::Arc arc;
+    SourceLoc loc;
+  };
+  std::optional<PendingArc> pending_arc_;
+  bool arc_open_ = false;  // the last instruction is an arc that may take more points
+
+  bool cycle_open_ = false;  // a CYCLE without its CYCLE/OFF yet
+  size_t cycle_holes_ = 0;   // GOTOs since it
+  SourceLoc cycle_loc_;
+  std::string cycle_name_;
+  std::optional<ir::CycleSpec> last_cycle_;  // for CYCLE/ON
+  bool finished_ = false;  // FINI seen
+  bool warned_after_fini_ = false;
+
+  // Subroutines: DEFSUB bodies are kept as owned copies of their records and replayed.
+  struct OwnedRecord {
+    Record rec;                  // string views and params are rebuilt by view()
+    std::vector<Param> head;
+    std::vector<Param> params;
+    std::string storage;         // major, text, then each param's text
+    std::vector<uint32_t> sizes;
+    Record view(std::vector<Param>& scratch) const;
+    static OwnedRecord of(const Record& r);
+  };
+  std::map<int, std::vector<OwnedRecord>> subs_;
+  int defining_sub_ = -1;
+  SourceLoc defining_loc_;
+  int call_depth_ = 0;
+  size_t stored_records_ = 0;
+  bool keep_stored(const Record& r);  // counts a record kept for replay; false past the limit
+
+  // TRACUT and INDEX/COPY (lower/lower_transform.cpp).
+  ir::Frame tracut_, copy_xf_, xf_;
+  ir::Frame msys_;                 // the MSYS in force, in the program frame
+  std::optional<ir::Frame> msys0_; // the file's first MSYS: the program frame
+  bool has_tracut_ = false, has_xf_ = false;
+  std::map<int, std::vector<OwnedRecord>> blocks_;
+  int recording_index_ = -1;
+};
+
+}  // namespace clpc

@@ -1,0 +1,103 @@
+// Frame records: NX MSYS, Creo/APT CSYS and $$-> CSYS, CAMERA; SET work offsets; ROTATE.
+// (How they read: ir/frame_records.cpp, shared with the pre-scan.)
+#include <cmath>
+
+#include "lower/lower.h"
+#include "lower/frame_records.h"
+#include "lower/params.h"
+
+namespace clpc {
+
+void Lowerer::lower_msys(const Record& r) { lower_matrix_frame(r, ir::FrameSource::Msys); }
+
+// Frames (docs/cl-input.md, "Frames"). NX writes the points and tool axes after an MSYS in
+// that frame, and the file's first MSYS is where the machine's work offset is set: every MSYS
+// is taken relative to it, and lowering puts the points in the program frame. Creo and APT
+// (CSYS, $$-> CSYS, CAMERA) write their points in the program frame already. Either way a
+// GOTO without a tool axis after a frame record has the frame's Z as its tool axis.
+void Lowerer::lower_matrix_frame(const Record& r, ir::FrameSource) {
+  ir::SetFrame f;
+  if (!read_frame(r, &d_, f.frame, f.source)) return;
+  if (f.source == ir::FrameSource::Msys) {
+    if (!msys0_) msys0_ = f.frame;
+    f.frame = ir::compose(msys0_->inverse(), f.frame);
+    msys_ = f.frame;
+    update_xf();
+    axis_ = ir::Vec3::UnitZ();  // in the MSYS: xf_dir turns it into the frame's Z
+  } else {
+    axis_ = f.frame.z_axis();
+  }
+  ensure_operation(r.loc);
+  push(r.loc, f);
+}
+
+void Lowerer::lower_set(const Record& r) {
+  int reg = read_set_register(r, &d_);
+  if (reg <= 0) return;
+  ensure_operation(r.loc);
+  push(r.loc, ir::SelectOffset{reg, ir::register_index(reg)});
+}
+
+void Lowerer::lower_rotate(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::RotaryIndex ri;
+  bool axis = false, angle = false;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (p.is("AAXIS")) { ri.axis = 'A'; axis = true; }
+    else if (p.is("BAXIS")) { ri.axis = 'B'; axis = true; }
+    else if (p.is("CAXIS")) { ri.axis = 'C'; axis = true; }
+    else if (p.is("INCR")) ri.incremental = true;
+    else if (p.is("ATANGL") || p.is("ABSOL")) ri.incremental = false;
+    else if (p.is("CLW")) ri.dir = ir::ArcDir::Cw;
+    else if (p.is("CCLW")) ri.dir = ir::ArcDir::Ccw;
+    else if (p.is_number()) { ri.angle = p.number; angle = true; }
+    else {
+      d_.error(p.loc, "ROTATE: unknown word '" + std::string(p.text) + "'");
+      return;
+    }
+  }
+  if (!axis || !angle) {
+    d_.error(r.loc, "ROTATE needs an axis (AAXIS, BAXIS, CAXIS) and an angle");
+    return;
+  }
+  ensure_operation(r.loc);
+  push(r.loc, ri);
+}
+
+// ROTABL/angle[,AAXIS|BAXIS|CAXIS][,TABLE][,CLW|CCLW][,INCR|ABSOL|ATANGL]: positions the rotary
+// table (CATIA, CAMWorks). The angle is in degrees, except in SolidWorks CAM / CAMWorks files,
+// which write radians (docs/cl-input.md). No axis named: the machine's table axis ('?').
+void Lowerer::lower_rotabl(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::RotaryIndex ri;
+  ri.axis = '?';
+  ri.incremental = false;
+  bool angle = false;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (p.is_empty() || p.is("TABLE")) continue;
+    if (p.is("AAXIS")) ri.axis = 'A';
+    else if (p.is("BAXIS")) ri.axis = 'B';
+    else if (p.is("CAXIS")) ri.axis = 'C';
+    else if (p.is("INCR")) ri.incremental = true;
+    else if (p.is("ATANGL") || p.is("ABSOL")) ri.incremental = false;
+    else if (p.is("CLW")) ri.dir = ir::ArcDir::Cw;
+    else if (p.is("CCLW")) ri.dir = ir::ArcDir::Ccw;
+    else if (p.is_number() && !angle) {
+      ri.angle = p.number * (info_.cam == ir::CamSystem::SolidWorks ? 180 / 3.14159265358979323846 : 1.0);
+      angle = true;
+    } else {
+      d_.error(p.loc, "ROTABL: unexpected '" + std::string(p.name()) + "'");
+      return;
+    }
+  }
+  if (!angle) {
+    d_.error(r.loc, "ROTABL needs an angle");
+    return;
+  }
+  ensure_operation(r.loc);
+  push(r.loc, ri);
+}
+
+}  // namespace clpc

@@ -1,0 +1,226 @@
+// Machine-state records: tools, spindle, feed, coolant, cutter compensation, dwell, units.
+#include <cmath>
+
+#include "lower/lower.h"
+#include "lower/params.h"
+#include "lower/tool_records.h"
+
+namespace clpc {
+
+void Lowerer::lower_tool_change(const Record& r) {
+  ToolRecord t = read_tool_record(r, &d_);
+  if (t.number < 0) return;
+  ensure_operation(r.loc);
+  if (t.preselect) {
+    push(r.loc, ir::ToolPreselect{t.number});
+    return;
+  }
+  ir::ToolChange tc;
+  tc.tool = t.number;
+  tc.length_offset = t.length_offset;
+  for (size_t i = 0; i < info_.tools.size(); ++i)
+    if (info_.tools[i].number == t.number && !info_.tools[i].auto_numbered) tc.slot = int(i);
+  tool_ = t.number;
+  push(r.loc, tc);
+}
+
+void Lowerer::lower_spindle(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::Spindle s;
+  bool have_speed = false, off = false, on = false;
+  double per_unit = 1;  // surface speed words convert to m/min
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (p.is_number()) {
+      if (have_speed) {
+        d_.error(p.loc, "SPINDL: more than one speed");
+        return;
+      }
+      s.speed = p.number;
+      have_speed = true;
+      continue;
+    }
+    std::string w = upper(p.text);
+    if (w == "RPM") s.mode = ir::SpindleMode::Rpm;
+    else if (w == "SFM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 0.3048; }
+    else if (w == "SMM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 1; }
+    else if (w == "CLW") s.dir = ir::SpindleDir::Cw;
+    else if (w == "CCLW") s.dir = ir::SpindleDir::Ccw;
+    else if (w == "OFF") off = true;
+    else if (w == "ON") on = true;
+    else if (w == "MAXRPM") {
+      auto v = ps.after("MAXRPM");
+      if (!v) return;
+      s.max_rpm = *v;
+      ++i;
+    } else if (w == "RANGE") {
+      ++i;  // gear range: the control chooses
+    } else if (w == "PARLEL" || w == "PERPTO") {
+      d_.warning(r.loc, "SPINDL/" + w + " (live-tool orientation) is ignored: the machine has no such head",
+                 "spindle-orientation");
+      return;
+    } else {
+      d_.error(p.loc, "SPINDL: unknown word '" + std::string(p.text) + "'");
+      return;
+    }
+  }
+  ensure_operation(r.loc);
+  if (off) {
+    s.dir = ir::SpindleDir::Off;
+    push(r.loc, s);
+    return;
+  }
+  if (!have_speed) {
+    if (on && last_spindle_) {
+      push(r.loc, *last_spindle_);
+      return;
+    }
+    d_.error(r.loc, on ? "SPINDL/ON with no earlier speed" : "SPINDL: no speed given");
+    return;
+  }
+  if (!(s.speed > 0)) {
+    d_.error(r.loc, "SPINDL: the speed must be greater than zero, found " + num_text(s.speed));
+    return;
+  }
+  s.speed *= per_unit;
+  last_spindle_ = s;
+  push(r.loc, s);
+}
+
+void Lowerer::lower_feed(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::Feed f;
+  bool have = false;
+  double to_program = 1;  // factor from the record's length unit to program units
+  const double prog_mm = ir::mm_per_unit(info_.units);
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (p.is_number()) {
+      if (have) {
+        d_.error(p.loc, "FEDRAT: more than one value");
+        return;
+      }
+      f.value = p.number;
+      have = true;
+      continue;
+    }
+    std::string w = upper(p.text);
+    if (w == "MMPM") { f.mode = ir::FeedMode::PerMinute; to_program = 1 / prog_mm; }
+    else if (w == "IPM") { f.mode = ir::FeedMode::PerMinute; to_program = 25.4 / prog_mm; }
+    else if (w == "FPM") { f.mode = ir::FeedMode::PerMinute; to_program = 304.8 / prog_mm; }
+    else if (w == "MMPR") { f.mode = ir::FeedMode::PerRev; to_program = 1 / prog_mm; }
+    else if (w == "IPR") { f.mode = ir::FeedMode::PerRev; to_program = 25.4 / prog_mm; }
+    else if (w == "PERMIN") f.mode = ir::FeedMode::PerMinute;
+    else if (w == "PERREV") f.mode = ir::FeedMode::PerRev;
+    else if (w == "INVERS") f.mode = ir::FeedMode::InverseTime;
+    else if (w == "IPT" || w == "MMPT" || w == "PERTTH") {
+      // A feed per tooth is feed x teeth x rpm per minute; no CL record clpc reads gives the
+      // number of teeth, and a guess would be a wrong feed.
+      d_.error(p.loc, "FEDRAT: a feed per tooth (" + w + ") needs the cutter's number of teeth, which the CL data does not give; "
+                      "have the CAM system write the feed per minute or per revolution");
+      return;
+    }
+    else {
+      d_.error(p.loc, "FEDRAT: unknown word '" + std::string(p.text) + "'");
+      return;
+    }
+  }
+  if (!have) {
+    d_.error(r.end, "FEDRAT: no feed value");
+    return;
+  }
+  if (!(f.value > 0)) {
+    d_.error(r.loc, "FEDRAT: the feed must be greater than zero, found " + num_text(f.value));
+    return;
+  }
+  if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
+  ensure_operation(r.loc);
+  push(r.loc, f);
+}
+
+void Lowerer::lower_coolant(const Record& r) {
+  // Coolant carries no motion: a record clpc cannot read is a warning, never a stop.
+  ir::Coolant c;
+  if (r.params.empty()) {
+    d_.warning(r.loc, "COOLNT with no word (ON, OFF, FLOOD, ...) says nothing; ignored", "coolant");
+    return;
+  }
+  if (!r.params[0].is_word()) {
+    not_read(r, "COOLNT: expected ON, OFF, FLOOD, MIST, THRU, AIR or TAP", "coolant");
+    return;
+  }
+  std::string w = upper(r.params[0].text);
+  if (w == "ON") c.kind = ir::CoolantKind::On;
+  else if (w == "OFF") c.kind = ir::CoolantKind::Off;
+  else if (w == "FLOOD") c.kind = ir::CoolantKind::Flood;
+  else if (w == "MIST") c.kind = ir::CoolantKind::Mist;
+  else if (w == "THRU" || w == "THROUGH") c.kind = ir::CoolantKind::Thru;
+  else if (w == "AIR") c.kind = ir::CoolantKind::Air;
+  else if (w == "TAP") c.kind = ir::CoolantKind::Tap;
+  else {
+    not_read(r, "COOLNT: unknown coolant '" + std::string(r.params[0].text) + "'", "coolant");
+    return;
+  }
+  ensure_operation(r.loc);
+  push(r.loc, c);
+}
+
+void Lowerer::lower_cutcom(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::CutterComp c;
+  bool side = false;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    const Param& p = ps[i];
+    if (p.is("LEFT")) { c.side = ir::CompSide::Left; side = true; }
+    else if (p.is("RIGHT")) { c.side = ir::CompSide::Right; side = true; }
+    else if (p.is("OFF")) { c.side = ir::CompSide::Off; side = true; }
+    else if (p.is_number()) {
+      auto reg = ps.integer(i, "the offset register", 0, 9999);
+      if (!reg) return;
+      c.reg = *reg;
+    }
+    // Plane words (XYPLAN, ...) and ON are accepted and carry nothing more.
+  }
+  if (!side) {
+    d_.error(r.loc, "CUTCOM: expected LEFT, RIGHT or OFF");
+    return;
+  }
+  ensure_operation(r.loc);
+  push(r.loc, c);
+}
+
+void Lowerer::lower_delay(const Record& r) {
+  ParamReader ps(r, d_);
+  ir::Dwell dw;
+  bool have = false;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    if (ps[i].is_number()) { dw.value = ps[i].number; have = true; }
+    else if (ps[i].is("REV")) dw.revolutions = true;
+    else if (!ps[i].is("SEC")) {
+      d_.error(ps[i].loc, "DELAY: unknown word '" + std::string(ps[i].text) + "'");
+      return;
+    }
+  }
+  if (!have || dw.value < 0) {
+    d_.error(have ? r.loc : r.end, "DELAY needs a time of zero or more");
+    return;
+  }
+  ensure_operation(r.loc);
+  push(r.loc, dw);
+}
+
+void Lowerer::lower_units(const Record& r) {
+  if (r.params.empty() || !r.params[0].is_word() || !units_word(r.params[0].text)) {
+    d_.error(r.params.empty() ? r.end : r.params[0].loc, std::string(r.major) + ": expected MM or INCHES");
+    return;
+  }
+  ir::Units u = *units_word(r.params[0].text);
+  if (u != info_.units) {
+    if (info_.units_reason == "--input-units") return;  // the user said so
+    d_.error(r.params[0].loc, std::string("UNITS changes to ") + std::string(ir::units_name(u)) +
+                                  " but the program is in " + std::string(ir::units_name(info_.units)) +
+                                  ": clpc needs one unit per file");
+  }
+}
+
+}  // namespace clpc

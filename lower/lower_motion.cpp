@@ -1,0 +1,311 @@
+// Motion records: GOTO, FROM, GOHOME, GODLTA, CIRCLE (+ the RAPID one-shot).
+#include <cmath>
+
+#include "ir/arc_geometry.h"
+#include "lower/lower.h"
+#include "lower/params.h"
+
+namespace clpc {
+
+namespace {
+
+// Reads x,y,z[,i,j,k]; reports and returns false on a wrong count or a non-number.
+bool read_point(const Record& r, Diagnostics& d, ir::Vec3& p, ir::Vec3& axis, bool& has_axis) {
+  const auto& ps = r.params;
+  for (size_t i = 0; i < ps.size(); ++i)
+    if (!ps[i].is_number()) {
+      d.error(ps[i].loc, std::string(r.major) + ": expected a number, found '" + std::string(ps[i].text) + "'");
+      return false;
+    }
+  if (ps.size() != 3 && ps.size() != 6) {
+    d.error(ps.size() > 6 || ps.size() == 4 || ps.size() == 5 ? ps[3].loc : r.end,
+            std::string(r.major) + " needs 3 or 6 values (x,y,z[,i,j,k]), found " + std::to_string(ps.size()));
+    return false;
+  }
+  p = {ps[0].number, ps[1].number, ps[2].number};
+  has_axis = ps.size() == 6;
+  if (has_axis) {
+    ir::Vec3 a{ps[3].number, ps[4].number, ps[5].number};
+    double n = a.norm();
+    if (!(n > 1e-9)) {
+      d.error(ps[3].loc, std::string(r.major) + ": the tool axis (i,j,k) must not be zero");
+      return false;
+    }
+    axis = a / n;
+  }
+  return true;
+}
+
+}  // namespace
+
+void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written) {
+  ensure_operation(loc);
+  if (pending_arc_) {
+    PendingArc pa = std::move(*pending_arc_);
+    pending_arc_.reset();
+    if (kind == ir::MoveKind::Rapid)
+      d_.warning(loc, "RAPID before a CIRCLE's end point is ignored: arcs are cut at the feed rate", "rapid-arc");
+    pa.arc.end = p;
+    pa.arc.tool_axis = xf_dir(axis_);
+    if (!on_circle(pa.arc, pa.loc, loc)) {
+      pos_ = p;
+      return;
+    }
+    push(pa.loc, pa.arc);
+    arc_open_ = pa.arc.layout == ir::ArcLayout::Creo7;
+    pos_ = p;
+    return;
+  }
+  if (arc_open_ && kind == ir::MoveKind::Feed && !axis_written && extend_arc(p)) {
+    pos_ = p;
+    return;
+  }
+  if (kind == ir::MoveKind::Feed && has_pos_ && (p - pos_).norm() > 1e-9) {
+    direction_ = (p - pos_).normalized();
+    has_direction_ = true;
+  }
+  if (cycle_open_) ++cycle_holes_;
+  ir::Move m;
+  m.point = p;
+  m.axis = xf_dir(axis_);
+  m.kind = kind;
+  m.axis_written = axis_written;
+  push(loc, m);
+  pos_ = p;
+  has_pos_ = true;
+}
+
+// The CL must put the arc's start and end on its circle: a mismatch would make the control
+// alarm or cut a different arc. Allowed: 0.01 mm, or 1e-6 of the radius.
+bool Lowerer::on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end) {
+  const double tol = std::max(0.01 / ir::mm_per_unit(info_.units), 1e-6 * a.radius);
+  auto off = [&](const ir::Vec3& p) {
+    ir::Vec3 v = p - a.center;
+    return (v - v.dot(a.axis) * a.axis).norm() - a.radius;
+  };
+  double s = off(a.start), e = off(a.end);
+  if (std::abs(s) > tol) {
+    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + num_text(std::abs(s)) +
+                         " off its circle of radius " + num_text(a.radius));
+    return false;
+  }
+  if (std::abs(e) > tol) {
+    d_.error(circle, "CIRCLE: the arc's end point (GOTO at line " + std::to_string(end.line) + ") is " +
+                         num_text(std::abs(e)) + " off its circle of radius " + num_text(a.radius));
+    return false;
+  }
+  return true;
+}
+
+// Creo may write intermediate points of an arc as further GOTOs. A point joins the arc when it
+// lies on the circle, in the arc's plane, and carries the rotation on in the same sense;
+// otherwise it is a move of its own (see docs/arcs.md).
+bool Lowerer::extend_arc(const ir::Vec3& p) {
+  auto* arc = std::get_if<ir::Arc>(&op_.body.back().op);
+  if (!arc || arc->extra_turns != 0) return false;
+  const ir::Vec3 n = arc->axis;
+  auto radial = [&](const ir::Vec3& q) {
+    ir::Vec3 v = q - arc->center;
+    return ir::Vec3(v - v.dot(n) * n);
+  };
+  double tol = std::max(1e-6, 1e-5 * arc->radius);
+  double h_start = (arc->start - arc->center).dot(n);
+  double h_end = (arc->end - arc->center).dot(n);
+  double h_p = (p - arc->center).dot(n);
+  if (std::abs(h_end - h_start) > tol || std::abs(h_p - h_start) > tol) return false;
+  ir::Vec3 rp = radial(p), re = radial(arc->end), rs = radial(arc->start);
+  if (std::abs(rp.norm() - arc->radius) > tol) return false;
+  if ((p - arc->end).norm() < tol) return false;
+  // Same sense: the turn from the previous point on the arc to its end, and from its end to
+  // p, have the same sign about the axis; and the whole stays within one turn.
+  ir::Vec3 rprev = arc->via_count ? radial(op_.points[arc->via_begin + arc->via_count - 1]) : rs;
+  double s1 = n.dot(rprev.cross(re));
+  double s2 = n.dot(re.cross(rp));
+  if (s1 * s2 <= 0) return false;
+  double turned = 0;
+  ir::Vec3 q = rs;
+  for (uint32_t k = 0; k < arc->via_count; ++k) {
+    ir::Vec3 v = radial(op_.points[arc->via_begin + k]);
+    turned += std::atan2(std::abs(n.dot(q.cross(v))), q.dot(v));
+    q = v;
+  }
+  turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
+  if (turned >= 2 * 3.14159265358979323846) return false;
+  op_.points.push_back(arc->end);
+  if (arc->via_count == 0) arc->via_begin = uint32_t(op_.points.size() - 1);
+  ++arc->via_count;
+  arc->end = p;
+  return true;
+}
+
+// Motion before any tool is loaded, in a file that loads tools later: no tool length offset is
+// in force to move by. A rapid there is where the tool starts (CATIA writes its start point
+// before the first tool change), taken as FROM with a warning; cutting motion is an error.
+// (Files that load no tool at all are programs for the tool already in the spindle.)
+bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
+  if (tool_ >= 0 || info_.tools.empty()) return true;
+  const ir::ToolInfo& first = info_.tools.front();
+  const std::string later = "T" + std::to_string(first.number) +
+                            (first.first_use.valid() ? " at line " + std::to_string(first.first_use.line) : std::string());
+  if (kind != ir::MoveKind::Feed) {
+    d_.warning(loc, "rapid motion before the first tool change (" + later +
+                        ") is taken as the start point (as FROM): no motion is written for it",
+               "motion-before-tool");
+    return true;
+  }
+  if (!reported_no_tool_)
+    d_.error(loc, "motion before any tool is loaded; the file loads " + later + " later");
+  reported_no_tool_ = true;
+  return false;
+}
+
+void Lowerer::lower_goto(const Record& r) {
+  ir::Vec3 p, a;
+  bool has_axis = false;
+  if (!read_point(r, d_, p, a, has_axis)) return;
+  p = xf_point(p);
+  if (has_axis) axis_ = a;
+  ir::MoveKind kind = rapid_next_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed;
+  rapid_next_ = false;
+  if (!tool_ready(r.loc, kind)) return;
+  if (tool_ < 0 && !info_.tools.empty()) kind = ir::MoveKind::From;
+  move_to(p, r.loc, kind, has_axis);
+}
+
+void Lowerer::lower_from(const Record& r) {
+  ir::Vec3 p, a;
+  bool has_axis = false;
+  if (!read_point(r, d_, p, a, has_axis)) return;
+  p = xf_point(p);
+  if (has_axis) axis_ = a;
+  from_ = p;
+  has_from_ = true;
+  if (pending_arc_) {
+    d_.error(r.loc, "FROM cannot end a CIRCLE");
+    pending_arc_.reset();
+  }
+  move_to(p, r.loc, ir::MoveKind::From, has_axis);
+}
+
+void Lowerer::lower_gohome(const Record& r) {
+  ir::Vec3 p = from_, a;
+  bool has_axis = false;
+  if (r.params.empty()) {
+    if (!has_from_) {
+      d_.error(r.loc, "GOHOME without a point needs an earlier FROM");
+      return;
+    }
+  } else if (!read_point(r, d_, p, a, has_axis)) {
+    return;
+  } else {
+    p = xf_point(p);
+  }
+  if (has_axis) axis_ = a;
+  rapid_next_ = false;
+  ir::MoveKind kind = tool_ < 0 && !info_.tools.empty() ? ir::MoveKind::From : ir::MoveKind::Rapid;
+  tool_ready(r.loc, kind);
+  move_to(p, r.loc, kind, has_axis);
+}
+
+void Lowerer::lower_godlta(const Record& r) {
+  ParamReader ps(r, d_);
+  if (!ps.all_numbers() || (ps.size() != 1 && ps.size() != 3)) {
+    d_.error(ps.size() ? ps[0].loc : r.end, "GODLTA needs dx,dy,dz or one distance along the tool axis");
+    return;
+  }
+  if (!has_pos_) {
+    d_.error(r.loc, "GODLTA needs a previous position");
+    return;
+  }
+  ir::Vec3 delta = xf_dir(ps.size() == 1 ? ir::Vec3(axis_ * ps[0].number) : ir::Vec3(ps[0].number, ps[1].number, ps[2].number));
+  ir::MoveKind kind = rapid_next_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed;
+  rapid_next_ = false;
+  if (!tool_ready(r.loc, kind)) return;
+  if (tool_ < 0 && !info_.tools.empty()) kind = ir::MoveKind::From;
+  move_to(pos_ + delta, r.loc, kind, false);
+}
+
+// The sense a CIRCLE's axis means, by the CAM system that wrote it (docs/arcs.md, with the
+// evidence): NX documents its axis "assuming a clockwise direction" (Makino FFCAM writes the
+// same CLSF form); APT, Creo, CATIA, SolidWorks CAM and the rest use the right-hand rule. A
+// file whose system is not recognised goes by its layout: 11 values are NX's CLSF form.
+ir::ArcDir circle_convention(ir::CamSystem cam, ir::ArcLayout layout) {
+  if (cam == ir::CamSystem::Nx) return ir::ArcDir::Cw;
+  if (cam == ir::CamSystem::Unknown && layout == ir::ArcLayout::Nx11) return ir::ArcDir::Cw;
+  return ir::ArcDir::Ccw;
+}
+
+void Lowerer::lower_circle(const Record& r) {
+  ParamReader ps(r, d_);
+  size_t n = 0;
+  while (n < ps.size() && ps[n].is_number()) ++n;
+  int times = 1;
+  ir::ArcDir worded = ir::ArcDir::Unknown;
+  if (n < ps.size()) {
+    if (ps[n].is("TIMES") && n + 2 == ps.size()) {
+      auto t = ps.integer(n + 1, "the number of turns after TIMES", 1, 10000);
+      if (!t) return;
+      times = *t;
+    } else if (n + 1 == ps.size() && (ps[n].is("CLW") || ps[n].is("CLOCKWISE"))) {
+      worded = ir::ArcDir::Cw;  // CAMWorks writes the sense
+    } else if (n + 1 == ps.size() && (ps[n].is("CCLW") || ps[n].is("COUNTERCLOCKWISE"))) {
+      worded = ir::ArcDir::Ccw;
+    } else {
+      d_.error(ps[n].loc, "CIRCLE: unexpected '" + std::string(ps[n].name()) +
+                              "' (only TIMES,n or the sense, CLW or CCLW, may follow the values)");
+      return;
+    }
+  }
+  if (n != 6 && n != 7 && n != 11) {
+    d_.error(n > 0 ? ps[std::min<size_t>(n, ps.size()) - 1].loc : r.end,
+             "CIRCLE needs 6, 7 or 11 values (xc,yc,zc,i,j,k[,r[,...]]), found " + std::to_string(n));
+    return;
+  }
+  if (pending_arc_) {
+    d_.error(pending_arc_->loc, "CIRCLE is not followed by a GOTO giving its end point");
+    pending_arc_.reset();
+  }
+  if (!tool_ready(r.loc, ir::MoveKind::Feed)) return;
+  if (!has_pos_) {
+    d_.error(r.loc, "CIRCLE needs a start point: no motion comes before it");
+    return;
+  }
+  ir::Arc a;
+  a.start = pos_;
+  a.center = xf_point({ps[0].number, ps[1].number, ps[2].number});
+  ir::Vec3 axis = xf_dir({ps[3].number, ps[4].number, ps[5].number});
+  double len = axis.norm();
+  if (!(len > 1e-9)) {
+    d_.error(ps[3].loc, "CIRCLE: the axis (i,j,k) must not be zero");
+    return;
+  }
+  a.axis = axis / len;
+  a.extra_turns = uint16_t(times - 1);
+  if (n == 6) {
+    a.layout = ir::ArcLayout::NoRadius6;
+    ir::Vec3 v = pos_ - a.center;
+    a.radius = (v - v.dot(a.axis) * a.axis).norm();
+    if (!(a.radius > 1e-9)) {
+      d_.error(r.loc, "CIRCLE: the start point lies on the circle's axis, so the radius (not given) is zero");
+      return;
+    }
+  } else {
+    a.radius = ps[6].number;
+    if (!(a.radius > 0)) {
+      d_.error(ps[6].loc, "CIRCLE: the radius must be greater than zero, found " + num_text(a.radius));
+      return;
+    }
+    a.layout = n == 11 ? ir::ArcLayout::Nx11 : ir::ArcLayout::Creo7;
+  }
+  a.hint = worded != ir::ArcDir::Unknown ? worded : circle_convention(info_.cam, a.layout);
+  if (worded != ir::ArcDir::Unknown) a.layout = ir::ArcLayout::Worded;
+  if (rapid_next_) {
+    d_.warning(r.loc, "RAPID before a CIRCLE is ignored: arcs are cut at the feed rate", "rapid-arc");
+    rapid_next_ = false;
+  }
+  ensure_operation(r.loc);
+  arc_open_ = false;
+  pending_arc_ = PendingArc{a, r.loc};
+}
+
+}  // namespace clpc

@@ -1,0 +1,107 @@
+#include "lower/tool_records.h"
+
+#include <cmath>
+
+#include "lower/params.h"
+
+namespace clpc {
+
+namespace {
+
+bool whole(double v, int lo, int hi) { return v == std::floor(v) && v >= lo && v <= hi; }
+
+}  // namespace
+
+std::string tool_name_of_tool_path(const Record& r) {
+  for (size_t i = 0; i + 1 < r.params.size(); ++i)
+    if (r.params[i].is("TOOL") && !r.params[i + 1].is_number()) return std::string(r.params[i + 1].text);
+  return {};
+}
+
+ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
+  ToolRecord t;
+  auto fail = [&](SourceLoc loc, const std::string& msg) {
+    if (d) d->error(loc, std::string(r.major) + ": " + msg);
+  };
+  size_t i = 0;
+  if (r.id == MajorId::Load || r.id == MajorId::Select) {
+    if (r.params.empty() || !r.params[0].is("TOOL")) {
+      fail(r.params.empty() ? r.end : r.params[0].loc, "expected TOOL,n");
+      return t;
+    }
+    i = 1;
+    t.preselect = r.id == MajorId::Select;
+  }
+  if (i >= r.params.size() || !r.params[i].is_number()) {
+    fail(i < r.params.size() ? r.params[i].loc : r.end, "expected a tool number");
+    return t;
+  }
+  double n = r.params[i].number;
+  if (!whole(n, 0, 99999)) {
+    fail(r.params[i].loc, "tool number must be a whole number from 0 to 99999, found " + num_text(n));
+    return t;
+  }
+  t.number = int(n);
+  for (size_t k = i + 1; k < r.params.size(); ++k) {
+    const Param& p = r.params[k];
+    if (p.is("OSETNO") || p.is("ADJUST") || p.is("LENGTH")) {
+      if (k + 1 >= r.params.size() || !r.params[k + 1].is_number() ||
+          !whole(r.params[k + 1].number, 0, 9999)) {
+        fail(k + 1 < r.params.size() ? r.params[k + 1].loc : r.end,
+             std::string(p.text) + " needs an offset register number from 0 to 9999");
+        continue;
+      }
+      t.length_offset = int(r.params[k + 1].number);
+      ++k;
+    }
+    // Other minor words (MANUAL, SIZE, ...) carry nothing clpc uses.
+  }
+  return t;
+}
+
+ToolGeometry read_tool_geometry(const Record& r, Diagnostics* d) {
+  ToolGeometry g;
+  size_t i = 0;
+  if (r.id == MajorId::Tldata) {
+    if (r.params.empty() || !r.params[0].is_word()) {
+      if (d) d->error(r.params.empty() ? r.end : r.params[0].loc, "TLDATA: expected the tool kind (MILL, DRILL, TURN, ...)");
+      return g;
+    }
+    g.kind = std::string(r.params[0].text);
+    for (char& c : g.kind) c = char(std::toupper(static_cast<unsigned char>(c)));
+    i = 1;
+  }
+  double v[3] = {0, 0, 0};
+  int n = 0;
+  for (size_t k = i; k < r.params.size() && n < 3; ++k) {
+    if (!r.params[k].is_number()) break;
+    v[n++] = r.params[k].number;
+  }
+  if (n == 0) {
+    if (d && r.id == MajorId::Cutter) d->error(r.end, "CUTTER: expected the tool diameter");
+    g.any = !g.kind.empty();
+    return g;
+  }
+  bool milling = r.id == MajorId::Cutter || g.kind == "MILL" || g.kind == "DRILL";
+  if (milling) {
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0) {
+      if (d) d->error(r.loc, std::string(r.major) + ": tool dimensions must not be negative");
+      return g;
+    }
+    g.diameter = v[0];
+    if (g.kind != "DRILL") g.corner_radius = n > 1 ? v[1] : 0;
+    if (r.id == MajorId::Tldata && n > 2) g.length = v[2];
+  }
+  g.any = true;
+  return g;
+}
+
+std::optional<ir::Units> units_word(std::string_view w) {
+  for (const char* m : {"MM", "MILLIMETERS", "MILLIMETRES", "MILLIMETER", "METRIC"})
+    if (iequals(w, m)) return ir::Units::Mm;
+  for (const char* m : {"INCHES", "INCH", "IN"})
+    if (iequals(w, m)) return ir::Units::Inch;
+  return std::nullopt;
+}
+
+}  // namespace clpc

@@ -1,0 +1,47 @@
+// A code from the machine description, such as "T{tool} M06" or "G04 P{seconds}": words
+// separated by spaces, each literal text and {placeholders}. Parsed once when the machine is
+// loaded; rendered with values at emission time.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace clpc {
+
+// The values a template may use. Which ones each code may use is checked by the loader.
+enum class Var : uint8_t { Tool, Offset, Register, Seconds, Milliseconds, Speed, Max, Number, Level, Tolerance, Count };
+std::string_view var_name(Var v);
+
+struct TemplateVars {
+  std::array<double, size_t(Var::Count)> value{};
+  uint32_t set = 0;
+  TemplateVars& with(Var v, double x) {
+    value[size_t(v)] = x;
+    set |= 1u << unsigned(v);
+    return *this;
+  }
+};
+
+struct CodeTemplate {
+  struct Piece {
+    std::string literal;  // text, or empty for a placeholder
+    int var = -1;         // Var, or -1 for literal text
+    int width = 0;        // {tool:2}: whole number, zero-padded to 2 digits
+  };
+  using Word = std::vector<Piece>;
+  std::vector<Word> words;
+  std::string text;  // as written
+
+  bool empty() const { return words.empty(); }
+  uint32_t vars_used() const;
+  // True if any literal word starts with G (the block may change modal state).
+  bool has_g_code() const;
+};
+
+// Parses `text`; on failure returns false with a message in `error`.
+bool parse_template(std::string_view text, CodeTemplate& out, std::string& error);
+
+}  // namespace clpc

@@ -1,0 +1,1157 @@
+#include "machine/machine_loader.h"
+
+#include <cmath>
+#include <limits>
+
+#include "support/suggest.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "support/text.h"
+
+namespace clpc {
+
+struct MachineRegistry::Source {
+  std::string path;
+  std::string text;
+  toml::table table;
+};
+
+namespace {
+
+constexpr const char* kBuiltinName = "machines.toml (built-in)";
+
+std::string line_of(std::string_view text, uint32_t line) {
+  size_t at = 0;
+  for (uint32_t l = 1; l < line && at != std::string_view::npos; ++l) {
+    at = text.find('\n', at);
+    if (at != std::string_view::npos) ++at;
+  }
+  if (at == std::string_view::npos || at > text.size()) return {};
+  size_t end = text.find('\n', at);
+  std::string s(text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at));
+  if (!s.empty() && s.back() == '\r') s.pop_back();
+  return s;
+}
+
+struct Ctx {
+  Diagnostics& d;
+  const std::vector<std::unique_ptr<MachineRegistry::Source>>* sources;
+  bool ok = true;
+
+  void error(const toml::source_region& at, const std::string& msg) {
+    ok = false;
+    std::string file = at.path ? *at.path : std::string("<machine>");
+    std::string text;
+    if (sources)
+      for (const auto& s : *sources)
+        if (s->path == file) text = line_of(s->text, at.begin.line);
+    d.report_in(Severity::Error, file, SourceLoc{at.begin.line, at.begin.column}, msg, text);
+  }
+};
+
+std::string type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "true or false";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+  }
+}
+
+// Reads one machine table with validation. A machine that inherits is a stack of tables,
+// parent first: a key is looked up from the top, so every value keeps its own file and line.
+// Keys never read are reported by finish(), in whichever file they are.
+class Reader {
+ public:
+  using Layers = std::vector<const toml::table*>;
+  // `units`: the units each layer's machine is in (a layer without "units" has its parent's);
+  // `target`: the machine's. A length or rate a layer in other units gives is converted, so a
+  // machine can inherit from one in the other units (docs/machines.md, "Inheritance").
+  Reader(Ctx& c, Layers layers, std::string path, std::vector<ir::Units> units = {}, ir::Units target = ir::Units::Mm)
+      : c_(c), layers_(std::move(layers)), path_(std::move(path)), units_(std::move(units)), target_(target) {
+    units_.resize(layers_.size(), target_);
+  }
+  // The factor from the units of the layer that gives `k` to the machine's (1 when it is not given).
+  double to_target(std::string_view k) const {
+    for (size_t i = layers_.size(); i-- > 0;)
+      if (layers_[i]->get(k)) return ir::mm_per_unit(units_[i]) / ir::mm_per_unit(target_);
+    return 1;
+  }
+  // A length or a rate (per minute): a number, converted to the machine's units.
+  void length(std::string_view k, double& out, double lo, double hi) {
+    const double f = to_target(k);
+    double v = std::numeric_limits<double>::quiet_NaN();
+    number(k, v, lo, hi);
+    if (!std::isnan(v)) out = v * f;
+  }
+  bool length3(std::string_view k, ir::Vec3& out) {
+    const double f = to_target(k);
+    if (!vec3(k, out)) return false;
+    out *= f;
+    return true;
+  }
+  ir::Units target() const { return target_; }
+
+  const std::string& path() const { return path_; }
+  bool has(std::string_view k) const { return find(k) != nullptr; }
+  const toml::node* find(std::string_view k) const {
+    for (auto it = layers_.rbegin(); it != layers_.rend(); ++it)
+      if (const toml::node* n = (*it)->get(k)) return n;
+    return nullptr;
+  }
+  // The top table (for "missing key" messages) and all keys of all layers.
+  const toml::table& top() const { return *layers_.back(); }
+  std::vector<std::pair<std::string, const toml::key*>> keys() const {
+    std::vector<std::pair<std::string, const toml::key*>> out;
+    std::set<std::string> seen;
+    for (const toml::table* t : layers_)
+      for (auto&& [key, n] : *t)
+        if (seen.insert(std::string(key.str())).second) out.emplace_back(std::string(key.str()), &key);
+    return out;
+  }
+
+  const toml::node* node(std::string_view k) {
+    used_.insert(std::string(k));
+    return find(k);
+  }
+  void error(const toml::node& n, std::string_view key, const std::string& msg) {
+    c_.error(n.source(), key_path(key) + ": " + msg);
+  }
+  void missing(std::string_view key, const std::string& what) {
+    c_.error(top().source(), path_ + ": missing required key '" + std::string(key) + "' (" + what + ")");
+  }
+  std::string key_path(std::string_view key) const { return path_.empty() ? std::string(key) : path_ + "." + std::string(key); }
+
+  void boolean(std::string_view k, bool& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (auto v = n->value<bool>(); v && n->is_boolean()) out = *v;
+    else error(*n, k, "expected true or false, found " + type_name(*n));
+  }
+  template <class Int>
+  void integer(std::string_view k, Int& out, long long lo, long long hi) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_integer()) {
+      error(*n, k, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " + type_name(*n));
+      return;
+    }
+    long long v = *n->value<int64_t>();
+    if (v < lo || v > hi) {
+      error(*n, k, "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " + std::to_string(v));
+      return;
+    }
+    out = Int(v);
+  }
+  // A number in [lo, hi]; open_lo excludes lo.
+  void number(std::string_view k, double& out, double lo, double hi, bool open_lo = false) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_number()) {
+      error(*n, k, "expected a number, found " + type_name(*n));
+      return;
+    }
+    double v = *n->value<double>();
+    bool bad = open_lo ? !(v > lo) : !(v >= lo);
+    if (bad || !(v <= hi)) {
+      std::string range = (open_lo ? "greater than " : "at least ") + num_text(lo);
+      if (hi < 1e300) range += " and at most " + num_text(hi);
+      error(*n, k, "expected a number " + range + ", found " + num_text(v));
+      return;
+    }
+    out = v;
+  }
+  void string(std::string_view k, std::string& out) {
+    const toml::node* n = node(k);
+    if (!n) return;
+    if (!n->is_string()) {
+      error(*n, k, "expected a string, found " + type_name(*n));
+      return;
+    }
+    out = **n->as_string();
+  }
+  // One of `options`; returns the index or -1.
+  int choice(std::string_view k, std::initializer_list<const char*> options) {
+    const toml::node* n = node(k);
+    if (!n) return -1;
+    std::string all;
+    for (const char* o : options) all += (all.empty() ? "\"" : ", \"") + std::string(o) + "\"";
+    if (!n->is_string()) {
+      error(*n, k, "expected one of " + all + ", found " + type_name(*n));
+      return -1;
+    }
+    const std::string& v = **n->as_string();
+    int i = 0;
+    for (const char* o : options) {
+      if (v == o) return i;
+      ++i;
+    }
+    error(*n, k, "expected one of " + all + ", found \"" + v + "\"");
+    return -1;
+  }
+  bool strings(std::string_view k, std::vector<std::string>& out) {
+    const toml::node* n = node(k);
+    if (!n) return false;
+    const toml::array* a = n->as_array();
+    if (!a) {
+      error(*n, k, "expected an array of strings, found " + type_name(*n));
+      return false;
+    }
+    std::vector<std::string> v;
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) {
+        error(e, k, "expected an array of strings; this element is " + type_name(e));
+        return false;
+      }
+      v.push_back(**e.as_string());
+    }
+    out = std::move(v);
+    return true;
+  }
+  bool vec3(std::string_view k, ir::Vec3& out) {
+    const toml::node* n = node(k);
+    if (!n) return false;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3 || !(*a)[0].is_number() || !(*a)[1].is_number() || !(*a)[2].is_number()) {
+      error(*n, k, "expected an array of three numbers [x, y, z]");
+      return false;
+    }
+    out = {*(*a)[0].value<double>(), *(*a)[1].value<double>(), *(*a)[2].value<double>()};
+    return true;
+  }
+  // An array of tables (not merged across layers: the top one wins).
+  std::optional<std::vector<Reader>> table_array(std::string_view k) {
+    const toml::node* n = node(k);
+    if (!n) return std::nullopt;
+    const toml::array* a = n->as_array();
+    if (a && a->empty()) return std::vector<Reader>{};  // "axes = []": none, whatever a parent had
+    if (!a || !a->is_array_of_tables()) {
+      error(*n, k, "expected an array of tables ([[" + key_path(k) + "]])");
+      return std::nullopt;
+    }
+    ir::Units u = target_;
+    for (size_t i = layers_.size(); i-- > 0;)
+      if (layers_[i]->get(k)) {
+        u = units_[i];
+        break;
+      }
+    std::vector<Reader> out;
+    for (size_t i = 0; i < a->size(); ++i)
+      out.emplace_back(c_, Layers{(*a)[i].as_table()}, key_path(k) + "[" + std::to_string(i) + "]", std::vector<ir::Units>{u},
+                       target_);
+    return out;
+  }
+  // The sub-table `k`, merged over the layers (a layer that sets `k` to something else
+  // hides the tables below it).
+  std::optional<Reader> sub(std::string_view k) {
+    const toml::node* top = node(k);
+    if (!top) return std::nullopt;
+    if (!top->is_table()) {
+      error(*top, k, "expected a table, found " + type_name(*top));
+      return std::nullopt;
+    }
+    Layers sub;
+    std::vector<ir::Units> units;
+    for (size_t i = 0; i < layers_.size(); ++i) {
+      const toml::node* n = layers_[i]->get(k);
+      if (!n) continue;
+      if (!n->is_table()) {
+        sub.clear();
+        units.clear();
+      } else {
+        sub.push_back(n->as_table());
+        units.push_back(units_[i]);
+      }
+    }
+    return Reader(c_, std::move(sub), key_path(k), std::move(units), target_);
+  }
+  // Reports every key that was not read.
+  void finish() {
+    const std::vector<std::string> known(used_.begin(), used_.end());
+    for (const auto& [name, key] : keys())
+      if (!used_.count(name)) {
+        const std::string near = closest(name, known);
+        c_.error(key->source(), "unknown key '" + name + "' in " + (path_.empty() ? "the machine" : path_) +
+                                    (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
+      }
+  }
+
+ private:
+  Ctx& c_;
+  Layers layers_;
+  std::string path_;
+  std::vector<ir::Units> units_;
+  ir::Units target_;
+  std::set<std::string> used_;
+};
+
+void read_template(Reader& r, std::string_view key, CodeTemplate& out, uint32_t allowed) {
+  const toml::node* n = r.node(key);
+  if (!n) return;
+  if (!n->is_string()) {
+    r.error(*n, key, "expected a code template string, found " + type_name(*n));
+    return;
+  }
+  CodeTemplate t;
+  std::string err;
+  if (!parse_template(**n->as_string(), t, err)) {
+    r.error(*n, key, "bad code template: " + err);
+    return;
+  }
+  uint32_t extra = t.vars_used() & ~allowed;
+  if (extra) {
+    std::string names, ok;
+    for (int v = 0; v < int(Var::Count); ++v) {
+      if (extra >> v & 1) names += (names.empty() ? "{" : ", {") + std::string(var_name(Var(v))) + "}";
+      if (allowed >> v & 1) ok += (ok.empty() ? "{" : ", {") + std::string(var_name(Var(v))) + "}";
+    }
+    r.error(*n, key, "placeholder " + names + " cannot be used here" + (ok.empty() ? " (this code takes none)" : " (allowed: " + ok + ")"));
+    return;
+  }
+  out = std::move(t);
+}
+
+bool read_templates(Reader& r, std::string_view key, std::vector<CodeTemplate>& out) {
+  const toml::node* n = r.node(key);
+  if (!n) return false;
+  const toml::array* a = n->as_array();
+  if (!a) {
+    r.error(*n, key, "expected an array of code templates, found " + type_name(*n));
+    return false;
+  }
+  std::vector<CodeTemplate> v;
+  for (const toml::node& e : *a) {
+    if (!e.is_string()) {
+      r.error(e, key, "expected an array of strings; this element is " + type_name(e));
+      return false;
+    }
+    CodeTemplate t;
+    std::string err;
+    if (!parse_template(**e.as_string(), t, err) || t.vars_used() != 0) {
+      r.error(e, key, err.empty() ? "placeholders cannot be used here" : "bad code template: " + err);
+      return false;
+    }
+    v.push_back(std::move(t));
+  }
+  out = std::move(v);
+  return true;
+}
+
+CodeTemplate tpl(std::string_view s) {
+  CodeTemplate t;
+  std::string err;
+  parse_template(s, t, err);
+  return t;
+}
+
+constexpr uint32_t bit(Var v) { return 1u << unsigned(v); }
+
+// Defaults: a generic Fanuc-style control of the given family and output units.
+void set_defaults(Machine& m) {
+  const bool inch = m.units == ir::Units::Inch;
+  for (char c = 'A'; c <= 'Z'; ++c) {
+    AddressFormat f;
+    switch (c) {
+      case 'X': case 'Y': case 'Z': case 'I': case 'J': case 'K': case 'R': case 'U': case 'V': case 'W': case 'Q': case 'E':
+        f.decimals = inch ? 4 : 3;
+        break;
+      case 'A': case 'B': case 'C':
+        f.decimals = 3;
+        break;
+      case 'F':
+        f.decimals = inch ? 2 : 1;
+        break;
+      default:  // G M N O P S T H D L: whole numbers
+        f.decimals = 0;
+        f.point = AddressFormat::Point::Never;
+        break;
+    }
+    m.formats[size_t(c - 'A')] = f;
+  }
+  if (m.is_lathe()) m.formats['X' - 'A'].scale = 2;  // diameter
+  Codes& k = m.codes;
+  k.units_inch = tpl("G20");
+  k.units_mm = tpl("G21");
+  k.rapid = tpl("G00");
+  k.linear = tpl("G01");
+  k.arc_cw = tpl("G02");
+  k.arc_ccw = tpl("G03");
+  k.plane_xy = tpl("G17");
+  k.plane_zx = tpl("G18");
+  k.plane_yz = tpl("G19");
+  k.absolute = tpl("G90");
+  k.incremental = tpl("G91");
+  k.spindle_cw = tpl("M03");
+  k.spindle_ccw = tpl("M04");
+  k.spindle_off = tpl("M05");
+  k.spindle_rpm_mode = tpl("G97");
+  k.spindle_css_mode = tpl("G96");
+  k.spindle_clamp = tpl("G50 S{max}");
+  k.coolant_flood = tpl("M08");
+  k.coolant_mist = tpl("M07");
+  k.coolant_off = tpl("M09");
+  k.dwell = tpl("G04 P{milliseconds:1}");  // a plain whole number, whatever format.P says
+  k.optional_stop = tpl("M01");
+  k.stop = tpl("M00");
+  k.comp_left = tpl("G41 D{register}");
+  k.comp_right = tpl("G42 D{register}");
+  k.comp_off = tpl("G40");
+  m.cycles.peck_clearance = inch ? 0.02 : 0.5;
+  if (m.is_lathe()) {
+    k.feed_per_minute = tpl("G98");
+    k.feed_per_rev = tpl("G99");
+    k.tool_change = tpl("T{tool:2}{offset:2}");
+    k.safe_retract = tpl("G28 U0. W0.");
+    m.safe_start = {tpl("G00 G18 G40 G80 G99")};
+    m.finish = {tpl("M05"), tpl("M09"), tpl("G28 U0. W0."), tpl("M30")};
+    m.pipeline = {"arc-direction", "helix", "arc-legalise", "drill-cycles", "groove-cycles"};
+    k.groove_face = tpl("G74");
+    k.groove_radial = tpl("G75");
+    // P and Q of G74/G75: least input increments, no point.
+    for (char c : {'P', 'Q'}) {
+      m.formats[size_t(c - 'A')].decimals = inch ? 4 : 3;
+      m.formats[size_t(c - 'A')].point = AddressFormat::Point::Never;
+    }
+    m.arcs.xy = m.arcs.yz = false;
+    m.arcs.helical = false;
+  } else {
+    k.feed_per_minute = tpl("G94");
+    k.feed_per_rev = tpl("G95");
+    k.inverse_time = tpl("G93");
+    k.tool_change = tpl("T{tool} M06");
+    k.tool_preselect = tpl("T{tool}");
+    k.length_offset = tpl("G43 H{offset}");
+    k.length_cancel = tpl("G49");
+    k.work_offset = tpl("G{number}");
+    k.work_offset_extended = tpl("G54.1 P{number}");
+    k.offset_set = tpl("G90 G10 L2 P{number:1}");
+    k.offset_set_extended = tpl("G90 G10 L20 P{number:1}");
+    k.macro_call = tpl("G65 P{number:1}");
+    k.smoothing_on = tpl("G05.1 Q1");
+    k.smoothing_off = tpl("G05.1 Q0");
+    k.safe_retract = tpl("G91 G28 Z0.");
+    k.cycle_drill = tpl("G81");
+    k.cycle_dwell = tpl("G82");
+    k.cycle_peck = tpl("G83");
+    k.cycle_chip_break = tpl("G73");
+    k.cycle_tap = tpl("G84");
+    k.cycle_tap_left = tpl("G74");
+    k.cycle_bore = tpl("G85");
+    k.cycle_bore_dwell = tpl("G89");
+    k.cycle_bore_stop = tpl("G86");
+    k.cycle_fine_bore = tpl("G76");
+    k.cycle_back_bore = tpl("G87");
+    k.cycle_cancel = tpl("G80");
+    k.cycle_return_initial = tpl("G98");
+    k.cycle_return_r = tpl("G99");
+    k.cycle_dwell_word = tpl("P{milliseconds:1}");
+    m.safe_start = {tpl("G00 G17 G40 G49 G80 G90")};
+    m.finish = {tpl("M05"), tpl("M09"), tpl("G91 G28 Z0."), tpl("G90"), tpl("M30")};
+    m.pipeline = {"arc-direction", "helix", "arc-legalise", "drill-cycles", "offset-table"};
+  }
+  m.program_start = {"%"};
+  m.program_end = {"%"};
+  m.arcs.tolerance = inch ? 0.0002 : 0.005;
+}
+
+// `length_like`: the address holds a length or a rate, so one written for a machine in the other
+// units has a decimal more (mm -> inch) or fewer.
+void read_format(Reader r, AddressFormat& f, bool length_like) {
+  r.integer("decimals", f.decimals, 0, 9);
+  if (length_like && r.has("decimals")) {
+    const double to = r.to_target("decimals");
+    if (to > 1.5) f.decimals = std::max(0, f.decimals - 1);  // given in inches, for a machine in mm
+    else if (to < 0.5) f.decimals = std::min(9, f.decimals + 1);
+  }
+  int p = r.choice("point", {"always", "never", "if-fraction"});
+  if (p >= 0) f.point = AddressFormat::Point(p);
+  r.boolean("leading_zero", f.leading_zero);
+  r.boolean("trailing_zeros", f.trailing_zeros);
+  r.integer("digits", f.digits, 0, 12);
+  // A scale is a diameter's 2 or a sign change, not a way to lose every digit.
+  if (const toml::node* n = r.find("scale"); n && n->is_number() &&
+                                             !(std::abs(*n->value<double>()) >= 1e-3 && std::abs(*n->value<double>()) <= 1e3))
+    r.error(*n, "scale", "expected a number from 0.001 to 1000 (or -1000 to -0.001), found " + num_text(*n->value<double>()));
+  else
+    r.number("scale", f.scale, -1e3, 1e3);
+  r.boolean("plus", f.plus);
+  r.finish();
+}
+
+// The passes a machine's programs cannot do without, in the order their contracts need: a
+// pipeline without them would pass CL motion on unmade (a CYCLE's holes as plain moves, tool
+// axes never turned into rotary positions, SET registers never selected). One located error.
+void check_pipeline(Reader& r, const Machine& m) {
+  std::vector<std::pair<const char*, const char*>> need = {
+      {"arc-direction", "for every CIRCLE's sense"},
+      {"helix", "for helical and multi-turn arcs"},
+      {"arc-legalise", "for arcs the control cannot cut as they are"},
+      {"drill-cycles", "for CYCLE records: without it their holes would be cut as moves to their tops"},
+  };
+  if (m.is_lathe()) need.push_back({"groove-cycles", "for the groove cycle records"});
+  else need.push_back({"offset-table", "for SET registers and frames"});
+  if (m.kinematics.has_rotaries()) need.push_back({"kinematics", "to turn tool axes into rotary positions"});
+  auto at = [&](const char* p) {
+    auto it = std::find(m.pipeline.begin(), m.pipeline.end(), p);
+    return it == m.pipeline.end() ? -1 : int(it - m.pipeline.begin());
+  };
+  const toml::node* n = r.find("pipeline");
+  for (const auto& [pass, what] : need)
+    if (at(pass) < 0) {
+      const std::string msg = "machine '" + m.name + "' needs '" + pass + "' in its pipeline, " + what;
+      if (n) r.error(*n, "pipeline", msg);
+      else r.missing("pipeline", msg);
+      return;
+    }
+  // Order: the arc sense first; cycles and the offset table before the kinematics.
+  for (const auto& [before, after] : std::vector<std::pair<const char*, const char*>>{
+           {"arc-direction", "helix"}, {"arc-direction", "arc-legalise"}, {"drill-cycles", "kinematics"},
+           {"offset-table", "kinematics"}})
+    if (at(before) >= 0 && at(after) >= 0 && at(before) > at(after)) {
+      r.error(*n, "pipeline", "'" + std::string(before) + "' must come before '" + after + "'");
+      return;
+    }
+}
+
+// Per-job options that ask for what the machine cannot do (docs/machines.md, "Per-job
+// options"): one located error at the option.
+void check_job_options(Reader& p, const Machine& m) {
+  if (const toml::node* n = p.find("park"); n && m.park && m.park_blocks.empty())
+    p.error(*n, "park", "machine '" + m.name + "' has no park_blocks to park with (say, park_blocks = [\"G53 G00 Y0.\"])");
+  if (const toml::node* n = p.find("preselect"); n && m.preselect && m.is_lathe())
+    p.error(*n, "preselect", "a lathe's turret indexes the tool it cuts with: there is no next tool to preselect");
+}
+
+// The same, for options that need a code (read after [NAME.codes]).
+void check_job_codes(Reader& r, const Machine& m) {
+  auto p = r.sub("program");
+  if (!p) return;
+  if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())
+    p->error(*n, "smoothing", "machine '" + m.name + "' has no codes.smoothing_on to switch its smoothing on with");
+  if (const toml::node* n = p->find("smoothing_tolerance");
+      n && m.smoothing_tolerance > 0 && !(m.codes.smoothing_on.vars_used() & (1u << unsigned(Var::Tolerance))))
+    p->error(*n, "smoothing_tolerance",
+             "machine '" + m.name + "''s codes.smoothing_on (\"" + m.codes.smoothing_on.text +
+                 "\") has no {tolerance}: the control takes its tolerance from its parameters");
+  if (const toml::node* n = p->find("preselect"); n && m.preselect && !m.is_lathe() && m.codes.tool_preselect.empty())
+    p->error(*n, "preselect", "machine '" + m.name + "' has no codes.tool_preselect");
+}
+
+Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, const std::vector<std::string>& known_passes,
+                      const std::string& source) {
+  Machine m;
+  m.name = name;
+  m.source = source;
+  // The units each layer is in: its own "units", else its parent's.
+  std::vector<ir::Units> layer_units;
+  ir::Units in_force = ir::Units::Mm;
+  for (const toml::table* t : layers) {
+    if (const toml::node* n = t->get("units"); n && n->is_string())
+      in_force = **n->as_string() == "inch" ? ir::Units::Inch : ir::Units::Mm;
+    layer_units.push_back(in_force);
+  }
+  Reader r(c, std::move(layers), name, layer_units, in_force);
+  r.node("inherits");  // used while flattening
+  int fam = r.choice("family", {"mill", "lathe"});
+  if (!r.has("family")) r.missing("family", "\"mill\" or \"lathe\"");
+  if (fam >= 0) m.family = Family(fam);
+  int u = r.choice("units", {"mm", "inch"});
+  if (u >= 0) m.units = ir::Units(u);
+  set_defaults(m);
+  r.string("description", m.description);
+  if (const toml::node* n = r.find("extension"); n && n->is_string() && (**n->as_string()).empty())
+    r.error(*n, "extension", "expected a file extension such as \".nc\", found \"\"");
+  else
+    r.string("extension", m.extension);
+  if (!m.extension.empty() && m.extension[0] != '.') m.extension = "." + m.extension;
+  std::vector<std::string> pipeline;
+  if (r.strings("pipeline", pipeline)) {
+    const toml::node* n = r.find("pipeline");
+    for (size_t i = 0; i < pipeline.size(); ++i) {
+      if (std::find(known_passes.begin(), known_passes.end(), pipeline[i]) == known_passes.end()) {
+        std::string all;
+        for (const auto& k : known_passes) all += (all.empty() ? "" : ", ") + k;
+        r.error((*n->as_array())[i], "pipeline", "unknown pass '" + pipeline[i] + "' (passes: " + all + ")");
+      }
+    }
+    m.pipeline = pipeline;
+  }
+  r.length("rapid_rate", m.rapid_rate, 0, 1e9);
+  r.number("tool_change_time", m.tool_change_time, 0, 3600);
+  r.length("max_feed", m.max_feed, 0, 1e9);
+  r.number("max_rpm", m.max_rpm, 0, 1e6);
+
+  if (auto p = r.sub("program")) {
+    p->integer("number", m.program_number, 0, 99999999);
+    p->strings("start", m.program_start);
+    p->strings("end", m.program_end);
+    p->boolean("header", m.header);
+    read_templates(*p, "safe_start", m.safe_start);
+    read_templates(*p, "finish", m.finish);
+    p->boolean("number_from_name", m.number_from_name);
+    int os = p->choice("optional_stop", {"off", "tool-change", "operation"});
+    if (os >= 0) m.optional_stop = Machine::OptionalStop(os);
+    p->boolean("preselect", m.preselect);
+    p->boolean("coolant_around_tool_change", m.coolant_around_tool_change);
+    int sm = p->choice("smoothing", {"off", "rough", "medium", "finish"});
+    if (sm >= 0) m.smoothing = sm;
+    p->length("smoothing_tolerance", m.smoothing_tolerance, 0, 1e3);
+    p->boolean("park", m.park);
+    read_templates(*p, "park_blocks", m.park_blocks);
+    p->string("date", m.date);
+    p->string("programmer", m.programmer);
+    p->string("stock", m.stock);
+    check_job_options(*p, m);
+    int ins = p->choice("inserts", {"comment", "raw", "error"});
+    if (ins >= 0) m.inserts = Machine::Inserts(ins);
+    p->finish();
+  }
+  if (auto s = r.sub("sequence")) {
+    SequenceSettings& q = m.sequence;
+    s->boolean("enabled", q.enabled);
+    s->integer("start", q.start, 0, 999999999);
+    s->integer("step", q.step, 1, 100000);
+    s->integer("max", q.max, 1, 999999999);
+    s->integer("wrap_to", q.wrap_to, 0, 999999999);
+    s->boolean("tool_change_only", q.tool_change_only);
+    if (q.max < q.start) {
+      if (const toml::node* n = s->find("max")) s->error(*n, "max", "must not be less than start (" + std::to_string(q.start) + ")");
+      else if (const toml::node* n2 = s->find("start")) s->error(*n2, "start", "must not be more than max (" + std::to_string(q.max) + ")");
+    }
+    s->finish();
+  }
+  if (auto s = r.sub("comments")) {
+    CommentSettings& q = m.comments;
+    s->boolean("enabled", q.enabled);
+    s->string("open", q.open);
+    s->string("close", q.close);
+    s->integer("max_length", q.max_length, 0, 100000);
+    s->boolean("upper_case", q.upper_case);
+    s->string("replacement", q.replacement);
+    s->finish();
+  }
+  if (auto s = r.sub("words")) {
+    s->string("separator", m.separator);
+    s->string("block_end", m.block_end);
+    s->finish();
+  }
+  if (auto s = r.sub("format")) {
+    for (const auto& [k, key] : s->keys()) {
+      if (k.size() != 1 || k[0] < 'A' || k[0] > 'Z') {
+        c.error(key->source(), s->key_path(k) + ": expected an address letter A-Z");
+        s->node(k);
+        continue;
+      }
+      if (auto f = s->sub(k))
+        read_format(*f, m.formats[size_t(k[0] - 'A')], std::string_view("XYZUVWIJKRQF").find(k[0]) != std::string_view::npos);
+    }
+    s->finish();
+  }
+  if (auto s = r.sub("arcs")) {
+    ArcSettings& a = m.arcs;
+    std::vector<std::string> planes;
+    if (s->strings("planes", planes)) {
+      a.xy = a.zx = a.yz = false;
+      const toml::node* n = s->find("planes");
+      for (size_t i = 0; i < planes.size(); ++i) {
+        if (planes[i] == "XY") a.xy = true;
+        else if (planes[i] == "ZX") a.zx = true;
+        else if (planes[i] == "YZ") a.yz = true;
+        else s->error((*n->as_array())[i], "planes", "expected \"XY\", \"ZX\" or \"YZ\", found \"" + planes[i] + "\"");
+      }
+    }
+    s->boolean("helical", a.helical);
+    s->number("max_sweep", a.max_sweep, 1, 360);
+    s->number("helix_max_sweep", a.helix_max_sweep, 1, 360);
+    s->length("min_radius", a.min_radius, 0, 1e9);
+    s->length("max_radius", a.max_radius, 0, 1e9);
+    if (a.max_radius > 0 && a.max_radius < a.min_radius)
+      s->error(*s->find("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
+    int ctr = s->choice("center", {"incremental", "absolute", "radius"});
+    if (ctr >= 0) a.center = ArcCenter(ctr);
+    s->length("tolerance", a.tolerance, 1e-6, 1e3);
+    s->finish();
+  }
+  if (auto s = r.sub("modal")) {
+    s->boolean("motion", m.modal.motion);
+    s->boolean("coordinates", m.modal.coordinates);
+    s->boolean("feed", m.modal.feed);
+    s->finish();
+  }
+  if (auto s = r.sub("lathe")) {
+    int v = s->choice("arcs_seen_from", {"+Y", "-Y"});
+    if (v >= 0) m.lathe.arcs_from_minus_y = v == 1;
+    s->number("max_rpm", m.lathe.max_rpm, 0, 1e6);
+    s->finish();
+  }
+  if (auto s = r.sub("offsets")) {
+    OffsetSettings& o = m.offsets;
+    s->integer("extended", o.extended_count, 0, 300);
+    s->integer("default", o.default_index, 1, 306);
+    int tb = s->choice("table", {"none", "g10", "g65-macro"});
+    if (tb >= 0) o.table = OffsetTable(tb);
+    s->boolean("per_frame", o.per_frame);
+    s->length("reference_height", o.reference_height, -1e5, 1e5);
+    s->integer("macro", o.macro, 1, 99999999);
+    s->boolean("macro_program", o.macro_program);
+    s->finish();
+  }
+  if (auto s = r.sub("kinematics")) {
+    KinematicsSettings& k = m.kinematics;
+    if (auto axes = s->table_array("axes")) {
+      if (axes->size() > 2) {
+        s->error(*s->find("axes"), "axes", "clpc handles at most two rotary axes, found " + std::to_string(axes->size()));
+      }
+      for (Reader& a : *axes) {
+        RotaryAxis ax;
+        a.string("name", ax.name);
+        if (!a.has("name")) a.missing("name", "the axis word: A, B or C");
+        else if (ax.name != "A" && ax.name != "B" && ax.name != "C")
+          a.error(*a.find("name"), "name", "expected \"A\", \"B\" or \"C\", found \"" + ax.name + "\"");
+        if (a.vec3("axis", ax.axis)) {
+          if (ax.axis.norm() < 1e-9) a.error(*a.find("axis"), "axis", "must not be zero");
+          else ax.axis.normalize();
+        } else if (!a.has("axis")) {
+          a.missing("axis", "the direction the axis turns about, [x, y, z]");
+        }
+        int side = a.choice("side", {"table", "head"});
+        if (side >= 0) ax.table = side == 0;
+        int dir = 0;
+        a.integer("direction", dir, -1, 1);
+        if (dir == 0 && a.has("direction")) a.error(*a.find("direction"), "direction", "expected 1 or -1, found 0");
+        if (dir != 0) ax.direction = dir;
+        int cyc = a.choice("cyclic", {"no", "wind", "modulo"});
+        if (cyc >= 0) ax.cyclic = Cyclic(cyc);
+        a.number("min", ax.min, -1e6, 1e6);
+        a.number("max", ax.max, -1e6, 1e6);
+        if (ax.max <= ax.min && ax.cyclic == Cyclic::No)
+          a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
+        a.length3("center", ax.center);
+        double prefer = 0;
+        a.number("prefer", prefer, -1, 1);
+        ax.prefer = prefer;
+        a.number("rate", ax.rate, 0, 1e9);
+        a.string("clamp", ax.clamp);
+        a.string("unclamp", ax.unclamp);
+        a.finish();
+        k.rotaries.push_back(ax);
+      }
+    }
+    int sim = s->choice("simultaneous", {"tcp", "transform"});
+    if (sim >= 0) k.simultaneous = Simultaneous(sim);
+    int ind = s->choice("indexed", {"transform", "dwo", "tcp"});
+    if (ind >= 0) k.indexed = Indexed(ind);
+    s->boolean("inverse_time", k.inverse_time);
+    s->number("max_inverse_time", k.max_inverse_time, 0, 1e9);
+    int lim = s->choice("on_limit", {"error", "retract"});
+    if (lim >= 0) k.retract_on_limit = lim == 1;
+    s->length("retract_distance", k.retract_distance, 0, 1e6);
+    s->length("pivot", k.pivot, 0, 1e6);
+    if (auto t = s->sub("travel")) {
+      for (int i = 0; i < 3; ++i) {
+        const char* key = i == 0 ? "x" : i == 1 ? "y" : "z";
+        const toml::node* n = t->node(key);
+        if (!n) continue;
+        const toml::array* arr = n->as_array();
+        if (!arr || arr->size() != 2 || !(*arr)[0].is_number() || !(*arr)[1].is_number() ||
+            *(*arr)[0].value<double>() >= *(*arr)[1].value<double>()) {
+          t->error(*n, key, "expected [min, max] with min < max");
+          continue;
+        }
+        k.travel.min[i] = *(*arr)[0].value<double>() * t->to_target(key);
+        k.travel.max[i] = *(*arr)[1].value<double>() * t->to_target(key);
+        k.travel.set = true;
+      }
+      t->finish();
+    }
+    k.work_zero_set = s->length3("work_zero", k.work_zero);
+    if (k.retract_on_limit && !(k.retract_distance > 0))
+      s->error(*s->find("on_limit"), "on_limit", "\"retract\" needs retract_distance greater than zero");
+    s->finish();
+  }
+  if (auto s = r.sub("cycles")) {
+    int ret = s->choice("return", {"initial", "r-plane"});
+    if (ret >= 0) m.cycles.return_initial = ret == 0;
+    int tf = s->choice("tap_feed", {"per-minute", "per-rev"});
+    if (tf >= 0) m.cycles.tap_per_rev = tf == 1;
+    s->length("peck_clearance", m.cycles.peck_clearance, 0, 1e6);
+    s->finish();
+  }
+  if (auto s = r.sub("codes")) {
+    Codes& k = m.codes;
+    const uint32_t none = 0;
+    struct Key {
+      const char* name;
+      CodeTemplate* t;
+      uint32_t vars;
+    };
+    const Key keys[] = {
+        {"units_inch", &k.units_inch, none}, {"units_mm", &k.units_mm, none},
+        {"rapid", &k.rapid, none}, {"linear", &k.linear, none},
+        {"arc_cw", &k.arc_cw, none}, {"arc_ccw", &k.arc_ccw, none},
+        {"plane_xy", &k.plane_xy, none}, {"plane_zx", &k.plane_zx, none}, {"plane_yz", &k.plane_yz, none},
+        {"absolute", &k.absolute, none}, {"incremental", &k.incremental, none},
+        {"feed_per_minute", &k.feed_per_minute, none}, {"feed_per_rev", &k.feed_per_rev, none},
+        {"inverse_time", &k.inverse_time, none},
+        {"tool_change", &k.tool_change, bit(Var::Tool) | bit(Var::Offset)},
+        {"tool_preselect", &k.tool_preselect, bit(Var::Tool)},
+        {"length_offset", &k.length_offset, bit(Var::Offset) | bit(Var::Tool)},
+        {"length_cancel", &k.length_cancel, none},
+        {"spindle_cw", &k.spindle_cw, none}, {"spindle_ccw", &k.spindle_ccw, none},
+        {"spindle_off", &k.spindle_off, none},
+        {"spindle_rpm_mode", &k.spindle_rpm_mode, none}, {"spindle_css_mode", &k.spindle_css_mode, none},
+        {"spindle_clamp", &k.spindle_clamp, bit(Var::Max)},
+        {"coolant_flood", &k.coolant_flood, none}, {"coolant_mist", &k.coolant_mist, none},
+        {"coolant_thru", &k.coolant_thru, none}, {"coolant_air", &k.coolant_air, none},
+        {"coolant_tap", &k.coolant_tap, none}, {"coolant_off", &k.coolant_off, none},
+        {"dwell", &k.dwell, bit(Var::Seconds) | bit(Var::Milliseconds)},
+        {"optional_stop", &k.optional_stop, none}, {"stop", &k.stop, none},
+        {"comp_left", &k.comp_left, bit(Var::Register)}, {"comp_right", &k.comp_right, bit(Var::Register)},
+        {"comp_off", &k.comp_off, none},
+        {"work_offset", &k.work_offset, bit(Var::Number)},
+        {"work_offset_extended", &k.work_offset_extended, bit(Var::Number)},
+        {"offset_set", &k.offset_set, bit(Var::Number)},
+        {"offset_set_extended", &k.offset_set_extended, bit(Var::Number)},
+        {"macro_call", &k.macro_call, bit(Var::Number)},
+        {"safe_retract", &k.safe_retract, none},
+        {"cycle_drill", &k.cycle_drill, none}, {"cycle_dwell", &k.cycle_dwell, none},
+        {"cycle_peck", &k.cycle_peck, none}, {"cycle_chip_break", &k.cycle_chip_break, none},
+        {"cycle_tap", &k.cycle_tap, none}, {"cycle_tap_left", &k.cycle_tap_left, none},
+        {"cycle_bore", &k.cycle_bore, none}, {"cycle_bore_dwell", &k.cycle_bore_dwell, none},
+        {"cycle_bore_stop", &k.cycle_bore_stop, none}, {"cycle_fine_bore", &k.cycle_fine_bore, none},
+        {"cycle_back_bore", &k.cycle_back_bore, none}, {"cycle_cancel", &k.cycle_cancel, none},
+        {"cycle_return_initial", &k.cycle_return_initial, none}, {"cycle_return_r", &k.cycle_return_r, none},
+        {"cycle_dwell_word", &k.cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
+        {"rigid_tap", &k.rigid_tap, bit(Var::Speed)},
+        {"groove_face", &k.groove_face, none}, {"groove_radial", &k.groove_radial, none},
+        {"tcp_on", &k.tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &k.tcp_off, none},
+        {"dwo_on", &k.dwo_on, none}, {"dwo_off", &k.dwo_off, none},
+        {"smoothing_on", &k.smoothing_on, bit(Var::Level) | bit(Var::Tolerance)}, {"smoothing_off", &k.smoothing_off, none},
+    };
+    for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
+    s->finish();
+  }
+  check_pipeline(r, m);
+  check_job_codes(r, m);
+  // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
+  // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
+  // minute 4 and 3) need to keep their meaning.
+  {
+    const bool inch = m.units == ir::Units::Inch;
+    const AddressFormat& f = m.format('F');
+    auto at_least = [&](int decimals) {
+      AddressFormat g = f;
+      g.decimals = std::max(g.decimals, decimals);
+      g.point = AddressFormat::Point::Always;
+      return g;
+    };
+    m.feeds.per_minute = f;
+    m.feeds.per_rev = at_least(inch ? 4 : 3);
+    m.feeds.inverse_time = f;
+    m.feeds.tap = m.cycles.tap_per_rev ? at_least(inch ? 6 : 4) : at_least(inch ? 4 : 3);
+    if (auto s = r.sub("feeds")) {
+      for (const char* k : {"per_minute", "per_rev", "inverse_time", "tap"}) {
+        AddressFormat& g = std::string(k) == "per_minute" ? m.feeds.per_minute
+                           : std::string(k) == "per_rev"  ? m.feeds.per_rev
+                           : std::string(k) == "tap"      ? m.feeds.tap
+                                                          : m.feeds.inverse_time;
+        if (auto t = s->sub(k)) read_format(*t, g, std::string(k) != "inverse_time");
+      }
+      s->number("max_rounding", m.feeds.max_rounding, 0, 0.5);
+      s->finish();
+    }
+  }
+  r.finish();
+  return m;
+}
+
+// Past the error limit Diagnostics stops the run (FatalError). The registry's entry points turn
+// that into a refusal like any other: the errors and the stop have been reported.
+template <class T, class Body>
+T refusing_past_error_limit(T refusal, Body&& body) {
+  try {
+    return body();
+  } catch (const FatalError&) {
+    return refusal;
+  }
+}
+
+// A machine description file read whole, or null (reported).
+std::unique_ptr<MachineRegistry::Source> read_source(const std::string& path, Diagnostics& d) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    d.report_in(Severity::Error, path, {}, "cannot read machine description");
+    return nullptr;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  auto s = std::make_unique<MachineRegistry::Source>();
+  s->path = path;
+  s->text = ss.str();
+  return s;
+}
+
+}  // namespace
+
+Machine default_machine(Family family, ir::Units units) {
+  Machine m;
+  m.name = family == Family::Lathe ? "generic-lathe" : "generic-mill";
+  m.family = family;
+  m.units = units;
+  set_defaults(m);
+  return m;
+}
+
+MachineRegistry::MachineRegistry(std::vector<std::string> known_passes) : known_passes_(std::move(known_passes)) {}
+MachineRegistry::~MachineRegistry() = default;
+
+bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
+  try {
+    src->table = toml::parse(src->text, src->path);
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source();
+    d.report_in(Severity::Error, src->path, SourceLoc{at.begin.line, at.begin.column},
+                "invalid TOML: " + std::string(e.description()), line_of(src->text, at.begin.line));
+    return false;
+  }
+  bool ok = true;
+  for (auto&& [key, n] : src->table) {
+    if (!n.is_table()) {
+      Ctx c{d, &sources_};
+      sources_.push_back(std::move(src));
+      c.error(key.source(), "'" + std::string(key.str()) + "' is not a machine table ([name] with its keys)");
+      return false;
+    }
+  }
+  const Source* s = src.get();
+  sources_.push_back(std::move(src));
+  for (auto&& [key, n] : s->table) {
+    machines_[std::string(key.str())] = Entry{s, n.as_table()};
+    if (names) names->push_back(std::string(key.str()));
+  }
+  return ok;
+}
+
+bool MachineRegistry::load_builtin(Diagnostics& d) {
+  auto s = std::make_unique<Source>();
+  s->path = kBuiltinName;
+  s->text = std::string(builtin_machines_toml());
+  return refusing_past_error_limit(false, [&] { return add_source(std::move(s), d, nullptr); });
+}
+
+bool MachineRegistry::load_text(const std::string& name, std::string text, Diagnostics& d) {
+  auto s = std::make_unique<Source>();
+  s->path = name;
+  s->text = std::move(text);
+  return refusing_past_error_limit(false, [&] { return add_source(std::move(s), d, nullptr); });
+}
+
+bool MachineRegistry::load_file(const std::string& path, Diagnostics& d) {
+  return refusing_past_error_limit(false, [&] {
+    auto s = read_source(path, d);
+    return s && add_source(std::move(s), d, nullptr);
+  });
+}
+
+std::optional<Machine> MachineRegistry::resolve(const std::string& name_or_path, Diagnostics& d, const Job& job) {
+  return refusing_past_error_limit(std::optional<Machine>{}, [&] { return resolve_unguarded(name_or_path, d, job); });
+}
+
+namespace {
+
+bool is_key_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+}
+
+std::string toml_string(std::string_view v) {
+  std::string out = "\"";
+  for (char c : v) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// One --set KEY=VALUE as a TOML line: VALUE as TOML when it is a TOML value (1, true,
+// "text", [..]), else as a string (--set program.smoothing=finish). "" and a message when
+// the option is malformed.
+std::string set_line(const std::string& set, std::string& error) {
+  const size_t eq = set.find('=');
+  std::string key = eq == std::string::npos ? set : set.substr(0, eq);
+  while (!key.empty() && key.back() == ' ') key.pop_back();
+  if (eq == std::string::npos || key.empty() || key.front() == '.' || key.back() == '.' ||
+      !std::all_of(key.begin(), key.end(), is_key_char) || key.find("..") != std::string::npos) {
+    error = "--set " + set + ": expected KEY=VALUE, KEY a machine key such as program.optional_stop or units";
+    return {};
+  }
+  std::string value = set.substr(eq + 1);
+  while (!value.empty() && value.front() == ' ') value.erase(value.begin());
+  const std::string as_toml = key + " = " + value;
+  try {
+    (void)toml::parse(as_toml);
+    return as_toml;
+  } catch (const toml::parse_error&) {
+    return key + " = " + toml_string(value);
+  }
+}
+
+}  // namespace
+
+bool MachineRegistry::job_layers(const Job& job, std::vector<const toml::table*>& layers, Diagnostics& d) {
+  Ctx c{d, &sources_};
+  auto parse = [&](std::unique_ptr<Source> s) -> const Source* {
+    try {
+      s->table = toml::parse(s->text, s->path);
+    } catch (const toml::parse_error& e) {
+      const auto& at = e.source();
+      d.report_in(Severity::Error, s->path, SourceLoc{at.begin.line, at.begin.column},
+                  "invalid TOML: " + std::string(e.description()), line_of(s->text, at.begin.line));
+      return nullptr;
+    }
+    sources_.push_back(std::move(s));
+    return sources_.back().get();
+  };
+  // A job changes how a machine's programs are written, never which machine it is.
+  auto machine_keys_only = [&](const toml::table& t) {
+    for (const char* k : {"inherits", "family"})
+      if (const toml::node* n = t.get(k)) {
+        c.error(n->source(), std::string(k) + ": a job cannot change the machine's " +
+                                 (std::string(k) == "family" ? "family" : "parent") + "; name another machine with -t");
+        return false;
+      }
+    return true;
+  };
+  for (const std::string& path : job.files) {
+    auto src = read_source(path, d);
+    if (!src) return false;
+    const Source* s = parse(std::move(src));
+    if (!s) return false;
+    const toml::node* jt = s->table.get("job");
+    for (auto&& [key, n] : s->table)
+      if (key.str() != "job" || !n.is_table()) {
+        c.error(key.source(), "'" + std::string(key.str()) + "': a job file holds one [job] table of machine keys (docs/machines.md, \"Per-job options\")");
+        return false;
+      }
+    if (!jt) {
+      d.report_in(Severity::Error, path, SourceLoc{1, 1}, "no [job] table: a job file holds one [job] table of machine keys");
+      return false;
+    }
+    if (!machine_keys_only(*jt->as_table())) return false;
+    layers.push_back(jt->as_table());
+  }
+  if (!job.sets.empty()) {
+    // Each --set is one line of a TOML text named "--set", so an error points at the option;
+    // a later --set of the same key replaces an earlier one.
+    std::vector<std::pair<std::string, std::string>> lines;  // key, line
+    for (const std::string& set : job.sets) {
+      std::string error;
+      std::string line = set_line(set, error);
+      if (line.empty()) {
+        d.report_in(Severity::Error, "clpc", {}, error);
+        return false;
+      }
+      std::string key = line.substr(0, line.find(" = "));
+      std::erase_if(lines, [&](const auto& l) { return l.first == key; });
+      lines.emplace_back(key, line);
+    }
+    auto s = std::make_unique<Source>();
+    s->path = "--set";
+    for (const auto& [key, line] : lines) s->text += line + "\n";
+    const Source* src = parse(std::move(s));
+    if (!src || !machine_keys_only(src->table)) return false;
+    layers.push_back(&src->table);
+  }
+  return true;
+}
+
+bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
+                              Diagnostics& d) {
+  auto it = machines_.find(name);
+  if (it == machines_.end()) return false;
+  Ctx c{d, &sources_};
+  const toml::table& t = *it->second.table;
+  chain.push_back(name);
+  if (const toml::node* inh = t.get("inherits")) {
+    if (!inh->is_string()) {
+      c.error(inh->source(), name + ".inherits: expected the name of another machine, found " + type_name(*inh));
+      return false;
+    }
+    std::string parent = **inh->as_string();
+    if (std::find(chain.begin(), chain.end(), parent) != chain.end()) {
+      std::string cycle;
+      for (const auto& n : chain) cycle += n + " -> ";
+      c.error(inh->source(), name + ".inherits: inheritance cycle: " + cycle + parent);
+      return false;
+    }
+    if (!machines_.count(parent)) {
+      c.error(inh->source(), name + ".inherits: no machine named '" + parent + "'");
+      return false;
+    }
+    if (!flatten(parent, layers, chain, d)) return false;
+  }
+  layers.push_back(&t);
+  return true;
+}
+
+std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& name_or_path, Diagnostics& d, const Job& job) {
+  std::string name = name_or_path;
+  bool is_path = name.find('/') != std::string::npos || (name.size() > 5 && name.substr(name.size() - 5) == ".toml");
+  if (is_path) {
+    std::vector<std::string> names;
+    auto s = read_source(name, d);
+    if (!s || !add_source(std::move(s), d, &names)) return std::nullopt;
+    if (names.size() != 1) {
+      d.report_in(Severity::Error, name, {}, "-t with a file needs exactly one machine in it; it has " + std::to_string(names.size()));
+      return std::nullopt;
+    }
+    name = names[0];
+  }
+  auto it = machines_.find(name);
+  if (it == machines_.end()) {
+    std::string all;
+    for (const auto& [n, e] : machines_) all += (all.empty() ? "" : ", ") + n;
+    std::vector<std::string> names;
+    for (const auto& [n, e] : machines_) names.push_back(n);
+    const std::string near = closest(name, names);
+    d.report_in(Severity::Error, "clpc", {},
+                "no machine named '" + name + "'" + (near.empty() ? std::string() : "; did you mean '" + near + "'?") +
+                    " (known: " + all + "; see 'clpc machines')");
+    return std::nullopt;
+  }
+  std::vector<const toml::table*> layers;
+  std::vector<std::string> chain;
+  if (!flatten(name, layers, chain, d)) return std::nullopt;
+  const size_t machine_layers = layers.size();
+  if (!job_layers(job, layers, d)) return std::nullopt;
+  // A job that states the program number means that number, whatever the file is called.
+  bool number_given = false, from_name_given = false;
+  for (size_t i = machine_layers; i < layers.size(); ++i) {
+    number_given = number_given || layers[i]->at_path("program.number");
+    from_name_given = from_name_given || layers[i]->at_path("program.number_from_name");
+  }
+  Ctx c{d, &sources_};
+  Machine m = build_machine(c, name, std::move(layers), known_passes_, it->second.source->path);
+  if (!c.ok) return std::nullopt;
+  if (number_given && !from_name_given) m.number_from_name = false;
+  return m;
+}
+
+std::vector<std::pair<std::string, std::string>> MachineRegistry::list() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [n, e] : machines_) {
+    std::string desc;
+    if (const toml::node* dn = e.table->get("description"); dn && dn->is_string()) desc = **dn->as_string();
+    out.emplace_back(n, desc);
+  }
+  return out;
+}
+
+}  // namespace clpc

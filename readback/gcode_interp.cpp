@@ -1,0 +1,660 @@
+#include "readback/gcode_interp.h"
+#include "support/text.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "machine/format.h"
+#include "ir/groove_model.h"
+
+namespace clpc::gcode {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kPi = 3.14159265358979323846;
+
+struct Word {
+  char letter;
+  double value;     // converted: units (or degrees), radius for X on a diameter lathe
+  double raw;       // as written, number of the word
+  bool has_point;
+};
+
+enum class Motion { Rapid, Linear, Cw, Ccw, None };
+
+// The address words of one block, by letter (the last one of a letter counts). A fixed table
+// rather than a map: the reader runs over every block of gigabyte programs.
+struct Words {
+  std::array<double, 26> value{};
+  std::array<bool, 26> has{};
+  std::array<bool, 26> point{};
+  void clear() {
+    has.fill(false);
+    point.fill(false);
+  }
+  void set(char c, double v, bool p) {
+    value[size_t(c - 'A')] = v;
+    has[size_t(c - 'A')] = true;
+    point[size_t(c - 'A')] = p;
+  }
+  size_t count(char c) const { return has[size_t(c - 'A')] ? 1 : 0; }
+  double operator[](char c) const { return value[size_t(c - 'A')]; }
+  bool with_point(char c) const { return point[size_t(c - 'A')]; }
+};
+
+class Interp {
+ public:
+  Interp(const Machine& m, const Options& opt) : m_(m), opt_(opt) {
+    res_.units = m.units;
+    pos_ = Vec3(kNaN, m.is_lathe() ? 0.0 : kNaN, kNaN);  // a lathe has no Y
+    // One increment of the coarser of the end point and centre words (on a diameter lathe X
+    // is finer in radius terms than I and K).
+    double inc = std::max({std::abs(dequantize(1, m.format('X'))), std::abs(dequantize(1, m.format('I'))),
+                           std::abs(dequantize(1, m.format('K')))});
+    radius_tol_ = opt.arc_radius_tolerance > 0 ? opt.arc_radius_tolerance : inc;
+  }
+
+  Result run(std::string_view text) {
+    size_t at = 0;
+    while (at <= text.size()) {
+      size_t nl = text.find('\n', at);
+      feed(text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at));
+      if (nl == std::string_view::npos) break;
+      at = nl + 1;
+    }
+    return std::move(res_);
+  }
+
+  void feed(std::string_view l) {
+    ++line_;
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    // After M30 / M02 the main program is over; what follows (subprograms such as the
+    // offset macro) runs only when called.
+    if (!res_.ended) block(l, line_);
+  }
+
+  Result& result() { return res_; }
+
+ private:
+  void problem(int line, std::string msg) { res_.problems.push_back({line, std::move(msg)}); }
+
+  // Converts a word's number as the control would: a value without a decimal point on an
+  // address whose format never writes one is in least-input increments.
+  double convert(char letter, std::string_view digits, bool has_point) {
+    double v = 0;
+    const char* b = digits.data();
+    const char* e = b + digits.size();
+    if (b < e && *b == '+') ++b;
+    std::from_chars(b, e, v);
+    const AddressFormat& f = m_.format(letter);
+    if (!has_point && f.point == AddressFormat::Point::Never && f.decimals > 0) v /= std::pow(10.0, f.decimals);
+    return v;
+  }
+
+  bool parse(std::string_view l, int line, std::vector<Word>& words) {
+    size_t i = 0;
+    while (i < l.size()) {
+      char c = l[i];
+      if (c == ' ' || c == '\t' || c == '\r') { ++i; continue; }
+      if (c == '(') {
+        size_t close = l.find(')', i);
+        if (close == std::string_view::npos) {
+          problem(line, "comment without ')'");
+          return false;
+        }
+        i = close + 1;
+        continue;
+      }
+      if (c == ';') break;  // end of block
+      if (c == '%' ) { ++i; continue; }
+      char letter = char(std::toupper(static_cast<unsigned char>(c)));
+      if (letter < 'A' || letter > 'Z') {
+        problem(line, std::string("unexpected character '") + c + "'");
+        return false;
+      }
+      ++i;
+      while (i < l.size() && l[i] == ' ') ++i;
+      size_t start = i;
+      if (i < l.size() && (l[i] == '+' || l[i] == '-')) ++i;
+      bool point = false;
+      while (i < l.size() && (std::isdigit(static_cast<unsigned char>(l[i])) || l[i] == '.')) {
+        point |= l[i] == '.';
+        ++i;
+      }
+      std::string_view num = l.substr(start, i - start);
+      if (num.empty() || num == "-" || num == "+") {
+        problem(line, std::string("address ") + letter + " without a number");
+        return false;
+      }
+      Word w;
+      w.letter = letter;
+      w.has_point = point;
+      std::from_chars(num.data() + (num[0] == '+'), num.data() + num.size(), w.raw);
+      w.value = convert(letter, num, point);
+      words.push_back(w);
+    }
+    return true;
+  }
+
+  static bool is_g(double v, double code) { return std::abs(v - code) < 1e-6; }
+
+  void block(std::string_view l, int line) {
+    std::vector<Word>& words = words_;
+    words.clear();
+    if (!parse(l, line, words) || words.empty()) return;
+    if (words[0].letter == 'O') return;  // program number
+    ++res_.blocks;
+
+    Words& a = a_;  // address -> value (last one)
+    a.clear();
+    std::vector<double>& gs = gs_;
+    std::vector<double>& ms = ms_;
+    gs.clear();
+    ms.clear();
+    for (const Word& w : words) {
+      if (w.letter == 'G') gs.push_back(w.raw);
+      else if (w.letter == 'M') ms.push_back(w.raw);
+      else if (w.letter != 'N') a.set(w.letter, w.value, w.has_point);
+    }
+    auto has = [&](char c) { return a.count(c) != 0; };
+
+    bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
+    bool motion_word = false;
+    int new_offset = 0;
+    bool lathe = m_.is_lathe();
+    for (double g : gs) {
+      if (is_g(g, 0)) motion_ = Motion::Rapid, motion_word = true;
+      else if (is_g(g, 1)) motion_ = Motion::Linear, motion_word = true;
+      else if (is_g(g, 2)) motion_ = Motion::Cw, motion_word = true;
+      else if (is_g(g, 3)) motion_ = Motion::Ccw, motion_word = true;
+      else if (is_g(g, 4)) g04 = true;
+      else if (is_g(g, 10)) g10 = true;
+      else if (is_g(g, 17)) plane_ = 17;
+      else if (is_g(g, 18)) plane_ = 18;
+      else if (is_g(g, 19)) plane_ = 19;
+      else if (is_g(g, 20)) set_units(ir::Units::Inch, line);
+      else if (is_g(g, 21)) set_units(ir::Units::Mm, line);
+      else if (is_g(g, 28)) g28 = true;
+      else if (is_g(g, 40)) comp_ = 0;
+      else if (is_g(g, 41)) comp_ = 1;
+      else if (is_g(g, 42)) comp_ = 2;
+      else if (is_g(g, 43)) length_comp_ = true;
+      else if (is_g(g, 49)) length_comp_ = false, tcp_ = false;
+      else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5)) tcp_ = true, length_comp_ = true;
+      else if (is_g(g, 187) || is_g(g, 5.1)) {}  // smoothing (Haas), AI contour control (Fanuc): the path is the same
+      else if (is_g(g, 254)) dwo_ = true;
+      else if (is_g(g, 255)) dwo_ = false;
+      else if (is_g(g, 50) && lathe) g50 = true;  // spindle clamp (with S)
+      else if (is_g(g, 53)) g53 = true;
+      else if (g >= 54 - 1e-6 && g <= 59 + 1e-6 && is_g(g, std::round(g))) new_offset = int(std::round(g)) - 53;
+      else if (is_g(g, 54.1) || is_g(g, 154)) new_offset = -1;  // P gives the register
+      else if (is_g(g, 65)) g65 = true;
+      else if (is_g(g, 80)) cycle_ = 0, cycle_on_ = false;
+      else if (lathe && (is_g(g, 74) || is_g(g, 75))) groove_ = int(std::round(g));
+      else if (!lathe && (is_g(g, 73) || is_g(g, 74) || is_g(g, 76) || (g > 80.5 && g < 89.5 && is_g(g, std::round(g))))) {
+        cycle_ = int(std::round(g));
+        new_cycle = true;
+      }
+      else if (is_g(g, 90)) absolute_ = true;
+      else if (is_g(g, 91)) absolute_ = false;
+      else if (is_g(g, 93)) { inverse_time_ = true; }
+      else if (is_g(g, 94) && !lathe) { inverse_time_ = false; per_rev_ = false; }
+      else if (is_g(g, 95) && !lathe) { inverse_time_ = false; per_rev_ = true; }
+      else if (is_g(g, 98) && lathe) per_rev_ = false;
+      else if (is_g(g, 99) && lathe) per_rev_ = true;
+      else if ((is_g(g, 98) || is_g(g, 99)) && !lathe) cycle_return_initial_ = is_g(g, 98);
+      else if (is_g(g, 96) && lathe) css_ = true;
+      else if (is_g(g, 97) && lathe) css_ = false;
+      else problem(line, "G" + fmt(g) + " is not a code clpc's reader knows");
+    }
+    if (motion_word && !new_cycle) cycle_ = 0, cycle_on_ = false;  // a motion code cancels a canned cycle
+    if (new_offset > 0) work_offset_ = new_offset;
+    if (new_offset < 0) {
+      if (!has('P')) problem(line, "G54.1/G154 without P");
+      else work_offset_ = 6 + int(std::round(a['P']));
+    }
+
+    for (double mc : ms) {
+      int code = int(std::round(mc));
+      switch (code) {
+        case 0: case 1: res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
+        case 2: case 30: res_.ended = true; break;
+        case 3: case 4: spindle_on_ = true; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
+        case 5: spindle_on_ = false; res_.events.push_back({Event::Kind::Spindle, line, 0}); break;
+        case 6:
+          if (!has('T') && pending_tool_ <= 0) problem(line, "M06 without a tool");
+          tool_ = has('T') ? int(std::round(a['T'])) : pending_tool_;
+          ++res_.tool_changes;
+          length_comp_ = false;  // must be applied again for the new tool
+          spindle_on_ = false;
+          res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
+          break;
+        case 7: case 8: case 88: case 83: res_.events.push_back({Event::Kind::Coolant, line, double(code)}); break;
+        case 9: case 89: case 84: res_.events.push_back({Event::Kind::Coolant, line, 0}); break;
+        default: break;  // machine functions (clamps, ...) carry no motion
+      }
+    }
+    if (lathe && has('T') && !g04) {
+      // T0101: tool and offset, changed at once.
+      int t = int(std::round(a['T']));
+      tool_ = t / 100;
+      ++res_.tool_changes;
+      res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
+    } else if (!lathe && has('T') && std::find_if(ms.begin(), ms.end(), [](double v) { return std::round(v) == 6; }) == ms.end()) {
+      pending_tool_ = int(std::round(a['T']));
+    }
+    if (has('S')) (g50 ? max_rpm_ : spindle_) = a['S'];
+    if (has('F')) feed_ = a['F'];
+
+    if (g04) {
+      // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
+      // seconds.
+      double secs = has('P') ? (a.with_point('P') ? a['P'] : a['P'] / 1000.0)
+                             : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
+      res_.events.push_back({Event::Kind::Dwell, line, secs});
+      return;
+    }
+    if (g10) {
+      offset_set(a, line);
+      return;
+    }
+    if (g65) {
+      macro_call(a, line);
+      return;
+    }
+
+    // Axis words -> target.
+    Vec3 target = pos_;
+    bool any_axis = false;
+    const double xs = m_.format('X').scale;
+    auto axis = [&](char letter, char inc, int i) {
+      if (has(letter)) {
+        double v = a[letter] / (letter == 'X' ? xs : 1.0);
+        target[i] = absolute_ || g53 ? v : (std::isnan(pos_[i]) ? kNaN : pos_[i] + v);
+        any_axis = true;
+      }
+      if (lathe && inc && has(inc)) {
+        double v = a[inc] / (inc == 'U' ? xs : 1.0);
+        target[i] = std::isnan(pos_[i]) ? kNaN : pos_[i] + v;
+        any_axis = true;
+      }
+    };
+    axis('X', 'U', 0);
+    axis('Y', 0, 1);
+    axis('Z', 'W', 2);
+    std::array<double, 3> rot_target = rotary_;
+    for (int i = 0; i < 3; ++i) {
+      char letter = char('A' + i);
+      if (has(letter)) {
+        rot_target[size_t(i)] = absolute_ ? a[letter] : rotary_[size_t(i)] + a[letter];
+        any_axis = true;
+      }
+    }
+
+    if (groove_ != 0) {
+      lathe_groove(a, target, line);
+      groove_ = 0;
+      return;
+    }
+    if (cycle_ != 0 && !g53 && !g28) {
+      hole(a, new_cycle, target, line);
+      return;
+    }
+    if (g53) {
+      // Machine coordinates: where that is in the work frame is unknown to the reader.
+      for (int i = 0; i < 3; ++i)
+        if (has("XYZ"[i])) pos_[i] = kNaN;
+      rotary_ = rot_target;
+      return;
+    }
+    if (g28) {
+      // Home through the intermediate point: the axes named end up at the reference point.
+      for (int i = 0; i < 3; ++i)
+        if (has("XYZ"[i]) || (lathe && has("UVW"[i]))) pos_[i] = kNaN;
+      return;
+    }
+    if (!any_axis) {
+      if ((has('I') || has('J') || has('K')) && (motion_ == Motion::Cw || motion_ == Motion::Ccw)) {
+        // A full circle: no end point, only the centre.
+        target = pos_;
+      } else {
+        return;
+      }
+    }
+    if (motion_ == Motion::None) {
+      problem(line, "axis words with no motion mode (G00/G01/G02/G03) in effect");
+      return;
+    }
+    move(target, rot_target, a, line);
+  }
+
+  // A canned-cycle block: (re)defines the cycle's words, and drills at X Y if given (or at the
+  // current position when the cycle is new).
+  void hole(const Words& a, bool new_cycle, const Vec3& target, int line) {
+    if (new_cycle && !cycle_on_) {
+      initial_z_ = pos_.z();
+      cycle_on_ = true;
+    }
+    if (a.count('Z')) cyc_bottom_ = a['Z'];
+    if (a.count('R')) cyc_r_ = a['R'];
+    if (a.count('Q')) cyc_q_ = a['Q'];
+    if (a.count('P')) cyc_p_ = a['P'];
+    bool xy = a.count('X') || a.count('Y');
+    if (!xy && !new_cycle) return;
+    if (std::isnan(cyc_bottom_) || std::isnan(cyc_r_)) {
+      problem(line, "canned cycle without Z or R");
+      return;
+    }
+    if (!(feed_ > 0)) problem(line, "canned cycle with no feed rate (F)");
+    if (std::isnan(initial_z_)) initial_z_ = std::max(cyc_r_, pos_.z());
+    if (cyc_bottom_ > cyc_r_) problem(line, "canned cycle bottom (Z) above its R plane");
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, double(cycle_)});
+    auto seg = [&](Segment::Kind k, const Vec3& to) {
+      Segment s = segment(k, to, rotary_, line);
+      s.from_cycle = true;
+      res_.segments.push_back(s);
+      pos_ = to;
+    };
+    Vec3 over(target.x(), target.y(), pos_.z());
+    if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && !m_.codes.length_offset.empty())
+      problem(line, "canned cycle with no tool length compensation (G43) for the tool in the spindle");
+    seg(Segment::Kind::Rapid, over);
+    auto z = [&](double zz) { return Vec3(target.x(), target.y(), zz); };
+    seg(Segment::Kind::Rapid, z(cyc_r_));
+    double d = m_.cycles.peck_clearance;
+    if ((cycle_ == 83 || cycle_ == 73) && cyc_q_ > 0 && (cyc_r_ - cyc_bottom_) / cyc_q_ > 100000) {
+      problem(line, "peck cycle with Q so small it would peck more than 100000 times");
+      seg(Segment::Kind::Feed, z(cyc_bottom_));
+    } else if (cycle_ == 83 || cycle_ == 73) {
+      if (!(cyc_q_ > 0)) problem(line, "peck cycle without Q");
+      double depth = cyc_r_;
+      while (cyc_q_ > 0 && depth > cyc_bottom_ + 1e-9) {
+        double next = std::max(cyc_bottom_, depth - cyc_q_);
+        if (next == depth) next = cyc_bottom_;  // a peck lost in the rounding of large coordinates
+        if (depth < cyc_r_ && cycle_ == 83) seg(Segment::Kind::Rapid, z(depth + d));
+        seg(Segment::Kind::Feed, z(next));
+        depth = next;
+        if (depth > cyc_bottom_ + 1e-9) seg(Segment::Kind::Rapid, z(cycle_ == 83 ? cyc_r_ : depth + d));
+      }
+    } else {
+      seg(Segment::Kind::Feed, z(cyc_bottom_));
+    }
+    if (cycle_ == 82 || cycle_ == 89) res_.events.push_back({Event::Kind::Dwell, line, cyc_p_});
+    double ret = cycle_return_initial_ ? std::max(initial_z_, cyc_r_) : cyc_r_;
+    bool feed_out = cycle_ == 84 || cycle_ == 74 || cycle_ == 85 || cycle_ == 89;
+    if (feed_out) {
+      seg(Segment::Kind::Feed, z(cyc_r_));
+      if (ret != cyc_r_) seg(Segment::Kind::Rapid, z(ret));
+    } else {
+      seg(Segment::Kind::Rapid, z(ret));
+    }
+  }
+
+  // G74/G75, two blocks: "G75 R(e)" sets the pull-out; "G75 X Z P Q [R] F" runs the cycle
+  // from where the tool is, as groove::expand models a Fanuc doing it.
+  void lathe_groove(const Words& a, const Vec3& target, int line) {
+    bool second = a.count('X') || a.count('Z') || a.count('U') || a.count('W');
+    if (!second) {
+      groove_retract_ = a.count('R') ? a['R'] : 0;
+      return;
+    }
+    if (std::isnan(pos_.x()) || std::isnan(pos_.z())) {
+      problem(line, "G" + std::to_string(groove_) + " from an unknown position");
+      return;
+    }
+    if (!(feed_ > 0)) problem(line, "groove cycle with no feed rate (F)");
+    groove::Params p;
+    p.face = groove_ == 74;
+    p.retract = groove_retract_;
+    p.x_amount = a.count('P') ? a['P'] : 0;
+    p.z_amount = a.count('Q') ? a['Q'] : 0;
+    p.relief = a.count('R') ? a['R'] : 0;
+    Vec3 start = pos_;
+    Vec3 end(std::isnan(target.x()) ? start.x() : target.x(), 0, std::isnan(target.z()) ? start.z() : target.z());
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, double(groove_)});
+    const std::vector<groove::Step> steps = groove::expand(start, end, p);
+    if (steps.empty()) {
+      problem(line, "G" + std::to_string(groove_) + ": P and Q so small the cycle would make more than a million moves");
+      return;
+    }
+    for (const groove::Step& st : steps) {
+      Segment s = segment(st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid, st.to, rotary_, line);
+      s.from_cycle = true;
+      res_.segments.push_back(s);
+      pos_ = st.to;
+    }
+  }
+
+  void set_units(ir::Units u, int line) {
+    if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
+    res_.units = u;
+    res_.units_set = true;
+  }
+
+  void offset_set(const Words& a, int line) {
+    if (!a.count('L') || !a.count('P')) {
+      problem(line, "G10 needs L and P");
+      return;
+    }
+    Event e{Event::Kind::OffsetSet, line};
+    int L = int(std::round(a['L'])), P = int(std::round(a['P']));
+    e.reg = L == 2 ? P : L == 20 ? 6 + P : 0;
+    if (e.reg == 0) {
+      problem(line, "G10 L" + std::to_string(L) + " is not a work-offset setting the reader knows");
+      return;
+    }
+    e.v = Vec3(a.count('X') ? a['X'] : 0, a.count('Y') ? a['Y'] : 0, a.count('Z') ? a['Z'] : 0);
+    res_.events.push_back(e);
+  }
+
+  // G65: the one macro the reader knows is the seed paper's work-offset macro (docs/offsets.md),
+  // under the number the machine description gives it, as a control knows the macros in its
+  // memory; #503 is the description's reference height. Its arithmetic, evaluated here from
+  // the published text rather than from clpc's offset code.
+  void macro_call(const Words& a, int line) {
+    const OffsetSettings& o = m_.offsets;
+    if (!a.count('P') || std::lround(a['P']) != o.macro) {
+      problem(line, "G65 calls a macro the reader does not know (it knows the offset macro, P" + std::to_string(o.macro) + ")");
+      return;
+    }
+    for (char c : {'A', 'B', 'C', 'X', 'Y', 'Z'}) {
+      if (!a.count(c)) {
+        problem(line, std::string("G65 P") + std::to_string(o.macro) + " without its " + c + " argument");
+        return;
+      }
+      if (!a.with_point(c)) problem(line, std::string("G65 argument ") + c + " without a decimal point");
+    }
+    const double deg = 3.14159265358979323846 / 180;
+    const double n1 = a['A'], n2 = a['B'], n3 = a['C'], n24 = a['X'], n25 = a['Y'], n26 = a['Z'];
+    const double n503 = o.reference_height;
+    const double n16 = n26 + n503;
+    const double n104 = n24 * std::cos(-n3 * deg) - n25 * std::sin(-n3 * deg);
+    const double n105 = n24 * std::cos(-n1 * deg) * std::sin(-n3 * deg) + n25 * std::cos(-n1 * deg) * std::cos(-n3 * deg) -
+                        n16 * std::sin(-n1 * deg);
+    const double n106 = n24 * std::sin(-n1 * deg) * std::sin(-n3 * deg) + n25 * std::sin(-n1 * deg) * std::cos(-n3 * deg) +
+                        n16 * std::cos(-n1 * deg);
+    Event e{Event::Kind::OffsetSet, line};
+    e.reg = int(std::lround(n2));
+    if (e.reg < 1 || e.reg > 6) {
+      problem(line, "the offset macro's G10 L2 P#2 takes registers 1-6, not " + fmt(n2));
+      return;
+    }
+    e.v = Vec3(n104, n105, n106);
+    res_.events.push_back(e);
+  }
+
+  // A segment from where the tool is, with the modal state it runs in.
+  Segment segment(Segment::Kind k, const Vec3& to, const std::array<double, 3>& rot, int line) const {
+    Segment s;
+    s.kind = k;
+    s.start = pos_;
+    s.end = to;
+    s.rotary_start = rotary_;
+    s.rotary = rot;
+    s.line = line;
+    s.tool = tool_;
+    s.work_offset = work_offset_;
+    s.inverse_time = inverse_time_;
+    s.tcp = tcp_;
+    s.dwo = dwo_;
+    s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
+    spindle_info(s);
+    return s;
+  }
+
+  void move(const Vec3& target, const std::array<double, 3>& rot, const Words& a, int line) {
+    Segment s = segment(Segment::Kind::Feed, target, rot, line);
+    bool moves_z = (a.count('Z') || a.count('W')) && !(std::abs(target.z() - pos_.z()) < 1e-12);
+    if (!m_.is_lathe() && tool_ > 0 && !length_comp_ && moves_z && !m_.codes.length_offset.empty())
+      problem(line, "Z moves with no tool length compensation (G43) for the tool in the spindle");
+    if (motion_ == Motion::Rapid) {
+      s.kind = Segment::Kind::Rapid;
+      s.feed = 0;
+    } else {
+      if (!(feed_ > 0)) problem(line, "cutting move with no feed rate (F)");
+      if (inverse_time_ && !a.count('F')) problem(line, "inverse time (G93) needs F in every cutting block");
+      s.feed = feed_;
+      if (motion_ == Motion::Linear) {
+        s.kind = Segment::Kind::Feed;
+      } else if (!arc(s, a, line)) {
+        pos_ = target;
+        rotary_ = rot;
+        return;
+      }
+    }
+    res_.segments.push_back(s);
+    pos_ = target;
+    rotary_ = rot;
+  }
+
+  bool arc(Segment& s, const Words& a, int line) {
+    s.kind = Segment::Kind::Arc;
+    s.ccw = motion_ == Motion::Ccw;
+    int u, v;
+    char cu, cv;
+    if (plane_ == 17) { u = 0; v = 1; cu = 'I'; cv = 'J'; s.normal = Vec3::UnitZ(); }
+    else if (plane_ == 18) { u = 2; v = 0; cu = 'K'; cv = 'I'; s.normal = Vec3::UnitY(); }
+    else { u = 1; v = 2; cu = 'J'; cv = 'K'; s.normal = Vec3::UnitX(); }
+    if (std::isnan(s.start[u]) || std::isnan(s.start[v])) {
+      problem(line, "arc from an unknown position");
+      return false;
+    }
+    double su = s.start[u], sv = s.start[v], eu = s.end[u], ev = s.end[v];
+    double c_u, c_v;
+    if (a.count('R')) {
+      double r = a['R'];
+      double du = eu - su, dv = ev - sv, d = std::hypot(du, dv);
+      if (d < 1e-12 || std::abs(r) * 2 < d - radius_tol_) {
+        problem(line, "R arc with no centre (end point too far, or a full circle)");
+        return false;
+      }
+      double h = std::sqrt(std::max(0.0, r * r - d * d / 4));
+      // Centre left of the chord (seen from the normal) for a ccw arc under 180 degrees.
+      double side = (s.ccw ? 1 : -1) * (r > 0 ? 1 : -1);
+      c_u = (su + eu) / 2 - side * h * dv / d;
+      c_v = (sv + ev) / 2 + side * h * du / d;
+    } else {
+      bool abs_center = m_.arcs.center == ArcCenter::Absolute;
+      double iu = a.count(cu) ? a[cu] : 0, iv = a.count(cv) ? a[cv] : 0;
+      // I, J, K are never diameter values, even on a diameter lathe (the reader divided X only).
+      c_u = abs_center ? iu : su + iu;
+      c_v = abs_center ? iv : sv + iv;
+      if (!a.count(cu) && !a.count(cv)) {
+        problem(line, "arc with neither centre (I/J/K) nor radius (R)");
+        return false;
+      }
+    }
+    s.center = s.start;
+    s.center[u] = c_u;
+    s.center[v] = c_v;
+    s.start_radius = std::hypot(su - c_u, sv - c_v);
+    s.end_radius = std::hypot(eu - c_u, ev - c_v);
+    if (std::abs(s.start_radius - s.end_radius) > radius_tol_ * 1.0000001)
+      problem(line, "arc start and end radius differ by " + fmt(std::abs(s.start_radius - s.end_radius)) +
+                        " (the control alarms above " + fmt(radius_tol_) + ")");
+    double a0 = std::atan2(sv - c_v, su - c_u), a1 = std::atan2(ev - c_v, eu - c_u);
+    double ccw = a1 - a0;
+    while (ccw < 0) ccw += 2 * kPi;
+    while (ccw >= 2 * kPi) ccw -= 2 * kPi;
+    bool closed = std::abs(eu - su) < 1e-12 && std::abs(ev - sv) < 1e-12;
+    double sweep = closed ? 2 * kPi : (s.ccw ? ccw : 2 * kPi - ccw);
+    if (!closed && sweep == 0) sweep = 2 * kPi;
+    s.sweep = sweep * 180 / kPi;
+    return true;
+  }
+
+  // Feed per revolution and the spindle speed, for times: with constant surface speed (G96)
+  // the speed at the segment's middle diameter, within the G50 clamp.
+  void spindle_info(Segment& s) const {
+    s.per_rev = per_rev_;
+    s.rpm = spindle_on_ ? spindle_ : 0;
+    if (css_ && spindle_on_) {
+      double r = std::abs((s.start.x() + s.end.x()) / 2);
+      double surface = res_.units == ir::Units::Inch ? spindle_ * 12 : spindle_ * 1000;  // per minute, in X's units
+      s.rpm = r > 1e-9 ? surface / (2 * kPi * r) : 0;
+      if (max_rpm_ > 0 && (s.rpm > max_rpm_ || r <= 1e-9)) s.rpm = max_rpm_;
+    }
+  }
+
+  static std::string fmt(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+  }
+
+  const Machine& m_;
+  const Options opt_;
+  Result res_;
+  int line_ = 0;
+  std::vector<Word> words_;  // per block, kept for their capacity
+  Words a_;
+  std::vector<double> gs_, ms_;
+  double radius_tol_;
+  Vec3 pos_;
+  std::array<double, 3> rotary_{0, 0, 0};
+  Motion motion_ = Motion::None;
+  int plane_ = 17;
+  bool absolute_ = true;
+  bool inverse_time_ = false;
+  bool per_rev_ = false;
+  bool css_ = false;
+  bool length_comp_ = false;
+  bool tcp_ = false, dwo_ = false;
+  int comp_ = 0;
+  int cycle_ = 0;
+  int groove_ = 0;
+  double groove_retract_ = 0;
+  bool cycle_on_ = false;
+  bool cycle_return_initial_ = true;
+  double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;
+  int work_offset_ = 1;
+  int tool_ = 0;
+  int pending_tool_ = 0;
+  double feed_ = 0;
+  double spindle_ = 0;
+  double max_rpm_ = 0;  // G50 S (lathe)
+  bool spindle_on_ = false;
+};
+
+}  // namespace
+
+struct Reader::Impl : Interp {
+  using Interp::Interp;
+};
+
+Reader::Reader(const Machine& m, const Options& opt) : impl_(std::make_unique<Impl>(m, opt)) {}
+Reader::~Reader() = default;
+void Reader::line(std::string_view text) { impl_->feed(text); }
+Result& Reader::result() { return impl_->result(); }
+
+Result interpret(std::string_view program, const Machine& m, const Options& opt) {
+  Interp in(m, opt);
+  return in.run(program);
+}
+
+}  // namespace clpc::gcode

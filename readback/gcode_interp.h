@@ -1,0 +1,93 @@
+// A G-code interpreter for the dialects clpc writes (Fanuc/Haas mill, Fanuc lathe system A),
+// written independently of the emitter: it knows what the codes mean from the controls'
+// documentation, not from the machine description's code tables. The machine description
+// supplies only what a control's parameters would: number formats (decimal point rules,
+// diameter X), the family, units and the rotary axes. clpc verify, clpc plot and the tests
+// read programs back with it.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "machine/machine.h"
+#include "ir/ir.h"
+
+namespace clpc::gcode {
+
+using ir::Vec3;
+
+struct Segment {
+  enum class Kind : uint8_t { Rapid, Feed, Arc };
+  Kind kind = Kind::Feed;
+  Vec3 start, end;            // tool tip in the work-offset frame, output units (lathe X radius)
+  Vec3 center = Vec3::Zero();  // arcs: centre in the plane of the start
+  Vec3 normal = Vec3::UnitZ();  // arcs: plane normal (+Z, +Y, +X for G17, G18, G19)
+  bool ccw = false;           // arcs: counter-clockwise about normal
+  double sweep = 0;           // arcs: degrees
+  double start_radius = 0, end_radius = 0;  // arcs: as the control computes them
+  double feed = 0;            // output units per minute (0 for rapids; inverse time: 1/min)
+  bool inverse_time = false;
+  bool per_rev = false;       // feed per revolution (G95 / lathe G99)
+  double rpm = 0;             // spindle speed during the segment (0: stopped)
+  std::array<double, 3> rotary{0, 0, 0};  // A B C at the end (degrees)
+  std::array<double, 3> rotary_start{0, 0, 0};
+  int work_offset = 1;        // 1 = G54 ... 6 = G59, 7.. = extended
+  int tool = 0;
+  int line = 0;               // G-code line
+  bool from_cycle = false;    // expanded from a canned cycle
+  bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame
+  bool dwo = false;           // dynamic work offset on: X Y Z turned with the table about the part zero
+};
+
+struct Event {
+  enum class Kind : uint8_t { ToolChange, Spindle, Coolant, Dwell, Stop, OffsetSet, CycleStart };
+  Kind kind;
+  int line = 0;
+  double value = 0;
+  int reg = 0;
+  Vec3 v = Vec3::Zero();
+};
+
+struct Problem {
+  int line = 0;
+  std::string message;
+};
+
+struct Result {
+  std::vector<Segment> segments;
+  std::vector<Event> events;
+  std::vector<Problem> problems;  // what a control would alarm on, or the reader cannot follow
+  int tool_changes = 0;
+  int cycles = 0;
+  int blocks = 0;
+  bool ended = false;             // M30 / M02 seen
+  ir::Units units = ir::Units::Mm;
+  bool units_set = false;
+};
+
+struct Options {
+  // Start and end radius may differ by this much (output units) before the control alarms;
+  // 0 = one increment of the coarsest of X, I and K.
+  double arc_radius_tolerance = 0;
+};
+
+Result interpret(std::string_view program, const Machine& m, const Options& opt = {});
+
+// The same, a line at a time, for programs too large to hold: each line's segments, events
+// and problems are appended to result(), which the caller may drain between lines.
+class Reader {
+ public:
+  explicit Reader(const Machine& m, const Options& opt = {});
+  ~Reader();
+  void line(std::string_view text);  // without its line end
+  Result& result();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace clpc::gcode

@@ -1,0 +1,203 @@
+#include "readback/program_reader.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "support/text.h"
+
+namespace clpc {
+
+using ir::Vec3;
+
+namespace {
+constexpr size_t kChunk = 1 << 20;
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+}  // namespace
+
+ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m) {
+  use_offsets_ = !info.offsets.empty();
+  if (use_offsets_) {
+    reference_height_ = m.offsets.reference_height;
+    // Set by hand on the machine: the values clpc computed (and listed in the head).
+    if (m.offsets.table == OffsetTable::None)
+      for (const ir::WorkOffset& w : info.offsets) offsets_[w.index] = w.machine;
+    // The frames the operator turns the part to: all of them without rotaries, the setups
+    // beyond the rotaries' reach with.
+    for (const ir::WorkOffset& w : info.offsets)
+      if (!m.kinematics.has_rotaries() || w.setup > 1) setup_turns_[w.index] = w.frame.rotation;
+  }
+}
+
+const ir::Mat3& ProgramReader::setup_turn(int reg) const {
+  static const ir::Mat3 identity = ir::Mat3::Identity();
+  auto it = setup_turns_.find(reg);
+  return it == setup_turns_.end() ? identity : it->second;
+}
+
+ProgramReader::~ProgramReader() {
+  if (file_) std::fclose(file_);
+}
+
+bool ProgramReader::open(const std::string& path, std::string& error) {
+  file_ = std::fopen(path.c_str(), "rb");
+  if (!file_) {
+    error = "cannot read '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+bool ProgramReader::read_line(std::string& line) {
+  line.clear();
+  for (;;) {
+    size_t nl = buf_.find('\n', buf_pos_);
+    if (nl != std::string::npos) {
+      line.append(buf_, buf_pos_, nl - buf_pos_);
+      buf_pos_ = nl + 1;
+      return true;
+    }
+    line.append(buf_, buf_pos_, std::string::npos);
+    buf_.clear();
+    buf_pos_ = 0;
+    if (eof_) return !line.empty();
+    buf_.resize(kChunk);
+    size_t n = std::fread(buf_.data(), 1, kChunk, file_);
+    buf_.resize(n);
+    if (n < kChunk) eof_ = true;
+  }
+}
+
+kin::Angles ProgramReader::angles(const std::array<double, 3>& abc) const {
+  kin::Angles a{0, 0};
+  const auto& r = m_.kinematics.rotaries;
+  for (size_t i = 0; i < r.size() && i < a.size(); ++i) a[i] = abc[size_t(r[i].name[0] - 'A')];
+  return a;
+}
+
+// Control coordinates -> tool tip in the part frame. With tool-centre-point control X Y Z
+// are the tip in the part frame already; with a dynamic work offset they are turned with the
+// table about the part zero; otherwise they are machine axes, in the work offset's frame.
+Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin::Angles& a) const {
+  const KinematicsSettings& k = m_.kinematics;
+  if (!k.has_rotaries() && !use_offsets_) return p;
+  if (s.tcp) return p;
+  if (s.dwo) return kin::table_rotation(k, a).transpose() * p;
+  // A setup of its own (no rotaries): the register's frame turned the part, its Z up.
+  Vec3 machine = setup_turn(s.work_offset) * p;
+  double height = 0;
+  if (use_offsets_) {
+    auto it = offsets_.find(s.work_offset);
+    if (it != offsets_.end()) machine += it->second;
+    height = reference_height_;
+  }
+  double pivot = k.pivot;
+  if (const ir::ToolInfo* t = info_.tool(s.tool)) pivot += t->length * ir::mm_per_unit(info_.units) / ir::mm_per_unit(m_.units);
+  return kin::part_tip(k, a, machine, pivot) - Vec3(0, 0, height);
+}
+
+Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
+  const gcode::Segment& r = s.raw;
+  kin::Angles a0 = angles(r.rotary_start), a1 = angles(r.rotary), a{0, 0};
+  for (size_t i = 0; i < a.size(); ++i) a[i] = a0[i] + t * (a1[i] - a0[i]);
+  return part_point(r, r.start + t * (r.end - r.start), a);
+}
+
+void ProgramReader::account(const gcode::Segment& s) {
+  ProgramTotals& t = totals_;
+  const bool known = finite(s.start) && finite(s.end);
+  double len = 0;
+  if (known) {
+    if (s.kind == gcode::Segment::Kind::Arc) {
+      double rise = (s.end - s.start).dot(s.normal);
+      len = std::hypot(s.start_radius * s.sweep * 3.14159265358979323846 / 180, rise);
+    } else {
+      len = (s.end - s.start).norm();
+    }
+  }
+  switch (s.kind) {
+    case gcode::Segment::Kind::Rapid: {
+      ++t.rapids;
+      t.rapid_length += len;
+      if (!known) break;
+      double longest = (s.end - s.start).cwiseAbs().maxCoeff();
+      if (m_.rapid_rate > 0) t.rapid_minutes += longest / m_.rapid_rate;
+      else if (longest > 0) t.rapid_time_known = false;
+      break;
+    }
+    case gcode::Segment::Kind::Feed:
+    case gcode::Segment::Kind::Arc: {
+      ++(s.kind == gcode::Segment::Kind::Arc ? t.arcs : t.feeds);
+      t.feed_length += len;
+      if (s.inverse_time) {
+        if (s.feed > 0) t.feed_minutes += 1 / s.feed;
+      } else if (len > 0) {
+        double rate = s.per_rev ? s.feed * s.rpm : s.feed;
+        if (rate > 0) t.feed_minutes += len / rate;
+        else t.feed_time_known = false;
+      }
+      break;
+    }
+  }
+}
+
+void ProgramReader::take_events() {
+  gcode::Result& r = reader_.result();
+  for (const gcode::Event& e : r.events) {
+    switch (e.kind) {
+      case gcode::Event::Kind::OffsetSet:
+        if (use_offsets_) offsets_[e.reg] = e.v;
+        break;
+      case gcode::Event::Kind::ToolChange:
+        ++totals_.tool_changes;
+        if (m_.tool_change_time > 0) totals_.tool_change_minutes += m_.tool_change_time / 60;
+        else totals_.tool_change_time_known = false;
+        break;
+      case gcode::Event::Kind::Dwell: totals_.dwell_minutes += e.value / 60; break;
+      case gcode::Event::Kind::CycleStart: ++totals_.cycle_holes; break;
+      default: break;
+    }
+  }
+  r.events.clear();
+}
+
+bool ProgramReader::next(TipSegment& out) {
+  gcode::Result& r = reader_.result();
+  while (next_segment_ >= r.segments.size()) {
+    r.segments.clear();
+    next_segment_ = 0;
+    if (!read_line(line_)) return false;
+    ++totals_.lines;
+    totals_.bytes += long(line_.size()) + 1;
+    reader_.line(line_);
+    totals_.blocks = r.blocks;
+    take_events();  // an offset set on a line applies to that line's own motion (G10 comes first)
+  }
+  const gcode::Segment& s = r.segments[next_segment_++];
+  account(s);
+  out.raw = s;
+  const kin::Angles a0 = angles(s.rotary_start), a1 = angles(s.rotary);
+  out.start = part_point(s, s.start, a0);
+  out.end = part_point(s, s.end, a1);
+  out.rotates = a0 != a1;
+  out.axis = setup_turn(s.work_offset) *
+             (m_.kinematics.has_rotaries() ? kin::tool_axis_in_part(m_.kinematics, a1) : Vec3::UnitZ());
+  if (s.kind == gcode::Segment::Kind::Arc) {
+    out.center = part_point(s, s.center, a1);
+    out.normal = s.tcp ? s.normal
+                 : !m_.kinematics.has_rotaries()
+                     ? Vec3(setup_turn(s.work_offset) * s.normal)
+                     : Vec3(setup_turn(s.work_offset) * kin::table_rotation(m_.kinematics, a1).transpose() * s.normal);
+  }
+  out.index = index_++;
+  return true;
+}
+
+std::vector<gcode::Problem> ProgramReader::take_problems() {
+  std::vector<gcode::Problem> p;
+  p.swap(reader_.result().problems);
+  return p;
+}
+
+}  // namespace clpc

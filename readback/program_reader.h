@@ -1,0 +1,81 @@
+// An emitted program read back, a line at a time, as tool-tip segments in the part frame (the
+// CL's frame, in output units): through the work offsets the program sets — or, where the
+// machine's offsets are set by hand (offsets.table = "none"), the ones clpc computed — the
+// rotary positions and the machine's kinematics. Shared by clpc verify and clpc plot; memory
+// is bounded by the longest line, whatever the program's size.
+#pragma once
+
+#include <cstdio>
+#include <map>
+#include <ostream>
+#include <string>
+
+#include "readback/gcode_interp.h"
+#include "machine/kinematics.h"
+#include "machine/machine.h"
+#include "support/source.h"
+#include "ir/ir.h"
+
+namespace clpc {
+
+struct TipSegment {
+  gcode::Segment raw;       // as the control reads it (work-offset frame, machine axes)
+  ir::Vec3 start, end;      // tool tip, part frame
+  ir::Vec3 axis;            // tool axis at the end, part frame
+  ir::Vec3 center, normal;  // arcs, part frame
+  bool rotates = false;     // the rotaries turn during it
+  int index = 0;            // 0, 1, ... in program order
+};
+
+// What the program does besides moving, as read.
+struct ProgramTotals {
+  long lines = 0, bytes = 0, blocks = 0;
+  long rapids = 0, feeds = 0, arcs = 0, cycle_holes = 0, tool_changes = 0;
+  double rapid_length = 0, feed_length = 0;      // output units (tool tip in the program's frame)
+  double feed_minutes = 0, rapid_minutes = 0, dwell_minutes = 0, tool_change_minutes = 0;
+  bool rapid_time_known = true, feed_time_known = true, tool_change_time_known = true;
+
+  double total_minutes() const { return feed_minutes + rapid_minutes + dwell_minutes + tool_change_minutes; }
+  bool time_complete() const { return feed_time_known && rapid_time_known && tool_change_time_known; }
+};
+
+class ProgramReader {
+ public:
+  // `info`: the compile's program tables (tools for lengths, the offset table).
+  ProgramReader(const Machine& m, const ir::ProgramInfo& info);
+  ~ProgramReader();
+  bool open(const std::string& path, std::string& error);
+  // The next segment, false at the end of the program.
+  bool next(TipSegment& s);
+  // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
+  ir::Vec3 tip_at(const TipSegment& s, double t) const;
+  const ProgramTotals& totals() const { return totals_; }
+  // Problems the reader found (a control would alarm, or the reader cannot follow), drained.
+  std::vector<gcode::Problem> take_problems();
+
+ private:
+  bool read_line(std::string& line);
+  void take_events();
+  void account(const gcode::Segment& s);
+  ir::Vec3 part_point(const gcode::Segment& s, const ir::Vec3& p, const kin::Angles& a) const;
+  kin::Angles angles(const std::array<double, 3>& abc) const;
+
+  const Machine& m_;
+  const ir::ProgramInfo& info_;
+  gcode::Reader reader_;
+  std::FILE* file_ = nullptr;
+  std::string buf_, line_;
+  size_t buf_pos_ = 0;
+  bool eof_ = false;
+  size_t next_segment_ = 0;  // in reader_.result().segments
+  int index_ = 0;
+  bool use_offsets_ = false;           // the offset table is in force
+  std::map<int, ir::Vec3> offsets_;    // register -> machine offset (output units)
+  // Machines without rotaries: register -> the turn of its setup (a frame cut with its Z up)
+  std::map<int, ir::Mat3> setup_turns_;
+  const ir::Mat3& setup_turn(int reg) const;
+  double reference_height_ = 0;
+  ProgramTotals totals_;
+};
+
+}  // namespace clpc

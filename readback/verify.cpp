@@ -1,0 +1,762 @@
+// clpc verify. The reference is the CL data itself, lowered again with only the passes that
+// give it meaning (arc-direction decides which way each CIRCLE turns; drill-cycles turns a
+// CYCLE's GOTOs into holes with their depths). The program is read back by the independent
+// reader (readback/gcode_interp.cpp) into tool-tip segments in the part frame
+// (readback/program_reader.cpp). The two are walked together, one CL record at a time, with a bounded
+// window of program segments:
+//   - a CL point must be the end of a segment within the tolerance (and its tool axis within
+//     the axis tolerance), reached in order: the segments passed over on the way must lie on
+//     the CL path between the previous point and this one (rapids and canned-cycle motion
+//     excepted: positioning is the post's business);
+//   - a CL feed must not be reached by a rapid;
+//   - a CL arc must be followed: points sampled along it lie within the tolerance of the
+//     program's path, and the program's arcs stay on it;
+//   - a hole must be drilled to its bottom (along its axis);
+//   - a groove's cutting points (lathe) must lie on the program's path in its section;
+//   - rotaries stay within their limits, the program within the machine's travel;
+//   - nothing the reader flags (arc radii, missing feeds, unknown codes) goes unreported.
+#include "readback/verify.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <iomanip>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "ir/arc_geometry.h"
+#include "support/text.h"
+#include "machine/format.h"
+
+namespace clpc {
+
+using ir::Vec3;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr size_t kMaxLookahead = 1 << 16;  // segments searched for one CL point
+constexpr size_t kMaxStored = 50;          // problems kept in the report
+
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+double point_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  Vec3 ab = b - a;
+  double l2 = ab.squaredNorm();
+  double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+std::string xyz(const Vec3& v) {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%.4f, %.4f, %.4f)", v.x(), v.y(), v.z());
+  return b;
+}
+
+std::string fixed(double v, int decimals) {
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
+// A program arc as an IR arc (part frame), for the arc geometry functions.
+ir::Arc as_arc(const TipSegment& s) {
+  ir::Arc a;
+  a.start = s.start;
+  a.end = s.end;
+  a.center = s.center;
+  a.axis = s.normal;
+  a.radius = s.raw.start_radius;
+  a.dir = s.raw.ccw ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
+  a.sweep = s.raw.sweep;
+  return a;
+}
+
+class Comparison : public ProgramSink {
+ public:
+  Comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
+      : m_(m), info_(info), rd_(rd), d_(d), rep_(rep), tol_(rep.tolerance), axis_tol_(rep.axis_tolerance) {
+    k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m.units);
+    five_axis_ = m.kinematics.has_rotaries();
+    increment_ = std::abs(dequantize(1, m.format('Z')));
+    table_ = !info.offsets.empty();
+  }
+
+  void operation(const ir::Operation& op) override {
+    for (const ir::Instr& in : op.body) {
+      loc_ = in.loc;
+      std::visit(
+          [&](const auto& x) {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, ir::Feed>) {
+              cl_feed_ = x;
+              cl_feed_loc_ = loc_;
+              have_cl_feed_ = true;
+            } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {
+              std::string why;  // the compile reports a machine without the axis
+              indexing_.apply(m_.kinematics, x, why);
+            } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
+              frame_ = x.frame;
+            } else if constexpr (std::is_same_v<T, ir::Move>) {
+              Vec3 p = model(x.point), a = model_dir(x.axis);
+              if (x.kind == ir::MoveKind::From) {
+                prev_ = p;
+                have_prev_ = true;
+              } else if (groove_) {
+                groove_point(p, x.kind == ir::MoveKind::Rapid);
+              } else {
+                point(p, a, x.kind == ir::MoveKind::Rapid);
+              }
+            } else if constexpr (std::is_same_v<T, ir::Arc>) {
+              arc(x);
+            } else if constexpr (std::is_same_v<T, ir::Hole>) {
+              hole(op, x);
+            } else if constexpr (std::is_same_v<T, ir::GrooveOn>) {
+              begin_groove();
+            } else if constexpr (std::is_same_v<T, ir::GrooveMark>) {
+              if (x.begin) begin_groove();
+              else end_groove();
+            } else if constexpr (std::is_same_v<T, ir::CycleOff>) {
+              if (groove_) end_groove();
+            }
+          },
+          in.op);
+    }
+  }
+
+  // After the last CL record: what the program does beyond the CL path.
+  void end() override {
+    if (groove_) end_groove();
+    bool reported = false;
+    while (const TipSegment* s = peek(0)) {
+      if (!reported && s->raw.kind != gcode::Segment::Kind::Rapid && !s->raw.from_cycle && finite(s->start)) {
+        fail(loc_, s->raw.line, "the program cuts on past the last CL point (to " + xyz(s->end) + ")", kInf);
+        reported = true;
+      }
+      consume(1);
+    }
+    check_travel();
+  }
+
+ private:
+  // --- the program's segments, through a window -----------------------------------------
+
+  const TipSegment* peek(size_t i) {
+    while (win_.size() <= i) {
+      TipSegment t;
+      if (!rd_.next(t)) {
+        take_reader_problems();
+        return nullptr;
+      }
+      take_reader_problems();
+      win_.push_back(std::move(t));
+    }
+    return &win_[i];
+  }
+
+  void consume(size_t n) {
+    for (size_t i = 0; i < n && !win_.empty(); ++i) {
+      check_limits(win_.front());
+      if (finite(win_.front().end)) {
+        at_ = win_.front().end;
+        have_at_ = true;
+      }
+      win_.pop_front();
+    }
+  }
+
+  // A CL point within the tolerance of where the tool is already needs no block of its own
+  // (a move shorter than the output resolution is rightly dropped).
+  bool already_there(const Vec3& p) {
+    if (!have_at_ || (at_ - p).norm() > tol_) return false;
+    deviate((at_ - p).norm(), loc_, 0);
+    return true;
+  }
+
+  void take_reader_problems() {
+    for (const gcode::Problem& p : rd_.take_problems()) fail(loc_, p.line, "the program: " + p.message, 0);
+  }
+
+  // --- reporting -------------------------------------------------------------------------
+
+  void fail(SourceLoc loc, int gline, const std::string& msg, double deviation) {
+    std::string text = msg;
+    if (gline > 0) text += " [G-code line " + std::to_string(gline) + "]";
+    d_.error(loc, text);
+    ++rep_.problem_count;
+    if (rep_.problems.size() < kMaxStored) rep_.problems.push_back({loc, gline, msg, deviation});
+    if (deviation > 0) deviate(deviation, loc, gline);
+  }
+
+  void deviate(double d, SourceLoc loc, int gline) {
+    if (d > rep_.max_deviation || (std::isinf(d) && !std::isinf(rep_.max_deviation))) {
+      rep_.max_deviation = d;
+      rep_.max_loc = loc;
+      rep_.max_gcode_line = gline;
+    }
+  }
+
+  // --- CL geometry in the frame the program is read back in ------------------------------
+
+  // NX MSYS points are in the operation's frame; where the offset table put them in
+  // machine terms, the read-back gives model coordinates.
+  // Lowering gives every point and tool axis in the program frame; a rotary index record
+  // turns what follows it (kin::RotaryIndexing, as the kinematics pass does).
+  Vec3 model(const Vec3& p) const { return (indexing_.on ? Vec3(indexing_.rotation * p) : p) * k_; }
+  Vec3 model_dir(const Vec3& v) const { return indexing_.on ? Vec3(indexing_.rotation * v) : v; }
+
+  bool axis_ok(const TipSegment& s, const Vec3& axis) {
+    if (!five_axis_) return true;
+    double a = kin::angle_between(s.axis, axis.normalized());
+    rep_.max_axis_deviation = std::max(rep_.max_axis_deviation, a);
+    return a <= axis_tol_;
+  }
+
+  // May the walk pass over segment s on its way to the next CL point? Rapids and cycle
+  // motion always; feeds only on `on_path`.
+  template <class OnPath>
+  bool passable(const TipSegment& s, OnPath on_path, double& dev) {
+    dev = 0;
+    if (s.raw.kind == gcode::Segment::Kind::Rapid || s.raw.from_cycle) return true;
+    if (!finite(s.end)) return true;
+    if (on_last_hole_axis(s)) return true;
+    dev = on_path(s.end);
+    if (s.rotates && finite(s.start)) dev = std::max(dev, on_path(rd_.tip_at(s, 0.5)));
+    return dev <= tol_;
+  }
+
+  bool on_last_hole_axis(const TipSegment& s) const {
+    if (!have_hole_) return false;
+    auto off_axis = [&](const Vec3& p) {
+      Vec3 d = p - hole_point_;
+      return (d - d.dot(hole_axis_) * hole_axis_).norm();
+    };
+    return off_axis(s.end) <= tol_ && (!finite(s.start) || off_axis(s.start) <= tol_);
+  }
+
+  // Finds the segment that reaches `p`; returns its index in the window, or nothing (then
+  // `nearest`/`nearest_at` say how close the program came).
+  template <class OnPath>
+  std::optional<size_t> reach(const Vec3& p, OnPath on_path, double& nearest, size_t& nearest_at, std::vector<double>& passed,
+                              const Vec3* axis = nullptr) {
+    nearest = kInf;
+    nearest_at = 0;
+    passed.clear();
+    for (size_t j = 0; j < kMaxLookahead; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s) return std::nullopt;
+      if (finite(s->end)) {
+        double d = (s->end - p).norm();
+        if (d <= tol_) return nearest_end(j, d, on_path, passed, p, axis);
+        if (d < nearest) {
+          nearest = d;
+          nearest_at = j;
+        }
+      }
+      double dev;
+      if (!passable(*s, on_path, dev)) return std::nullopt;
+      passed.push_back(dev);
+    }
+    return std::nullopt;
+  }
+
+  // The programmed feed of a cutting block against the CL's: the same kind (per minute, per
+  // revolution), the same value within the machine's feeds.max_rounding (or its max_feed, the
+  // clamp); inverse-time blocks are the kinematics' and not compared.
+  void feed_ok(const TipSegment& s, const ir::Feed* cl) {
+    if (s.raw.kind == gcode::Segment::Kind::Rapid || s.raw.inverse_time || !cl || cl->mode == ir::FeedMode::InverseTime) return;
+    const bool per_rev = cl->mode == ir::FeedMode::PerRev;
+    double want = cl->value * k_;
+    if (!per_rev && m_.max_feed > 0 && want > m_.max_feed) want = m_.max_feed;
+    const std::string unit = std::string(m_.units == ir::Units::Inch ? "in" : "mm") + (per_rev ? "/rev" : "/min");
+    if (s.raw.per_rev != per_rev) {
+      fail(loc_, s.raw.line, std::string("the block feeds per ") + (s.raw.per_rev ? "revolution" : "minute") +
+                                 ", the CL's FEDRAT (line " + std::to_string(cl_feed_loc_.line) + ") per " +
+                                 (per_rev ? "revolution" : "minute"),
+           0);
+      return;
+    }
+    if (std::abs(s.raw.feed - want) > m_.feeds.max_rounding * want + 1e-12)
+      fail(loc_, s.raw.line, "the block's feed is " + fixed(s.raw.feed, 4) + " " + unit + ", the CL's " + fixed(want, 4) + " " + unit,
+           0);
+  }
+
+  // A tap's feed keeps its pitch: over the hole's depth the tap may drift from its thread by
+  // less than half an output increment.
+  void tap_ok(const TipSegment& s, const ir::CycleSpec& spec) {
+    const double pitch = spec.pitch * k_;
+    const double lead = s.raw.per_rev ? s.raw.feed : (s.raw.rpm > 0 ? s.raw.feed / s.raw.rpm : 0);
+    const double drift = std::abs(lead - pitch) * (spec.depth * k_) / pitch;
+    if (drift >= 0.5 * increment_)
+      fail(loc_, s.raw.line, "the tap advances " + fixed(lead, 6) + " a turn, its thread's pitch is " + fixed(pitch, 6) + ": " +
+                                 fixed(drift, 5) + " off at the bottom",
+           drift);
+  }
+
+  // Where blocks lie closer together than the tolerance (a five-axis finish in tiny steps),
+  // the first block end within it may not be the CL point's own: of the blocks that follow on
+  // the path with their ends within the tolerance, the one whose tool axis agrees, then the
+  // nearest.
+  template <class OnPath>
+  size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
+    auto axis_off = [&](const TipSegment& t) {
+      return five_axis_ && axis && kin::angle_between(t.axis, axis->normalized()) > axis_tol_;
+    };
+    size_t best = j;
+    bool best_off = axis_off(*peek(j));
+    std::vector<double> devs;  // of the segments after j passed over, in order
+    for (size_t k = j + 1; k < kMaxLookahead; ++k) {
+      double dev;
+      if (!passable(*peek(k - 1), on_path, dev)) break;
+      devs.push_back(dev);
+      const TipSegment* t = peek(k);
+      if (!t || !finite(t->end)) break;
+      double dk = (t->end - p).norm();
+      if (dk > tol_) break;
+      const bool off = axis_off(*t);
+      if ((best_off && !off) || (off == best_off && dk < d)) {
+        passed.insert(passed.end(), devs.begin(), devs.end());
+        devs.clear();
+        best = k;
+        best_off = off;
+        d = dk;
+      }
+    }
+    return best;
+  }
+
+  // A CL point not reached: report how close the program came, and resynchronise past the
+  // nearest segment when it was a near miss (a shifted point), not when the program went
+  // elsewhere (a dropped block): then the next CL point finds its own segment.
+  void missed(const Vec3& p, double nearest, size_t nearest_at, const char* what) {
+    const TipSegment* s = std::isfinite(nearest) ? peek(nearest_at) : nullptr;
+    std::string msg = std::string(what) + " " + xyz(p) + " is never reached";
+    if (s) msg += ": the program comes within " + fixed(nearest, 5) + " of it";
+    fail(loc_, s ? s->raw.line : 0, msg, std::isfinite(nearest) ? nearest : kInf);
+    if (s && nearest <= std::max(20 * tol_, 0.1 / ir::mm_per_unit(m_.units))) consume(nearest_at + 1);
+  }
+
+  // The segment at j reached CL point p: the segments before it were passed over.
+  void reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, const std::vector<double>& passed) {
+    for (size_t i = 0; i < j && i < passed.size(); ++i) deviate(passed[i], loc_, win_[i].raw.line);
+    const TipSegment& s = win_[j];
+    double d = (s.end - p).norm();
+    deviate(d, loc_, s.raw.line);
+    if (!axis_ok(s, axis))
+      fail(loc_, s.raw.line,
+           "the tool axis at this CL point is off by " + fixed(kin::angle_between(s.axis, axis.normalized()), 4) + " degrees",
+           0);
+    if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid)
+      fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
+    if (!rapid) feed_ok(s, have_cl_feed_ ? &cl_feed_ : nullptr);
+    if (s.rotates && have_prev_ && finite(s.start) && !rapid) {
+      // Five-axis without TCPC: the tip between the block's ends must stay on the CL line.
+      for (double t : {0.25, 0.5, 0.75}) {
+        double dev = point_segment(rd_.tip_at(s, t), prev_, p);
+        deviate(dev, loc_, s.raw.line);
+        if (dev > tol_) {
+          fail(loc_, s.raw.line, "while the rotaries turn the tool tip leaves the CL line by " + fixed(dev, 5), dev);
+          break;
+        }
+      }
+    }
+    consume(j + 1);
+  }
+
+  // --- CL records --------------------------------------------------------------------------
+
+  void point(const Vec3& p, const Vec3& axis, bool rapid) {
+    ++rep_.cl_points;
+    const Vec3 from = prev_;
+    const bool have_from = have_prev_;
+    auto on_path = [&](const Vec3& q) { return have_from ? point_segment(q, from, p) : 0.0; };
+    double nearest;
+    size_t at;
+    if (already_there(p)) {
+    } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) reached(*j, p, axis, rapid, passed_);
+    else missed(p, nearest, at, "CL point");
+    prev_ = p;
+    have_prev_ = true;
+    have_hole_ = false;
+  }
+
+  void arc(const ir::Arc& a0) {
+    ++rep_.cl_arcs;
+    ir::Arc a = a0;
+    a.start = model(a0.start);
+    a.end = model(a0.end);
+    a.center = model(a0.center);
+    a.axis = model_dir(a0.axis);
+    a.radius = a0.radius * k_;
+    auto on_arc = [&](const Vec3& q) { return arcgeo::distance_to_arc(a, q); };
+    double nearest;
+    size_t at;
+    const double length = a.radius * a.sweep * arcgeo::kPi / 180;
+    std::optional<size_t> j;
+    if (length <= tol_ && already_there(a.end)) {
+      // An arc shorter than the tolerance: the tool is there.
+    } else if (!(j = reach(a.end, on_arc, nearest, at, passed_))) {
+      missed(a.end, nearest, at, "the end of the CL arc");
+    } else {
+      // The program's path from the arc's start to its end, against the arc, both ways.
+      double worst = 0;
+      int worst_line = win_[*j].raw.line;
+      const int n = std::max(8, int(std::ceil(std::abs(a.sweep) / 5)));
+      // Samples along the CL arc meet the program's pieces in order; going back through them
+      // (a linearised circle run the wrong way) turns the other way as surely as G02 for G03.
+      int backwards = 0;
+      size_t last_piece = 0;
+      for (int i = 1; i < n; ++i) {
+        Vec3 q = arcgeo::point_at(a, double(i) / n);
+        double best = kInf;
+        int line = 0;
+        size_t piece = 0;
+        for (size_t s = 0; s <= *j; ++s) {
+          const TipSegment& g = win_[s];
+          if (!finite(g.start) || !finite(g.end)) continue;
+          double d = g.raw.kind == gcode::Segment::Kind::Arc ? arcgeo::distance_to_arc(as_arc(g), q) : point_segment(q, g.start, g.end);
+          if (d < best) {
+            best = d;
+            line = g.raw.line;
+            piece = s;
+          }
+        }
+        if (best > worst) {
+          worst = best;
+          worst_line = line;
+        }
+        if (i > 1 && piece < last_piece) ++backwards;
+        last_piece = piece;
+      }
+      // And each program arc turns the CL arc's way (a full circle's points cannot tell).
+      const double cl_sense = a.dir == ir::ArcDir::Ccw ? 1 : -1;
+      int reversed_line = 0;
+      for (size_t s = 0; s <= *j; ++s) {
+        const TipSegment& g = win_[s];
+        if (g.raw.kind != gcode::Segment::Kind::Arc) continue;
+        double along = g.normal.dot(a.axis.normalized());
+        if (std::abs(along) < 0.5) continue;  // another plane: the samples judge it
+        if ((g.raw.ccw ? 1 : -1) * (along > 0 ? 1 : -1) != cl_sense) reversed_line = g.raw.line;
+      }
+      if (reversed_line || backwards > n / 2) {
+        // Said as a machinist sees it: from the positive end of the nearest principal axis.
+        const Vec3 ax = a.axis.normalized();
+        int k = 0;
+        for (int c = 1; c < 3; ++c)
+          if (std::abs(ax[c]) > std::abs(ax[k])) k = c;
+        const bool ccw_seen = (cl_sense > 0) == (ax[k] > 0);
+        fail(loc_, reversed_line ? reversed_line : worst_line,
+             std::string("the program turns this CL arc the other way (the CL arc turns ") +
+                 (ccw_seen ? "counter-clockwise" : "clockwise") + " seen from +" + "XYZ"[k] + ")",
+             0);
+        deviate(worst, loc_, worst_line);
+        consume(*j + 1);
+        prev_ = a.end;
+        have_prev_ = true;
+        have_hole_ = false;
+        return;
+      }
+      for (size_t s = 0; s <= *j; ++s) {
+        const TipSegment& g = win_[s];
+        if (g.raw.kind != gcode::Segment::Kind::Arc || !finite(g.start)) continue;
+        double d = arcgeo::distance_to_arc(a, arcgeo::point_at(as_arc(g), 0.5));
+        if (d > worst) {
+          worst = d;
+          worst_line = g.raw.line;
+        }
+      }
+      if (worst > tol_) {
+        fail(loc_, worst_line,
+             "the CL arc is not followed: the program's path is " + fixed(worst, 5) + " from it (does it turn the other way?)",
+             worst);
+        consume(*j + 1);
+      } else {
+        deviate(worst, loc_, worst_line);
+        reached(*j, a.end, a.tool_axis, false, passed_);
+      }
+    }
+    prev_ = a.end;
+    have_prev_ = true;
+    have_hole_ = false;
+  }
+
+  void hole(const ir::Operation& op, const ir::Hole& h) {
+    ++rep_.cl_holes;
+    const ir::CycleSpec& spec = op.cycles[h.spec];
+    const Vec3 top = model(h.point), axis = model_dir(h.axis).normalized();
+    const Vec3 bottom = top - axis * (spec.depth * k_);
+    hole_point_ = top;
+    hole_axis_ = axis;
+    have_hole_ = true;
+    // On the way: rapids, cycle motion, and feeds along this hole's axis.
+    auto on_axis = [&](const Vec3& q) {
+      Vec3 d = q - top;
+      return (d - d.dot(axis) * axis).norm();
+    };
+    double nearest;
+    size_t at;
+    auto j = reach(bottom, on_axis, nearest, at, passed_);
+    if (!j) {
+      missed(bottom, nearest, at, "the bottom of the hole at");
+    } else {
+      const TipSegment& s = win_[*j];
+      deviate((s.end - bottom).norm(), loc_, s.raw.line);
+      if (s.raw.kind == gcode::Segment::Kind::Rapid)
+        fail(loc_, s.raw.line, "the hole's bottom is reached at rapid traverse", 0);
+      if (!axis_ok(s, axis)) fail(loc_, s.raw.line, "the hole is drilled with the tool off its axis", 0);
+      if (spec.kind == ir::CycleKind::Tap) {
+        tap_ok(s, spec);
+      } else {
+        ir::Feed f = have_cl_feed_ ? cl_feed_ : ir::Feed{0, ir::FeedMode::PerMinute};
+        if (spec.feed > 0) f = ir::Feed{spec.feed, spec.feed_mode};
+        feed_ok(s, f.value > 0 ? &f : nullptr);
+      }
+      consume(*j + 1);
+    }
+    prev_ = top;
+    have_prev_ = true;
+  }
+
+  // --- lathe grooves: the cycle's order is its own; every CL cut must be on its path --------
+
+  void begin_groove() {
+    groove_ = true;
+    groove_reach_ = 0;
+  }
+
+  void groove_point(const Vec3& p, bool rapid) {
+    prev_ = p;
+    have_prev_ = true;
+    if (rapid) return;
+    ++rep_.cl_groove_points;
+    double best = kInf;
+    size_t best_at = 0;
+    for (size_t j = 0; j < kMaxLookahead; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s) break;
+      if (!finite(s->start) || !finite(s->end)) continue;
+      double d = point_segment(p, s->start, s->end);
+      if (d < best) {
+        best = d;
+        best_at = j;
+      }
+      if (d <= tol_ && s->raw.kind != gcode::Segment::Kind::Rapid) break;
+      // Past the groove's own motion: stop at the first feed that is not a cycle's.
+      if (!s->raw.from_cycle && s->raw.kind != gcode::Segment::Kind::Rapid && j > groove_reach_ + 64) break;
+    }
+    if (best <= tol_) {
+      deviate(best, loc_, win_[best_at].raw.line);
+      groove_reach_ = std::max(groove_reach_, best_at + 1);
+    } else {
+      fail(loc_, std::isfinite(best) ? win_[best_at].raw.line : 0,
+           "groove cut " + xyz(p) + " is not made: the program's path passes " + fixed(best, 5) + " from it", best);
+    }
+  }
+
+  void end_groove() {
+    groove_ = false;
+    consume(groove_reach_);
+    groove_reach_ = 0;
+  }
+
+  // --- limits --------------------------------------------------------------------------
+
+  void check_limits(const TipSegment& s) {
+    const KinematicsSettings& k = m_.kinematics;
+    for (const RotaryAxis& r : k.rotaries) {
+      if (r.cyclic != Cyclic::No) continue;
+      double v = s.raw.rotary[size_t(r.name[0] - 'A')];
+      double slack = std::abs(dequantize(1, m_.format(r.name[0])));
+      if (v < r.min - slack || v > r.max + slack) {
+        if (!limit_reported_[size_t(r.name[0] - 'A')]++)
+          fail(loc_, s.raw.line, r.name + fixed(v, 3) + " is beyond the " + r.name + " axis's limits (" + num_text(r.min) + " to " +
+                                     num_text(r.max) + ")",
+               0);
+      }
+    }
+    // The machine position of the tool's reference point, for travel.
+    if (!finite(s.raw.end)) return;
+    Vec3 pos = s.raw.end;
+    if (s.raw.tcp) {
+      kin::Angles a{0, 0};
+      for (size_t i = 0; i < k.rotaries.size() && i < 2; ++i) a[i] = s.raw.rotary[size_t(k.rotaries[i].name[0] - 'A')];
+      pos = kin::machine_point(k, a, s.raw.end, k.pivot);
+    }
+    for (int i = 0; i < 3; ++i) {
+      if (pos[i] < lo_[i]) lo_[i] = pos[i], lo_line_[i] = s.raw.line, lo_loc_[i] = loc_;
+      if (pos[i] > hi_[i]) hi_[i] = pos[i], hi_line_[i] = s.raw.line, hi_loc_[i] = loc_;
+    }
+  }
+
+  void check_travel() {
+    const LinearLimits& t = m_.kinematics.travel;
+    for (int i = 0; i < 3; ++i) {
+      if (!t.set || !(lo_[i] <= hi_[i])) continue;
+      const double tmin = t.min[i], tmax = t.max[i];
+      const char axis = "XYZ"[i];
+      const double slack = tol_;
+      if (m_.kinematics.work_zero_set) {
+        double zero = m_.kinematics.work_zero[i];
+        if (zero + lo_[i] < tmin - slack)
+          fail(lo_loc_[i], lo_line_[i], std::string(1, axis) + " goes to " + fixed(zero + lo_[i], 4) + " in machine coordinates, beyond its travel (" +
+                                            num_text(tmin) + " to " + num_text(tmax) + ")", 0);
+        if (zero + hi_[i] > tmax + slack)
+          fail(hi_loc_[i], hi_line_[i], std::string(1, axis) + " goes to " + fixed(zero + hi_[i], 4) + " in machine coordinates, beyond its travel (" +
+                                            num_text(tmin) + " to " + num_text(tmax) + ")", 0);
+      } else if (hi_[i] - lo_[i] > tmax - tmin + slack) {
+        fail(hi_loc_[i], hi_line_[i], "the program spans " + fixed(hi_[i] - lo_[i], 4) + " in " + axis + ", more than the machine's travel of " +
+                                          num_text(tmax - tmin), 0);
+      }
+    }
+  }
+
+  const Machine& m_;
+  const ir::ProgramInfo& info_;
+  ProgramReader& rd_;
+  Diagnostics& d_;
+  VerifyReport& rep_;
+  const double tol_, axis_tol_;
+  double k_ = 1;
+  bool five_axis_ = false, table_ = false;
+  std::deque<TipSegment> win_;
+  std::vector<double> passed_;
+  SourceLoc loc_;
+  Vec3 prev_ = Vec3::Zero();  // the last CL point
+  bool have_prev_ = false;
+  Vec3 at_ = Vec3::Zero();    // where the program has taken the tool (the last segment passed)
+  bool have_at_ = false;
+  ir::Frame frame_;
+  kin::RotaryIndexing indexing_;
+  ir::Feed cl_feed_;          // the CL's feed in force
+  SourceLoc cl_feed_loc_;
+  bool have_cl_feed_ = false;
+  double increment_ = 0;      // one output increment of Z
+  Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ();
+  bool have_hole_ = false;
+  bool groove_ = false;
+  size_t groove_reach_ = 0;
+  int limit_reported_[26] = {};
+  double lo_[3] = {kInf, kInf, kInf}, hi_[3] = {-kInf, -kInf, -kInf};
+  int lo_line_[3] = {}, hi_line_[3] = {};
+  SourceLoc lo_loc_[3], hi_loc_[3];
+};
+
+}  // namespace
+
+double default_tolerance(const Machine& m) {
+  double inc = 0;
+  for (char c : {'X', 'Y', 'Z'}) {
+    const AddressFormat& f = m.format(c);
+    inc = std::max(inc, std::abs(dequantize(1, f)) / (f.scale > 0 ? f.scale : 1));
+  }
+  return m.arcs.tolerance + inc;
+}
+
+std::unique_ptr<ProgramSink> make_comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d,
+                                             VerifyReport& rep) {
+  return std::make_unique<Comparison>(m, info, rd, d, rep);
+}
+
+namespace {
+
+std::string minutes_text(double min) {
+  long s = std::lround(min * 60);
+  char b[48];
+  if (s >= 3600) std::snprintf(b, sizeof b, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else std::snprintf(b, sizeof b, "%ld:%02ld", s / 60, s % 60);
+  return b;
+}
+
+std::string json_string(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\', o += c;
+    else if (static_cast<unsigned char>(c) < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      o += b;
+    } else o += c;
+  }
+  return o + "\"";
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[48];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+}  // namespace
+
+void print_report(std::ostream& o, const VerifyReport& r) {
+  const char* u = r.units == ir::Units::Inch ? "in" : "mm";
+  const int dec = r.units == ir::Units::Inch ? 5 : 4;
+  o << "clpc verify: " << r.input << " on " << r.machine << ", tolerance " << fixed(r.tolerance, dec) << " " << u;
+  if (r.five_axis) o << ", tool axis " << r.axis_tolerance << " deg";
+  o << "\n";
+  if (!r.compiled) {
+    o << "  result: FAIL (the CL file does not compile)\n";
+    return;
+  }
+  const ProgramTotals& p = r.program;
+  o << "  CL path:    " << r.cl_points << " points, " << r.cl_arcs << " arcs, " << r.cl_holes << " holes";
+  if (r.cl_groove_points) o << ", " << r.cl_groove_points << " groove cuts";
+  o << "\n";
+  o << "  program:    " << p.lines << " lines (" << p.bytes << " bytes), " << p.blocks << " blocks; " << p.rapids << " rapids, "
+    << p.feeds << " feeds, " << p.arcs << " arcs, " << p.cycle_holes << " cycles, " << p.tool_changes << " tool changes\n";
+  o << "  path:       " << fixed(p.feed_length, 1) << " " << u << " cutting, " << fixed(p.rapid_length, 1) << " " << u << " rapid\n";
+  o << "  cycle time: " << minutes_text(p.total_minutes()) << (p.time_complete() ? "" : "+") << " (cutting "
+    << minutes_text(p.feed_minutes) << (p.feed_time_known ? "" : "+, some feeds unknown") << ", rapids "
+    << minutes_text(p.rapid_minutes) << (p.rapid_time_known ? "" : "+, rapid rate unknown") << ", dwells "
+    << minutes_text(p.dwell_minutes) << ", tool changes " << minutes_text(p.tool_change_minutes)
+    << (p.tool_change_time_known ? "" : "+, tool change time unknown") << ")\n";
+  o << "  deviation:  max ";
+  if (std::isinf(r.max_deviation)) o << "unbounded (a CL point never reached)";
+  else o << fixed(r.max_deviation, dec) << " " << u;
+  if (r.max_loc.valid()) o << " at " << r.input << ":" << r.max_loc.line << ":" << r.max_loc.col;
+  if (r.max_gcode_line) o << " (G-code line " << r.max_gcode_line << ")";
+  if (r.max_axis_deviation > 0) o << "; tool axis max " << fixed(r.max_axis_deviation, 4) << " deg";
+  o << "\n";
+  if (r.ok) o << "  result: PASS\n";
+  else o << "  result: FAIL (" << r.problem_count << " problem" << (r.problem_count == 1 ? "" : "s") << ")\n";
+}
+
+void print_report_json(std::ostream& o, const VerifyReport& r) {
+  const ProgramTotals& p = r.program;
+  o << "{\n";
+  o << "  \"input\": " << json_string(r.input) << ",\n";
+  o << "  \"machine\": " << json_string(r.machine) << ",\n";
+  o << "  \"units\": \"" << (r.units == ir::Units::Inch ? "inch" : "mm") << "\",\n";
+  o << "  \"tolerance\": " << json_number(r.tolerance) << ",\n";
+  o << "  \"axis_tolerance_deg\": " << json_number(r.axis_tolerance) << ",\n";
+  o << "  \"compiled\": " << (r.compiled ? "true" : "false") << ",\n";
+  o << "  \"ok\": " << (r.ok ? "true" : "false") << ",\n";
+  o << "  \"max_deviation\": {\"value\": " << json_number(r.max_deviation) << ", \"line\": " << r.max_loc.line
+    << ", \"column\": " << r.max_loc.col << ", \"gcode_line\": " << r.max_gcode_line << "},\n";
+  o << "  \"max_axis_deviation_deg\": " << json_number(r.max_axis_deviation) << ",\n";
+  o << "  \"cl\": {\"points\": " << r.cl_points << ", \"arcs\": " << r.cl_arcs << ", \"holes\": " << r.cl_holes
+    << ", \"groove_cuts\": " << r.cl_groove_points << "},\n";
+  o << "  \"program\": {\"lines\": " << p.lines << ", \"bytes\": " << p.bytes << ", \"blocks\": " << p.blocks
+    << ", \"rapids\": " << p.rapids << ", \"feeds\": " << p.feeds << ", \"arcs\": " << p.arcs << ", \"cycles\": " << p.cycle_holes
+    << ", \"tool_changes\": " << p.tool_changes << ", \"feed_length\": " << json_number(p.feed_length)
+    << ", \"rapid_length\": " << json_number(p.rapid_length) << "},\n";
+  o << "  \"cycle_time_s\": {\"total\": " << json_number(p.total_minutes() * 60)
+    << ", \"cutting\": " << json_number(p.feed_minutes * 60) << ", \"rapid\": " << json_number(p.rapid_minutes * 60)
+    << ", \"dwell\": " << json_number(p.dwell_minutes * 60) << ", \"tool_change\": " << json_number(p.tool_change_minutes * 60)
+    << ", \"complete\": " << (p.time_complete() ? "true" : "false") << "},\n";
+  o << "  \"problem_count\": " << r.problem_count << ",\n";
+  o << "  \"problems\": [";
+  for (size_t i = 0; i < r.problems.size(); ++i) {
+    const VerifyProblem& q = r.problems[i];
+    o << (i ? ",\n    " : "\n    ") << "{\"line\": " << q.loc.line << ", \"column\": " << q.loc.col << ", \"gcode_line\": " << q.gcode_line
+      << ", \"message\": " << json_string(q.message) << ", \"deviation\": " << json_number(q.deviation) << "}";
+  }
+  o << (r.problems.empty() ? "]\n" : "\n  ]\n") << "}\n";
+}
+
+}  // namespace clpc

@@ -1,0 +1,262 @@
+#include "support/output.h"
+
+#include <pthread.h>
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
+namespace clpc {
+
+namespace {
+
+// Temporary outputs still open, for the signal handler. Fixed slots: the handler may only
+// touch async-signal-safe things.
+constexpr int kSlots = 64;
+char g_temp_paths[kSlots][4096];
+std::atomic<bool> g_temp_used[kSlots];
+
+int register_temp(const std::string& p) {
+  if (p.size() >= sizeof g_temp_paths[0]) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (g_temp_used[i].compare_exchange_strong(expected, true)) {
+      std::memcpy(g_temp_paths[i], p.c_str(), p.size() + 1);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void unregister_temp(const std::string& p) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_temp_used[i] && p == g_temp_paths[i]) g_temp_used[i] = false;
+}
+
+void on_signal(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_temp_used[i]) unlink(g_temp_paths[i]);
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+std::string dir_of(const std::string& path) {
+  size_t slash = path.rfind('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+std::string base_of(const std::string& path) {
+  size_t slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// ".<name>.clpc-<pid>-XXXXXX": removes those whose pid no longer runs.
+void remove_stale_temps(const std::string& dir, const std::string& base) {
+  std::string prefix = "." + base + ".clpc-";
+  DIR* d = opendir(dir.c_str());
+  if (!d) return;
+  while (dirent* e = readdir(d)) {
+    std::string n = e->d_name;
+    if (n.compare(0, prefix.size(), prefix) != 0) continue;
+    long pid = std::strtol(n.c_str() + prefix.size(), nullptr, 10);
+    if (pid <= 0) continue;
+    if (kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+    unlink((dir + "/" + n).c_str());
+  }
+  closedir(d);
+}
+
+bool write_all(int fd, const char* p, size_t n) {
+  while (n) {
+    ssize_t w = ::write(fd, p, n);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    p += w;
+    n -= size_t(w);
+  }
+  return true;
+}
+
+}  // namespace
+
+void install_output_cleanup_handlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction sa {};
+      sa.sa_handler = on_signal;
+      sigemptyset(&sa.sa_mask);
+      sigaction(s, &sa, nullptr);
+    }
+  });
+}
+
+OutputFile::~OutputFile() { discard(); }
+
+bool OutputFile::open(const std::string& path, std::string& error) {
+  path_ = path;
+  to_stdout_ = path == "-";
+  buf_.reserve(kBuffer);
+  std::string dir, tmpl;
+  if (to_stdout_) {
+    const char* t = std::getenv("TMPDIR");
+    dir = t && *t ? t : "/tmp";
+    tmpl = dir + "/.clpc-stdout.clpc-" + std::to_string(getpid()) + "-XXXXXX";
+  } else {
+    dir = dir_of(path);
+    std::string base = base_of(path);
+    remove_stale_temps(dir, base);
+    tmpl = dir + "/." + base + ".clpc-" + std::to_string(getpid()) + "-XXXXXX";
+  }
+  fd_ = mkstemp(tmpl.data());
+  if (fd_ < 0) {
+    error = "cannot create the output in '" + dir + "': " + strerror(errno);
+    return false;
+  }
+  temp_ = tmpl;
+  register_temp(temp_);
+  if (to_stdout_) {
+    unlink(temp_.c_str());  // anonymous: nothing to clean up, whatever happens
+    unregister_temp(temp_);
+  } else {
+    // mkstemp makes 0600; a program file should get the usual permissions.
+    mode_t um = umask(0);
+    umask(um);
+    fchmod(fd_, 0666 & ~um);
+  }
+  return true;
+}
+
+void OutputFile::flush() {
+  if (null_) buf_.clear();
+  if (fd_ < 0 || buf_.empty()) return;
+  if (!thread_.joinable()) {
+    writing_.reserve(kBuffer);
+    thread_ = std::thread([this] { writer(); });
+  }
+  std::unique_lock<std::mutex> g(lock_);
+  changed_.wait(g, [&] { return !write_pending_; });
+  writing_.swap(buf_);
+  write_pending_ = true;
+  g.unlock();
+  changed_.notify_all();
+  buf_.clear();
+}
+
+void OutputFile::writer() {
+  pthread_setname_np(pthread_self(), "clpc-writer");
+  std::unique_lock<std::mutex> g(lock_);
+  for (;;) {
+    changed_.wait(g, [&] { return write_pending_ || writer_stop_; });
+    if (!write_pending_) return;
+    g.unlock();
+    bool ok = failed_ || write_all(fd_, writing_.data(), writing_.size());
+    int err = errno;
+    g.lock();
+    if (!ok && !failed_) {
+      failed_ = true;
+      errno_ = err;
+    }
+    writing_.clear();
+    write_pending_ = false;
+    changed_.notify_all();
+  }
+}
+
+void OutputFile::finish_writes() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> g(lock_);
+    writer_stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+  writer_stop_ = false;
+}
+
+bool OutputFile::commit(std::string& error) {
+  if (fd_ < 0) {
+    error = "no output open";
+    return false;
+  }
+  // The last buffer, written here once the writer has done its part.
+  finish_writes();
+  if (!buf_.empty() && !failed_ && !write_all(fd_, buf_.data(), buf_.size())) {
+    failed_ = true;
+    errno_ = errno;
+  }
+  buf_.clear();
+  if (failed_) {
+    error = "cannot write the output: " + std::string(strerror(errno_));
+    discard();
+    return false;
+  }
+  if (to_stdout_) {
+    char buf[1 << 16];
+    off_t off = 0;
+    for (;;) {
+      ssize_t n = pread(fd_, buf, sizeof buf, off);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        error = "cannot read back the output: " + std::string(strerror(errno));
+        discard();
+        return false;
+      }
+      if (n == 0) break;
+      if (!write_all(1, buf, size_t(n))) {
+        error = "cannot write to standard output: " + std::string(strerror(errno));
+        discard();
+        return false;
+      }
+      off += n;
+    }
+    close(fd_);
+    fd_ = -1;
+    return true;
+  }
+  if (close(fd_) != 0) {
+    fd_ = -1;
+    error = "cannot write the output: " + std::string(strerror(errno));
+    discard();
+    return false;
+  }
+  fd_ = -1;
+  if (rename(temp_.c_str(), path_.c_str()) != 0) {
+    error = "cannot write '" + path_ + "': " + strerror(errno);
+    unlink(temp_.c_str());
+    unregister_temp(temp_);
+    temp_.clear();
+    return false;
+  }
+  unregister_temp(temp_);
+  temp_.clear();
+  return true;
+}
+
+void OutputFile::discard() {
+  finish_writes();
+  if (fd_ >= 0) {
+    close(fd_);
+    fd_ = -1;
+  }
+  if (!temp_.empty() && !to_stdout_) {
+    unlink(temp_.c_str());
+    unregister_temp(temp_);
+  }
+  temp_.clear();
+  buf_.clear();
+}
+
+}  // namespace clpc

@@ -1,0 +1,148 @@
+#include "support/source.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+namespace clpc {
+
+namespace {
+
+// Copies all of `in` into an anonymous temporary file and returns its descriptor.
+int spool_to_temp(int in, std::string& error) {
+  const char* dir = std::getenv("TMPDIR");
+  std::string tmpl = std::string(dir && *dir ? dir : "/tmp") + "/clpc-stdin-XXXXXX";
+  int fd = mkstemp(tmpl.data());
+  if (fd < 0) {
+    error = "cannot create a temporary file to hold standard input: " + std::string(strerror(errno));
+    return -1;
+  }
+  unlink(tmpl.c_str());  // gone when closed, whatever happens
+  std::string buf(1 << 20, '\0');
+  for (;;) {
+    ssize_t n = read(in, buf.data(), buf.size());
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      error = "cannot read standard input: " + std::string(strerror(errno));
+      close(fd);
+      return -1;
+    }
+    for (ssize_t done = 0; done < n;) {
+      ssize_t w = write(fd, buf.data() + done, size_t(n - done));
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        error = "cannot spool standard input: " + std::string(strerror(errno));
+        close(fd);
+        return -1;
+      }
+      done += w;
+    }
+  }
+  return fd;
+}
+
+}  // namespace
+
+bool SourceFile::open(const std::string& path, std::string& error) {
+  name_ = path == "-" ? "<stdin>" : path;
+  int fd = path == "-" ? dup(0) : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    error = "cannot open '" + path + "': " + strerror(errno);
+    return false;
+  }
+  struct stat st {};
+  if (fstat(fd, &st) != 0) {
+    error = "cannot read '" + path + "': " + strerror(errno);
+    close(fd);
+    return false;
+  }
+  if (S_ISDIR(st.st_mode)) {
+    error = "'" + path + "' is a directory";
+    close(fd);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    int spooled = spool_to_temp(fd, error);
+    close(fd);
+    if (spooled < 0) return false;
+    fd = spooled;
+    if (fstat(fd, &st) != 0) {
+      error = "cannot read spooled input: " + std::string(strerror(errno));
+      close(fd);
+      return false;
+    }
+  }
+  fd_ = fd;
+  size_ = uint64_t(st.st_size);
+  return true;
+}
+
+void SourceFile::open_memory(std::string name, std::string_view text) {
+  name_ = std::move(name);
+  memory_ = text;
+  in_memory_ = true;
+  size_ = text.size();
+}
+
+SourceFile::~SourceFile() {
+  if (fd_ >= 0) close(fd_);
+}
+
+long SourceFile::read_at(uint64_t offset, char* dst, size_t n) const {
+  if (in_memory_) {
+    if (offset >= memory_.size()) return 0;
+    size_t k = std::min<size_t>(n, memory_.size() - offset);
+    std::memcpy(dst, memory_.data() + offset, k);
+    return long(k);
+  }
+  for (;;) {
+    ssize_t r = pread(fd_, dst, n, off_t(offset));
+    if (r < 0 && errno == EINTR) continue;
+    return long(r);
+  }
+}
+
+void SourceFile::note_line_start(uint32_t line, uint64_t offset) {
+  if (line == 0 || (line - 1) % kCheckpointEvery != 0) return;
+  size_t k = (line - 1) / kCheckpointEvery;
+  std::lock_guard<std::mutex> lock(checkpoints_lock_);
+  if (k == checkpoints_.size()) checkpoints_.push_back(offset);
+}
+
+std::string SourceFile::line_text(uint32_t line) const {
+  if (line == 0) return {};
+  size_t k;
+  uint64_t off;
+  {
+    std::lock_guard<std::mutex> lock(checkpoints_lock_);
+    k = std::min<size_t>((line - 1) / kCheckpointEvery, checkpoints_.size() - 1);
+    off = checkpoints_[k];
+  }
+  uint32_t at = uint32_t(k * kCheckpointEvery + 1);
+  char buf[8192];
+  std::string out;
+  while (true) {
+    long n = read_at(off, buf, sizeof buf);
+    if (n <= 0) return at == line ? out : std::string();
+    for (long i = 0; i < n; ++i) {
+      char c = buf[i];
+      if (c == '\n') {
+        if (at == line) {
+          if (!out.empty() && out.back() == '\r') out.pop_back();
+          return out;
+        }
+        ++at;
+        continue;
+      }
+      if (at == line && out.size() < 512) out.push_back(c);
+    }
+    off += uint64_t(n);
+  }
+}
+
+}  // namespace clpc

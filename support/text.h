@@ -1,0 +1,14 @@
+// Text helpers every layer uses for messages: numbers as their shortest round-trip text, ASCII
+// upper case.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace clpc {
+
+// Shortest round-trip text of a number, for messages and the IR printer ("0", "12", "0.004").
+std::string num_text(double v);
+std::string upper(std::string_view s);  // ASCII upper case
+
+}  // namespace clpc

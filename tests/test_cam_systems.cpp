@@ -1,0 +1,317 @@
+// Real CL files as each CAM system writes them, for the systems whose files could not be shared
+// (SolidWorks CAM, Fusion, NCL, CAMWorks) and for the forms of the corpus's systems that its
+// files show once: small inputs written from ../shared/design/CL_FORMATS.md, each compiled
+// whole and checked by the blocks it must give and the diagnostics, word for word.
+#include "driver/readback_commands.h"
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+namespace {
+
+// The diagnostics without their source lines and carets, and the files without their folders.
+std::string messages(const std::string& diags) {
+  std::istringstream in(diags);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.find(": warning: ") == std::string::npos && line.find(": error: ") == std::string::npos &&
+        line.find(": note: ") == std::string::npos)
+      continue;
+    size_t colon = line.find(':'), slash = line.rfind('/', colon);
+    out += (slash == std::string::npos ? line : line.substr(slash + 1)) + "\n";
+  }
+  return out;
+}
+
+bool verifies(const std::string& cl, const Machine& m) {
+  TempDir t;
+  write_file(t.path("part.cl"), cl);
+  std::ostringstream err;
+  VerifyReport r = verify_file(t.path("part.cl"), m, VerifyOptions{}, err);
+  EXPECT_TRUE(r.ok) << err.str();
+  return r.ok;
+}
+
+}  // namespace
+
+// SolidWorks CAM APT: CSYS with 12 values, RAPID/, the 6-value CIRCLE (right-hand rule, the
+// radius from where the tool is), CYCLE/INIT ... CYCLE/OFF or CYCLE/CLEAR with FEDTO, RAPTO,
+// RTRCTO, DWELL, 1STPECK, SUBPECK, INCR, and INSERT notes for the operator.
+TEST(CamSystems, SolidWorksCamApt) {
+  const std::string cl =
+      "PARTNO/SWCAM BRACKET\nUNITS/MM\nCSYS/1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0\n"
+      "INSERT/Stock Size X222. Y100. Z25.\nINSERT/[HOLDER=BT40-ER32]\nLOADTL/1\nSPINDL/3000,RPM,CLW\nRAPID/\n"
+      "GOTO/0,0,10\nFEDRAT/500,MMPM\nGOTO/0,0,-2\nGOTO/10,0,-2\nCIRCLE/10,10,-2,0,0,1\nGOTO/20,10,-2\nGOTO/20,30,-2\n"
+      "RAPID/\nGOTO/20,30,10\nCYCLE/INIT\nCYCLE/DRILL,FEDTO,10,MMPM,100,RAPTO,2,RTRCTO,5,DWELL,0.5\nGOTO/30,30,0\n"
+      "GOTO/40,30,0\nCYCLE/OFF\nCYCLE/INIT\nCYCLE/DEEP2,FEDTO,20,1STPECK,5,SUBPECK,3,MMPM,80,RAPTO,2,RTRCTO,5\n"
+      "GOTO/50,30,0\nCYCLE/CLEAR\nCYCLE/DEEP,FEDTO,12,INCR,4,MMPM,80,RAPTO,2\nGOTO/60,30,0\nCYCLE/OFF\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(messages(c.diags),
+            "part.cls:4:1: warning: INSERT 'Stock Size X222. Y100. Z25.' is no block the control reads ('S' at column 1 has "
+            "no number after it): written as a comment (program.inserts = \"raw\" writes it as it is) [-Winsert]\n"
+            "part.cls:5:1: warning: INSERT '[HOLDER=BT40-ER32]' is no block the control reads ('[' at column 1 starts no "
+            "address word): written as a comment (program.inserts = \"raw\" writes it as it is) [-Winsert]\n");
+  EXPECT_THAT(c.output, HasSubstr("(STOCK SIZE X222. Y100. Z25.)\n([HOLDER=BT40-ER32])\n"));
+  EXPECT_THAT(c.output, HasSubstr("N90 G17 G03 X20. Y10. I0. J10.\n"));
+  // RTRCTO: the tool goes to the return level before the cycle, so G98 returns there.
+  EXPECT_THAT(c.output, HasSubstr("N110 G00 Z10.\nN120 X30.\nN130 Z5.\nN140 G98 G82 X30. Y30. Z-10. R2. P500 F100.\n"
+                                  "N150 X40.\nN160 G80\n"));
+  // Two peck sizes: no canned cycle has them, so the pecks are written out.
+  EXPECT_THAT(c.output, HasSubstr("N170 G00 X50.\nN180 Z2.\nN190 G01 Z-5. F80.\nN200 G00 Z2.\nN210 Z-4.5\nN220 G01 Z-8.\n"));
+  EXPECT_THAT(c.output, HasSubstr("G98 G83 X60. Y30. Z-12. R2. Q4. F80.\n"));
+  verifies(cl, machine("fanuc-mill"));
+}
+
+// Fusion's "APT ISO 4343" post: MODE/MILL, PARTNO/'quoted', COMMENT/'text', LOADTL with
+// words, and MOVARC (the end point from the angle, right-hand rule; a negative angle the other way).
+TEST(CamSystems, FusionAptWithMovarc) {
+  const std::string cl =
+      "MODE/MILL\nPARTNO/'fusion part'\nUNITS/MM\nCOMMENT/'adaptive1'\nLOADTL/1,IN,1,ADJUST,1\nSPINDL/5000,RPM,CLW\n"
+      "FEDRAT/1000,MMPM\nMULTAX/OFF\nRAPID\nGOTO/20,0,5\nGOTO/20,0,-1\nMOVARC/0,0,-1,0,0,1,20,ANGLE,90\nGOTO/-10,20,-1\n"
+      "MOVARC/-10,10,-1,0,0,1,10,ANGLE,-180\nGOTO/-10,-10,-1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("O1000 (FUSION PART)\n"));
+  EXPECT_THAT(c.output, HasSubstr("(ADAPTIVE1)\n"));
+  EXPECT_THAT(c.output, HasSubstr("N80 G17 G03 X0. Y20. I-20. J0.\nN90 G01 X-10.\nN100 G02 Y0. I0. J-10.\nN110 G01 Y-10.\n"));
+  // The move into the second arc meets it at a cusp: the CL's sense is cut, and said so.
+  EXPECT_EQ(messages(c.diags),
+            "part.cls:14:1: warning: arc: MOVARC's angle (right-hand rule about its axis) says clockwise, and it is cut "
+            "clockwise; but the arc is tangent to the move entering it only if it turns counter-clockwise (a cusp or a "
+            "plunge onto the arc?) [-Warc-geometry]\n");
+  verifies(cl, machine("fanuc-mill"));
+  EXPECT_EQ(first_error(lower_text("GOTO/20,0,0\nMOVARC/0,0,0,0,0,1,20,90\n").diags),
+            "2:8: MOVARC needs xc,yc,zc,i,j,k,r,ANGLE,a (the centre, the axis, the radius and the angle turned)");
+  EXPECT_EQ(first_error(lower_text("GOTO/20,0,0\nMOVARC/0,0,0,0,0,1,15,ANGLE,90\n").diags),
+            "2:1: CIRCLE: the arc's start point (the previous position) is 5 off its circle of radius 15");
+}
+
+// NCCS NCL: REMARK headers, MACHIN/PWORKS, blanks padding every field, FEDRAT without a unit.
+TEST(CamSystems, NclPaddedFields) {
+  const std::string cl =
+      "REMARK  NCL generated\nPARTNO TEST PLATE\nMACHIN/PWORKS,1\nUNITS/MM\nLOADTL/3\nSPINDL/RPM,2500,CLW\n"
+      "FROM  /   50.0000,   10.0000,    5.0000\nRAPID\nGOTO  /    0.0000,    0.0000,    5.0000\nFEDRAT/ 100\n"
+      "GOTO  /    0.0000,    0.0000,   -1.0000\nGOTO  /   30.0000,    0.0000,   -1.0000\nGOHOME\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(messages(c.diags), "");
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G01 Z-1. F100.\nN80 X30.\nN90 G00 X50. Y10. Z5.\n"));
+}
+
+// CAMWorks .clt: OPFEATSTART/OPFEATEND operations, BOX (the stock), trailing commas, blanks
+// between numbers, CIRCLE with its sense as a word, CYCLE/ON after the cycle's record, a Windows
+// code page in a comment, ROTABL in radians.
+TEST(CamSystems, CamWorksClt) {
+  const std::string cl =
+      "PARTNO/CAMWORKS PART\nUNITS/INCH\nBOX/0,0,0,4,3,1\nOPFEATSTART/Pocket1\nLOADTL/2,\nSPINDL/1800,RPM,CLW,\n"
+      "FEDRAT/20,IPM,\nRAPID/\nGOTO/1.0 0.0 0.5,\nGOTO/1.0,0.0,-0.1,\nCIRCLE/0,0,-0.1,0,0,1,1.0,COUNTERCLOCKWISE\n"
+      "GOTO/0.0,1.0,-0.1,\nCIRCLE/0,0,-0.1,0,0,1,1.0,CLW\nGOTO/-1.0,0.0,-0.1\nRAPID/\nGOTO/-1.0,0.0,0.5\n"
+      "OPFEATEND/Pocket1\n$$ Kommentar \xe4\n"
+      "CYCLE/DRILL,FEDTO,0.5,IPM,5,RAPTO,0.1\nCYCLE/OFF\nCYCLE/ON\nGOTO/2,2,0\nGOTO/3,2,0\nCYCLE/OFF\nFINI\n";
+  Machine m = machine("haas-umc750");
+  Compiled c = compile_text(cl, m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(messages(c.diags), HasSubstr("part.cls:13:1: warning: arc: the CIRCLE's sense word says clockwise, and it is cut "
+                                           "clockwise; but the arc is tangent to the move entering it only if it turns "
+                                           "counter-clockwise (a cusp or a plunge onto the arc?) [-Warc-geometry]\n"));
+  EXPECT_THAT(messages(c.diags), HasSubstr("part.cls:18:14: warning: invalid UTF-8 in a comment: byte 0xE4, read as a one-byte "
+                                           "code page (--input-encoding latin1 says so for the file) [-Winvalid-utf8]\n"));
+  EXPECT_THAT(messages(c.diags), HasSubstr("part.cls:19:1: warning: CYCLE/DRILL drills no hole: no GOTO before its CYCLE/OFF [-Wcycle]\n"));
+  EXPECT_THAT(c.output, HasSubstr("(POCKET1)\n"));
+  EXPECT_THAT(c.output, HasSubstr("G17 G03 X0. Y1. I-1. J0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("G02 X-1. Y0. I0. J-1.\n"));
+  EXPECT_THAT(c.output, HasSubstr("G98 G81 X2. Y2. Z-0.5 R0.1 F5.\n"));
+  EXPECT_THAT(c.output, Not(HasSubstr("BOX")));
+  // ROTABL positions the table in radians: a quarter turn of A, which the UMC-750 lacks.
+  Compiled rot = compile_text("UNITS/INCH\nOPFEATSTART/x\nLOADTL/1\nROTABL/1.5707963,AAXIS,TABLE,CCLW\nFINI\n", m);
+  EXPECT_FALSE(rot.ok);
+  EXPECT_THAT(messages(rot.diags), HasSubstr("part.cls:4:1: error: rotary indexing (ROTATE, ROTABL) on machine 'haas-umc750': the machine "
+                                   "has no A axis on its table to index; post for a machine that has, or have the CAM system "
+                                   "write the turned tool path (its tool axes, MULTAX)"));
+}
+
+// CATIA: TOOLNO and TPRINT (the tool's name), a start point before the first tool change, and a
+// lathe profile arc as TLON,GOFWD/(CIRCLE/...),ON,(LINE/...) set off along INDIRV.
+TEST(CamSystems, CatiaContourOnTheLathe) {
+  const std::string cl =
+      "$$*CATIA0\nPARTNO PART TO BE MACHINED\nRAPID\nGOTO  /   60.00000,    0.00000,   20.00000\nCUTTER/    0.800000\n"
+      "TOOLNO/1,TURN,1,0,3,    0.400000,$\n    0.000000,    0.000000,    0.100000,MMPR,  500.000000,SFM,$\n"
+      "CCLW,ON,    0.000000,NOTE\nTPRINT/SDJCL 1210 D07,SDJCL 1210 D07\nLOADTL/1,1,1\nFEDRAT/    0.3000,MMPR\n"
+      "SPINDL/  300.0000,RPM,CCLW\nGOTO  /   20.40000,    0.00000,  -41.00000\nFEDRAT/    0.1000,MMPR\n"
+      "GOTO  /   20.40000,    0.00000,  -30.00000\nAUTOPS\nINDIRV/    0.00000,    0.00000,    1.00000\n"
+      "TLON,GOFWD/      (CIRCLE/     25.00000,      0.00000,    -30.00000,$\n"
+      "       4.60000),ON,(LINE/     25.00000,      0.00000,    -30.00000,$\n"
+      "                              25.00000,      0.00000,    -25.40000)\nGOTO  /   30.40000,    0.00000,   -25.40000\nFINI\n";
+  Machine lathe = machine("fanuc-lathe");
+  Compiled c = compile_text(cl, lathe);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(messages(c.diags),
+              HasSubstr("part.cls:4:1: warning: rapid motion before the first tool change (T1 at line 10) is taken as the start "
+                        "point (as FROM): no motion is written for it [-Wmotion-before-tool]\n"));
+  EXPECT_THAT(c.output, HasSubstr("(T1 D=0.8 CR=0. - SDJCL 1210 D07)\n"));
+  EXPECT_THAT(c.output, HasSubstr("N50 G99 G01 X40.8 Z-41. F0.3\nN60 Z-30. F0.1\nN70 G03 X50. Z-25.4 I4.6 K0.\nN80 G01 X60.8\n"));
+  verifies(cl, lathe);
+}
+
+// CATIA contouring on a mill: ON, 2, INTOF goes round to the second time the tool meets the line
+// (here the whole circle); what needs the tool's shape to stop is refused, saying what to do.
+TEST(CamSystems, CatiaContourForms) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/-3.74601,-0.63826,5\n"
+                           "GOTO/-3.74601,-0.63826,-10\nINDIRV/   -0.16796,    0.98579,    0.00000\n";
+  Compiled c = compile_text(head + "TLON,GOFWD/(CIRCLE/0,0,-10,3.8),ON,2,INTOF,(LINE/0,0,-10,-3.74601,-0.63826,-10)\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N80 G17 G02 I3.746 J0.638\n"));
+  auto err = [&](const std::string& rec) { return first_error(lower_text(head + rec).diags); };
+  EXPECT_EQ(err("TLLFT,GOFWD/(CIRCLE/0,0,-10,3.8),ON,(LINE/0,0,-10,1,0,-10)\n"),
+            "9:1: TLON,GOFWD contouring: only TLON (the tool centre on the drive surface) is read; TLLFT and TLRGT set the "
+            "tool beside it by its radius; have the CAM system write the motion as GOTO and CIRCLE records (in CATIA: "
+            "circular interpolation output as CIRCLE, or the PP table's GOTO form)");
+  EXPECT_EQ(err("TLON,GOFWD/(CIRCLE/0,0,-10,3.8),TANTO,(LINE/0,0,-10,1,0,-10)\n"),
+            "9:33: TLON,GOFWD contouring: only ON (the tool centre on the check surface) is read; TANTO stops the tool by "
+            "its radius; have the CAM system write the motion as GOTO and CIRCLE records (in CATIA: circular interpolation "
+            "output as CIRCLE, or the PP table's GOTO form)");
+  EXPECT_EQ(err("TLON,GOFWD/(CIRCLE/0,0,-10,5),ON,(LINE/0,0,-10,1,0,-10)\n"),
+            "9:1: TLON,GOFWD contouring: the tool (at 3.7999956246948496 from the centre) is not on the circle of radius 5; have the "
+            "CAM system write the motion as GOTO and CIRCLE records (in CATIA: circular interpolation output as CIRCLE, or "
+            "the PP table's GOTO form)");
+}
+
+// CATIA's cycles: by position (depth, clearance), and the ICAM PP table's keywords with RETURN.
+TEST(CamSystems, CatiaCycles) {
+  Lowered pos = lower_text("CYCLE/DRILL, 12.000000, 3.000000, 100.000000,MMPM\nGOTO/0,0,0\nCYCLE/OFF\n");
+  EXPECT_EQ(first_error(pos.diags), "");
+  EXPECT_THAT(pos.ir, HasSubstr("cycle-on drill depth 12 clear 3 feed 100"));
+  Lowered icam = lower_text("CYCLE/DRILL,DEPTH,    4.600000,MMPR,    0.080000,CLEAR,    2.000000,$\nRETURN,    8.000000\n"
+                            "GOTO/0,0,0\nCYCLE/OFF\n");
+  EXPECT_EQ(first_error(icam.diags), "");
+  EXPECT_THAT(icam.ir, HasSubstr("cycle-on drill depth 4.6 clear 2 retract 8 feed 0.08 /rev"));
+  EXPECT_EQ(first_error(lower_text("CYCLE/DEEP, 12.0, 3.0, 4.0\n").diags),
+            "1:13: CYCLE/DEEP: the values have no keywords, and which is the peck is not known; have the CAM system write "
+            "keywords (DEPTH, STEP, CLEAR, ...)");
+}
+
+// Records that move the tool and are not read stop the post, naming what to do; records that
+// do not are a warning and a comment.
+TEST(CamSystems, RecordsThatMoveAreReadOrRefused) {
+  auto err = [](const std::string& rec) { return first_error(lower_text(rec).diags); };
+  EXPECT_EQ(err("LOOP/START,15\n"),
+            "1:1: 'LOOP' moves the tool and clpc does not read it: a repeat of the records that follow; have the CAM system "
+            "write them out in full");
+  EXPECT_EQ(err("DNTCUT\n"),
+            "1:1: 'DNTCUT' moves the tool and clpc does not read it: the motion after it is not to be cut; have the CAM "
+            "system leave that motion out");
+  EXPECT_EQ(err("THREAD/TURN,1.5\n"),
+            "1:1: 'THREAD' moves the tool and clpc does not read it: a thread cut needs the spindle synchronised with the "
+            "feed (G32/G76/G92), which clpc does not write yet; post the threading operation separately or have the CAM "
+            "system write a cycle");
+  EXPECT_EQ(err("TLAXIS/NORMPS\n"),
+            "1:1: 'TLAXIS' moves the tool and clpc does not read it: only TLAXIS/i,j,k (a fixed tool axis) is read; an axis "
+            "tied to surfaces needs the part model: have the CAM system write the tool axis on every GOTO (MULTAX)");
+  EXPECT_EQ(err("CYCLE/AUTO\n"),
+            "1:1: 'CYCLE' moves the tool and clpc does not read it: CYCLE/AUTO leaves the choice of cycle to the post; have "
+            "the CAM system write the cycle (DRILL, DEEP, TAP, ...) with its depth");
+  Lowered l = lower_text("AICC/ON,10\nGOTO/0,0,0\n");
+  EXPECT_EQ(first_error(l.diags), "");
+  ASSERT_EQ(l.diags.size(), 1u);
+  EXPECT_EQ(l.diags[0].message, "unknown record 'AICC' (passed through as a comment)");
+  EXPECT_THAT(l.ir, HasSubstr("passthrough \"AICC/ON,10\""));
+  Compiled strict = compile_text("UNITS/MM\nAICC/ON,10\n", machine("fanuc-mill"), [] {
+    CompileOptions o;
+    o.werror = true;
+    return o;
+  }());
+  EXPECT_FALSE(strict.ok);
+  EXPECT_THAT(messages(strict.diags), HasSubstr("part.cls:2:1: error: unknown record 'AICC' (passed through as a comment) [-Werror,-Wunknown-record]"));
+}
+
+// A tilted frame on a machine without rotaries is a setup of its own: a register, a stop for
+// the operator with what to do, and the points in that frame. On the UMC-750 the table turns.
+TEST(CamSystems, TiltedFrameOnThreeAndFiveAxes) {
+  const std::string cl =
+      "TOOL PATH/OP1,TOOL,EM10\nLOAD/TOOL,1\nMSYS/0,0,0,1,0,0,0,1,0\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\n"
+      "GOTO/0,0,10\nGOTO/0,0,0\nGOTO/20,0,0\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,EM10\n"
+      "MSYS/50,0,0,0.7071067812,0,-0.7071067812,0,1,0\nRAPID\nGOTO/0,0,10\nGOTO/0,0,0\nGOTO/20,0,0\nEND-OF-PATH\n";
+  Compiled three = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(three.ok) << three.diags;
+  EXPECT_THAT(messages(three.diags),
+              HasSubstr("part.cls:14:1: warning: machine 'fanuc-mill' has no rotary axes: this operation is cut in setup 2 "
+                        "(register 2), the part set up again after an operator stop [-Wsetup]\n"));
+  EXPECT_THAT(three.output, HasSubstr("(G54 = MSYS LINE 3 ORIGIN X0 Y0 Z0)\n(G55 = MSYS LINE 12 ORIGIN X50 Y0 Z0)\n"));
+  EXPECT_THAT(three.output,
+              HasSubstr("(OP2)\n(SETUP 2: TURN THE PART SO THE FRAME OF LINE 12 HAS Z UP, REGISTER 2)\nN90 G91 G28 Z0.\nN100 M05\nN110 M00\nN120 S1000 M03\nN130 G90 G55 G00 X0. Y0.\n"
+                        "N140 Z10.\nN150 G94 G01 Z0. F100.\nN160 X20.\n"));
+  verifies(cl, machine("fanuc-mill"));
+  Compiled five = compile_text(cl, machine("haas-umc750"));
+  ASSERT_TRUE(five.ok) << five.diags;
+  EXPECT_THAT(five.output, HasSubstr("(OP2)\nN60 G53 G00 Z0.\nN65 M11 M13\nN70 G00 B45.\nN75 M10 M12\nN80 G254\n"
+                                     "N85 G00 X1.3919 Y0.\nN90 Z1.7856\nN95 G94 G01 Z1.3919 F3.94\nN100 X2.1793\n"));
+  verifies(cl, machine("haas-umc750"));
+}
+
+// check -t runs what compile runs: the backend's checks too.
+TEST(CamSystems, CheckWithAMachineReportsWhatCompileReports) {
+  TempDir t;
+  write_file(t.path("tilt.cls"), "UNITS/MM\nLOADTL/1\nSPINDL/RPM,100,CLW\nFEDRAT/MMPM,100\nGOTO/0,0,0,0.6,0,0.8\n");
+  RunResult check = run_clpc("check " + t.path("tilt.cls") + " -t fanuc-mill");
+  RunResult compile = run_clpc("compile " + t.path("tilt.cls") + " -t fanuc-mill -o -");
+  EXPECT_EQ(check.status, 1);
+  EXPECT_EQ(compile.status, 1);
+  EXPECT_EQ(messages(check.err), messages(compile.err));
+  EXPECT_THAT(check.err, HasSubstr("tilt.cls:5:1: error: tool axis (0.6, 0, 0.8) is not the spindle axis, and machine "
+                                   "'fanuc-mill' has no rotary axes to tilt it"));
+}
+
+// Feeds in the other unit's words than UNITS says: named, with the option.
+TEST(CamSystems, FeedWordsThatContradictUnits) {
+  Compiled c = compile_text("UNITS/INCHES\nLOADTL/1\nSPINDL/RPM,100,CLW\nFEDRAT/250,MMPM\nGOTO/0,0,0\n", machine("fanuc-mill"));
+  EXPECT_THAT(messages(c.diags), HasSubstr("part.cls: warning: the file says its units are inches, but the feed at line 4 is in "
+                                 "millimetres: if its numbers are millimetres, --input-units mm reads them so"));
+}
+
+// A file of many read windows with thousands of records kept as text (a 2 MB Fusion file once
+// crashed here: a comment's text and its instruction fell in two chunks of the operation).
+TEST(CamSystems, ManyPassthroughRecordsAcrossReadWindows) {
+  std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\n";
+  int n = 0;
+  while (cl.size() < 3u * 1024 * 1024) {
+    if (n % 5 == 0) cl += "PPFUN/" + std::to_string(n) + ",SOMETHING\n";
+    if (n % 7 == 0) cl += "PPRINT note " + std::to_string(n) + "\n";
+    cl += "GOTO/" + std::to_string(n % 100) + ",1.5,-1\n";
+    ++n;
+  }
+  CompileOptions o;
+  o.lower.chunk_size = 1000;
+  Compiled c = compile_text(cl, machine("fanuc-mill"), o);
+  ASSERT_TRUE(c.ok) << c.diags.substr(0, 2000);
+  auto occurrences = [&](const std::string& what) {
+    size_t k = 0;
+    for (size_t at = c.output.find(what); at != std::string::npos; at = c.output.find(what, at + 1)) ++k;
+    return k;
+  };
+  EXPECT_EQ(occurrences("(CL: PPFUN/"), size_t((n + 4) / 5));
+  EXPECT_EQ(occurrences("(NOTE "), size_t((n + 6) / 7));
+}
+
+// A frame whose Z points down (the part turned over for its back side) is beyond the UMC-750's
+// rotaries (B -35..120): a setup of its own, as on a three-axis machine.
+TEST(CamSystems, FlippedFrameBeyondTheRotariesIsASetup) {
+  const std::string cl =
+      "TOOL PATH/TOP,TOOL,EM10\nLOAD/TOOL,1\nMSYS/0,0,0,1,0,0,0,1,0\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\n"
+      "GOTO/0,0,10\nGOTO/0,0,0\nGOTO/20,0,0\nEND-OF-PATH\nTOOL PATH/BOTTOM,TOOL,EM10\nMSYS/0,0,-30,1,0,0,0,-1,0\nRAPID\n"
+      "GOTO/0,0,10\nGOTO/0,0,0\nGOTO/20,5,0\nEND-OF-PATH\n";
+  Machine haas = machine("haas-umc750");
+  Compiled c = compile_text(cl, haas);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(messages(c.diags),
+              HasSubstr("part.cls:14:1: warning: machine 'haas-umc750' cannot turn the tool to this frame's Z: this operation "
+                        "is cut in setup 2 (register 2), the part set up again after an operator stop [-Wsetup]\n"));
+  EXPECT_THAT(c.output, HasSubstr("(SETUP 2: TURN THE PART SO THE FRAME OF LINE 12 HAS Z UP, REGISTER 2)\n"));
+  EXPECT_THAT(c.output, HasSubstr("M00\n"));
+  EXPECT_THAT(c.output, HasSubstr("G55"));
+  verifies(cl, haas);
+}

@@ -1,0 +1,452 @@
+// Shop-floor safety and the per-job options (issue 18): every case that once wrote a program
+// that looked right and would break a tool is now a correct program (exact blocks) or an
+// error (exact text); every per-job option by the blocks it writes.
+#include <cstdlib>
+
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using ::testing::StartsWith;
+
+namespace {
+
+// Three tools, flood coolant from the first; on fanuc-mill (docs/machines.md).
+const char* kThreeTools =
+    "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nCOOLNT/ON\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,500\nGOTO/10,0,-1\n"
+    "LOADTL/2\nSPINDL/RPM,4000,CLW\nRAPID\nGOTO/20,0,10\nGOTO/20,10,-1\n"
+    "LOADTL/3\nSPINDL/RPM,4000,CLW\nRAPID\nGOTO/30,0,10\nGOTO/30,10,-1\nFINI\n";
+
+// Two NX operations with one tool.
+const char* kTwoOperations =
+    "UNITS/MM\nTOOL PATH/ROUGH,TOOL,MILL_10\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,500\n"
+    "GOTO/10,0,-1\nGOTO/10,0,10\nEND-OF-PATH\nTOOL PATH/FINISH,TOOL,MILL_10\nSPINDL/RPM,3500,CLW\nRAPID\nGOTO/20,0,10\n"
+    "FEDRAT/MMPM,400\nGOTO/20,10,-1\nEND-OF-PATH\nFINI\n";
+
+// clpc compile of `cl` from standard input to standard output.
+RunResult post(const std::string& cl, const std::string& args) { return run_clpc("compile - -o - " + args, cl); }
+
+}  // namespace
+
+// --- The cases of issue 18 -------------------------------------------------------------
+
+TEST(ShopFloor, FeedPerRevolutionOnTheHaasKeepsItsDecimals) {
+  RunResult r = post("UNITS/INCHES\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,0.1\nFEDRAT/IPR,0.004\nGOTO/0,0,-0.5\nFINI\n",
+                     "-t haas-umc750");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N45 G43 H01 Z0.1\nN50 G95 G01 Z-0.5 F0.004\n"));
+}
+
+TEST(ShopFloor, MillimetresPerRevolutionOnTheFanucMill) {
+  RunResult r = post("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/0.15,MMPR\nGOTO/0,0,-10\nFINI\n",
+                     "-t fanuc-mill");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N70 G95 G01 Z-10. F0.15\n"));
+}
+
+TEST(ShopFloor, AFeedThatRoundsToZeroIsAnErrorNamingItsFedrat) {
+  RunResult r = post("UNITS/INCHES\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,0.1\nFEDRAT/IPR,0.004\nGOTO/0,0,-0.5\nFINI\n",
+                     "-t haas-umc750 --set 'feeds.per_rev={decimals=2}'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, StartsWith("<stdin>:6:1: error: the feed of 0.004 in/rev would be written F0. (feeds.per_rev: 2 decimals): it "
+                                "rounds to zero; give feeds.per_rev more decimals\n"));
+  EXPECT_EQ(r.out, "");
+}
+
+const char* kTapM8 =
+    "UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,10\nCYCLE/TAP,DEPTH,12,PITCH,1.25,CLEAR,2\nGOTO/0,0,0\n"
+    "CYCLE/OFF\nFINI\n";
+
+TEST(ShopFloor, RigidTapM8x1_25KeepsItsPitch) {
+  RunResult per_rev = post(kTapM8, "-t fanuc-mill --set cycles.tap_feed=per-rev");
+  EXPECT_EQ(per_rev.status, 0) << per_rev.err;
+  EXPECT_THAT(per_rev.out, HasSubstr("N70 M29 S500\nN80 G95 G98 G84 X0. Y0. Z-12. R2. F1.25\nN90 G80\n"));
+  RunResult per_minute = post(kTapM8, "-t fanuc-mill");  // F = pitch x S = 625 mm/min
+  EXPECT_EQ(per_minute.status, 0) << per_minute.err;
+  EXPECT_THAT(per_minute.out, HasSubstr("N70 M29 S500\nN80 G94 G98 G84 X0. Y0. Z-12. R2. F625.\n"));
+  // A tap format that cannot hold the pitch: refused at the hole, never F1.3.
+  RunResult coarse = post(kTapM8, "-t fanuc-mill --set cycles.tap_feed=per-rev --set 'feeds.tap={decimals=1}'");
+  EXPECT_EQ(coarse.status, 1);
+  EXPECT_THAT(coarse.err, StartsWith("<stdin>:7:1: error: the tap's pitch of 1.25 mm would be written F1.3 (feeds.tap: 1 decimal): "
+                                     "the tap would advance 1.3 a turn and be 0.48 off its thread at the bottom; give "
+                                     "feeds.tap more decimals\n"));
+}
+
+TEST(ShopFloor, VerifyChecksTheTapsPitch) {
+  TempDir t;
+  write_file(t.path("tap.cls"), kTapM8);
+  RunResult r = run_clpc("verify " + t.path("tap.cls") + " -t fanuc-mill --set cycles.tap_feed=per-rev");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("result: PASS"));
+}
+
+TEST(ShopFloor, ThreadOnTheLatheIsALocatedError) {
+  RunResult r = post("UNITS/MM\nMACHIN/TURN\nTURRET/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,0,5\nTHREAD/TURN,1.5\nGOTO/20,0,-20\nFINI\n",
+                     "-t fanuc-lathe");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "<stdin>:7:1: error: 'THREAD' moves the tool and clpc does not read it: a thread cut needs the spindle synchronised with "
+            "the feed (G32/G76/G92), which clpc does not write yet; post the threading operation separately or have the CAM "
+            "system write a cycle\n 7 | THREAD/TURN,1.5\n   | ^\nclpc: 1 error, 0 warnings\n");
+  EXPECT_EQ(r.out, "");
+}
+
+const char* kLatheFile = "UNITS/MM\nMACHIN/TURN\nTURRET/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/0.2,MMPR\nGOTO/20,0,-20\nFINI\n";
+
+TEST(ShopFloor, ALatheFileForAMillIsAnErrorUnlessForced) {
+  RunResult r = post(kLatheFile, "-t fanuc-mill");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err,
+            "<stdin>:2:1: error: the CL data is for a lathe (MACHIN/TURN) but machine 'fanuc-mill' is a mill; --force-family posts it "
+            "anyway\n 2 | MACHIN/TURN\n   | ^\nclpc: 1 error, 0 warnings\n");
+  EXPECT_EQ(r.out, "");
+  RunResult forced = post(kLatheFile, "-t fanuc-mill --force-family");
+  EXPECT_EQ(forced.status, 0) << forced.err;
+  EXPECT_THAT(forced.err, HasSubstr("<stdin>:2:1: warning: the CL data is for a lathe (MACHIN/TURN) but machine 'fanuc-mill' is a mill"));
+}
+
+TEST(ShopFloor, AMillFileForALatheIsAnError) {
+  RunResult r = post("UNITS/MM\nMACHIN/MILL\nLOADTL/1\nRAPID\nGOTO/0,0,5\nFINI\n", "-t fanuc-lathe");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, StartsWith("<stdin>:2:1: error: the CL data is for a mill (MACHIN/MILL) but machine 'fanuc-lathe' is a lathe"));
+}
+
+TEST(ShopFloor, TwoInputsToOneOutputAreRefusedBeforeAnythingIsWritten) {
+  TempDir t;
+  write_file(t.path("a.ncl.1"), kThreeTools);
+  write_file(t.path("a.ncl.2"), kThreeTools);
+  RunResult r = run_clpc("compile " + t.path("a.ncl.1") + " " + t.path("a.ncl.2") + " -t fanuc-mill");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "clpc: error: '" + t.path("a.ncl.1") + "' and '" + t.path("a.ncl.2") + "' would both be written to '" +
+                       t.path("a.nc") + "': compile them one at a time with -o, or into other folders with --output-dir\n");
+  EXPECT_FALSE(std::filesystem::exists(t.path("a.nc")));
+  // One at a time, into another folder: written, and the second run says what it replaced.
+  std::filesystem::create_directory(t.path("out"));
+  RunResult first = run_clpc("compile " + t.path("a.ncl.1") + " -t fanuc-mill --output-dir " + t.path("out"));
+  EXPECT_EQ(first.status, 0) << first.err;
+  EXPECT_THAT(read_file(t.path("out/a.nc")), HasSubstr("M30"));
+  RunResult again = run_clpc("compile " + t.path("a.ncl.2") + " -t fanuc-mill --output-dir " + t.path("out"));
+  EXPECT_EQ(again.status, 0) << again.err;
+  EXPECT_THAT(again.err, HasSubstr("clpc: note: replaced '" + t.path("out/a.nc") + "', the program an earlier run wrote there\n"));
+}
+
+TEST(ShopFloor, AnInchMachineDerivedFromAMetricOneHasItsNumbersConverted) {
+  const char* toml = "[inch-mill]\ninherits = \"fanuc-mill\"\nunits = \"inch\"\n";
+  Machine m = machine("inch-mill", toml);
+  EXPECT_EQ(m.units, ir::Units::Inch);
+  EXPECT_NEAR(m.rapid_rate, 24000 / 25.4, 1e-9);    // mm/min -> in/min
+  EXPECT_NEAR(m.max_feed, 10000 / 25.4, 1e-9);
+  EXPECT_NEAR(m.arcs.tolerance, 0.005 / 25.4, 1e-12);
+  EXPECT_EQ(m.format('X').decimals, 4);              // 3 in mm: one more in inches
+  EXPECT_EQ(m.format('F').decimals, 2);              // 1 in mm
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/0.15,MMPR\nGOTO/0,0,-10\nFINI\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N10 G20\n"));
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z0.1969\nN70 G95 G01 Z-0.3937 F0.0059\n"));
+}
+
+TEST(ShopFloor, EmptyAxesRemoveInheritedRotaries) {
+  const char* toml =
+      "[three]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+      "\"arc-legalise\", \"limits\"]\n[three.kinematics]\naxes = []\n";
+  Machine m = machine("three", toml);
+  EXPECT_FALSE(m.kinematics.has_rotaries());
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,100\nGOTO/0,0,-1\nFINI\n", m);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, Not(HasSubstr("B0.")));
+}
+
+namespace {
+std::string load_error(const std::string& toml) {
+  std::ostringstream err;
+  Diagnostics d(&err);
+  MachineRegistry reg(pass_names());
+  reg.load_builtin(d);
+  reg.load_text("shop.toml", toml, d);
+  auto m = reg.resolve(toml.substr(1, toml.find(']') - 1), d);
+  EXPECT_FALSE(m.has_value());
+  return err.str();
+}
+}  // namespace
+
+TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
+  EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
+                       "\"offset-table\", \"arc-legalise\"]\n"),
+            "shop.toml:3:12: error: rot.pipeline: machine 'rot' needs 'kinematics' in its pipeline, to turn tool axes into "
+            "rotary positions\n 3 | pipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+            "\"arc-legalise\"]\n   |            ^\n");
+}
+
+TEST(ShopFloor, AMillWithoutDrillCyclesIsOneErrorInItsFile) {
+  EXPECT_EQ(load_error("[nodrill]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
+                       "\"offset-table\"]\n"),
+            "shop.toml:3:12: error: nodrill.pipeline: machine 'nodrill' needs 'drill-cycles' in its pipeline, for CYCLE "
+            "records: without it their holes would be cut as moves to their tops\n 3 | pipeline = [\"arc-direction\", "
+            "\"helix\", \"arc-legalise\", \"offset-table\"]\n   |            ^\n");
+}
+
+TEST(ShopFloor, PassesOutOfOrderAreAnError) {
+  EXPECT_THAT(load_error("[late]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"offset-table\", "
+                         "\"kinematics\", \"drill-cycles\", \"arc-legalise\"]\n"),
+              StartsWith("shop.toml:3:12: error: late.pipeline: 'drill-cycles' must come before 'kinematics'\n"));
+}
+
+// --- Per-job options -------------------------------------------------------------------
+
+TEST(JobOptions, ProgramNumberFromTheFileName) {
+  TempDir t;
+  auto second_line = [&](const std::string& name, const std::string& args = "-t fanuc-mill") {
+    write_file(t.path(name), kThreeTools);
+    RunResult r = run_clpc("compile '" + t.path(name) + "' -o - " + args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.out.substr(2, r.out.find('\n', 2) - 2);
+  };
+  EXPECT_EQ(second_line("1234_pocket.cls"), "O1234");
+  EXPECT_EQ(second_line("O0042.cls"), "O0042");
+  EXPECT_EQ(second_line("o77 rev B.cls"), "O0077");
+  EXPECT_EQ(second_line("O1234.cls", "-t haas-umc750"), "O01234");
+  EXPECT_EQ(second_line("3axis.cls"), "O1000");           // a name, not a number: the machine's
+  EXPECT_EQ(second_line("20231105_part.cls"), "O1000");   // beyond O9999
+  EXPECT_EQ(second_line("plate.cls"), "O1000");
+  EXPECT_EQ(second_line("1234_pocket.cls", "-t fanuc-mill --set program.number=55"), "O0055");  // the job's number wins
+  EXPECT_EQ(second_line("1234_pocket.cls", "-t fanuc-mill --set program.number_from_name=false"), "O1000");
+}
+
+TEST(JobOptions, OutputUnitsWhateverTheMachinesDefault) {
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set units=inch");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("(UNITS: INCH)\n"));
+  EXPECT_THAT(r.out, HasSubstr("N10 G20\n"));
+  EXPECT_THAT(r.out, HasSubstr("N70 G43 H01 Z0.3937\nN80 G94 G01 X0.3937 Z-0.0394 F19.69\n"));
+  RunResult mm = post(kThreeTools, "-t haas-umc750 --set units=mm");
+  EXPECT_EQ(mm.status, 0) << mm.err;
+  EXPECT_THAT(mm.out, HasSubstr("N10 G21\n"));
+  EXPECT_THAT(mm.out, HasSubstr("G01 X10. Z-1. F500.\n"));
+}
+
+TEST(JobOptions, OptionalStopBeforeEachToolChange) {
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set program.optional_stop=tool-change");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N30 T1 M06 (T1)\n"));  // none before the first tool
+  EXPECT_THAT(r.out, HasSubstr("N90 G91 G28 Z0.\nN100 M01\nN110 T2 M06 (T2)\n"));
+  EXPECT_THAT(r.out, HasSubstr("N160 G91 G28 Z0.\nN170 M01\nN180 T3 M06 (T3)\n"));
+}
+
+TEST(JobOptions, OptionalStopBetweenOperations) {
+  RunResult r = post(kTwoOperations, "-t fanuc-mill --set program.optional_stop=operation");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N80 Z10.\n(FINISH)\nN90 G91 G28 Z0.\nN100 M01\nN110 S3500 M03\nN120 G90 G00 X20. Y0.\n"));
+  // "operation" stops at tool changes too (a plain APT file marks no operations).
+  RunResult tools = post(kThreeTools, "-t fanuc-mill --set program.optional_stop=operation");
+  EXPECT_THAT(tools.out, HasSubstr("N90 G91 G28 Z0.\nN100 M01\nN110 T2 M06 (T2)\n"));
+  RunResult off = post(kTwoOperations, "-t fanuc-mill");
+  EXPECT_THAT(off.out, Not(HasSubstr("M01")));
+}
+
+TEST(JobOptions, PreselectTheNextTool) {
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set program.preselect=true");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N30 T1 M06 (T1)\nN40 T2\nN50 S3000 M03\n"));
+  EXPECT_THAT(r.out, HasSubstr("N110 T2 M06 (T2)\nN120 T3\nN130 S4000 M03\n"));
+  EXPECT_THAT(r.out, HasSubstr("N180 T3 M06 (T3)\nN190 S4000 M03\n"));  // the last tool: nothing to preselect
+  RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.preselect=true");
+  EXPECT_EQ(lathe.status, 1);
+  EXPECT_EQ(lathe.err, "--set:1:21: error: fanuc-lathe.program.preselect: a lathe's turret indexes the tool it cuts with: there "
+                       "is no next tool to preselect\n 1 | program.preselect = true\n   |                     ^\n");
+}
+
+TEST(JobOptions, CoolantOffBeforeAndOnAfterEachToolChange) {
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set program.coolant_around_tool_change=true");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("N90 G91 G28 Z0.\nN100 M09\nN110 T2 M06 (T2)\nN120 S4000 M03\nN130 M08\nN140 G90 G54 G00 X20. Y0.\n"));
+  // With the optional stop: the coolant is off when the machine stops.
+  RunResult both = post(kThreeTools, "-t fanuc-mill --set program.coolant_around_tool_change=true --set program.optional_stop=tool-change");
+  EXPECT_THAT(both.out, HasSubstr("N90 G91 G28 Z0.\nN100 M09\nN110 M01\nN120 T2 M06 (T2)\n"));
+  // A lathe too.
+  RunResult lathe = post(
+      "UNITS/MM\nMACHIN/TURN\nTURRET/1\nSPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/30,0,5\nFEDRAT/0.2,MMPR\nGOTO/30,0,-20\n"
+      "TURRET/2\nSPINDL/RPM,900,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/0.1,MMPR\nGOTO/20,0,-10\nFINI\n",
+      "-t fanuc-lathe --set program.coolant_around_tool_change=true");
+  EXPECT_EQ(lathe.status, 0) << lathe.err;
+  EXPECT_THAT(lathe.out, HasSubstr("N80 G28 U0. W0.\nN90 M09\nN100 T0202 (T2)\nN110 G97 S900 M03\nN120 M08\nN130 G00 X40. Z5.\n"));
+}
+
+TEST(JobOptions, SmoothingOnTheHaasAndTheFanuc) {
+  RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.smoothing=finish --set program.smoothing_tolerance=0.0005");
+  EXPECT_EQ(haas.status, 0) << haas.err;
+  EXPECT_THAT(haas.out, HasSubstr("N15 G00 G17 G40 G49 G80 G90\nN20 G187 P3 E0.0005\nN25 T1 M06 (T1)\n"));
+  EXPECT_THAT(haas.out, HasSubstr("N125 G187\nN130 M05\n"));
+  RunResult own = post(kThreeTools, "-t haas-umc750 --set program.smoothing=rough");  // the control's tolerance
+  EXPECT_THAT(own.out, HasSubstr("N20 G187 P1\n"));
+  RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.smoothing=medium");
+  EXPECT_EQ(fanuc.status, 0) << fanuc.err;
+  EXPECT_THAT(fanuc.out, HasSubstr("N20 G00 G17 G40 G49 G80 G90\nN30 G05.1 Q1\n"));
+  EXPECT_THAT(fanuc.out, HasSubstr("N220 G05.1 Q0\nN230 M05\n"));
+  RunResult tol = post(kThreeTools, "-t fanuc-mill --set program.smoothing=medium --set program.smoothing_tolerance=0.01");
+  EXPECT_EQ(tol.status, 1);
+  EXPECT_EQ(tol.err,
+            "--set:2:31: error: fanuc-mill.program.smoothing_tolerance: machine 'fanuc-mill''s codes.smoothing_on (\"G05.1 Q1\") "
+            "has no {tolerance}: the control takes its tolerance from its parameters\n 2 | program.smoothing_tolerance = 0.01\n"
+            "   |                               ^\n");
+  RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.smoothing=finish");
+  EXPECT_EQ(lathe.status, 1);
+  EXPECT_THAT(lathe.err, StartsWith("--set:1:21: error: fanuc-lathe.program.smoothing: machine 'fanuc-lathe' has no "
+                                    "codes.smoothing_on to switch its smoothing on with\n"));
+}
+
+TEST(JobOptions, SpindleSpeedLimit) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,9000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,100\nGOTO/0,0,-1\nFINI\n";
+  RunResult r = post(cl, "-t haas-umc750");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "<stdin>:3:1: error: SPINDL: 9000 rpm is above machine 'haas-umc750''s spindle limit of 8100 rpm (max_rpm)\n"
+                   " 3 | SPINDL/RPM,9000,CLW\n   | ^\nclpc: 1 error, 0 warnings\n");
+  EXPECT_EQ(post(cl, "-t haas-umc750 --set max_rpm=12000").status, 0);  // the 12,000 rpm spindle option
+  EXPECT_EQ(post(cl, "-t fanuc-mill").status, 0);                         // a generic control: no limit of its own
+  EXPECT_EQ(post(cl, "-t fanuc-mill --set max_rpm=6000").status, 1);
+}
+
+TEST(JobOptions, ParkAtTheEnd) {
+  RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.park=true");
+  EXPECT_EQ(haas.status, 0) << haas.err;
+  EXPECT_THAT(haas.out, HasSubstr("N130 G53 G00 Z0.\nN135 G53 G00 Y0.\nN140 G28 G91 B0. C0.\nN145 G90\nN150 M30\n%\n"));
+  RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.park=true");
+  EXPECT_THAT(fanuc.out, HasSubstr("N230 G91 G28 Z0.\nN240 G90\nN250 G91 G28 Y0.\nN260 G90\nN270 M30\n"));
+  RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.park=true");
+  EXPECT_EQ(lathe.status, 1);
+  EXPECT_THAT(lathe.err, StartsWith("--set:1:16: error: fanuc-lathe.program.park: machine 'fanuc-lathe' has no park_blocks to "
+                                    "park with (say, park_blocks = [\"G53 G00 Y0.\"])\n"));
+  RunResult own = post(kLatheFile, "-t fanuc-lathe --set program.park=true --set 'program.park_blocks=[\"G00 X200. Z100.\"]'");
+  EXPECT_EQ(own.status, 0) << own.err;
+  EXPECT_THAT(own.out, HasSubstr("G28 U0. W0.\nN90 G00 X200. Z100.\nN100 M30\n"));
+}
+
+TEST(JobOptions, HeaderWithDateProgrammerAndStock) {
+  setenv("SOURCE_DATE_EPOCH", "1795392000", 1);  // 2026-11-23, for a reproducible "today"
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set program.date=today --set 'program.programmer=J. Smith' "
+                                  "--set 'program.stock=100 x 50 x 25 AlMg3'");
+  unsetenv("SOURCE_DATE_EPOCH");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, StartsWith("%\nO1000\n(MACHINE: FANUC-MILL - FANUC 0I-MF STYLE 3-AXIS VERTICAL MILL, METRIC)\n(SOURCE: <STDIN>)\n"
+                                "(DATE: 2026-11-23)\n(PROGRAMMER: J. SMITH)\n(STOCK: 100 X 50 X 25 ALMG3)\n(UNITS: MM)\n"));
+  RunResult fixed = post(kThreeTools, "-t fanuc-mill --set program.header=false --set 'program.date=23 NOV 2026'");
+  EXPECT_THAT(fixed.out, StartsWith("%\nO1000\n(DATE: 23 NOV 2026)\nN10 G21\n"));
+}
+
+TEST(JobOptions, SequenceNumbersOff) {
+  RunResult r = post(kThreeTools, "-t fanuc-mill --set sequence.enabled=false");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("\nG21\nG00 G17 G40 G49 G80 G90\nT1 M06 (T1)\n"));
+  EXPECT_THAT(r.out, Not(HasSubstr("N10")));
+}
+
+TEST(JobOptions, AJobFile) {
+  TempDir t;
+  write_file(t.path("job.toml"), "[job]\nunits = \"mm\"\n[job.program]\noptional_stop = \"tool-change\"\nnumber = 77\n");
+  RunResult r = post(kThreeTools, "-t haas-umc750 --job " + t.path("job.toml") + " --set program.number=78");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, StartsWith("%\nO00078\n"));  // --set comes after --job
+  EXPECT_THAT(r.out, HasSubstr("N10 G21\n"));
+  EXPECT_THAT(r.out, HasSubstr("N60 G53 G00 Z0.\nN65 M01\nN70 T2 M06 (T2)\n"));
+  // explain shows the machine as the job has it.
+  RunResult e = run_clpc("explain haas-umc750 --job " + t.path("job.toml"));
+  EXPECT_THAT(e.out, HasSubstr("optional_stop = \"tool-change\"\n"));
+  EXPECT_THAT(e.out, HasSubstr("units = \"mm\"\n"));
+
+  write_file(t.path("bad.toml"), "[job]\nfamily = \"lathe\"\n");
+  RunResult bad = post(kThreeTools, "-t fanuc-mill --job " + t.path("bad.toml"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(bad.err, t.path("bad.toml") + ":2:10: error: family: a job cannot change the machine's family; name another "
+                                          "machine with -t\n 2 | family = \"lathe\"\n   |          ^\n");
+  write_file(t.path("stray.toml"), "[job]\nunits = \"mm\"\n[haas]\nunits = \"inch\"\n");
+  RunResult stray = post(kThreeTools, "-t fanuc-mill --job " + t.path("stray.toml"));
+  EXPECT_EQ(stray.status, 1);
+  EXPECT_THAT(stray.err, StartsWith(t.path("stray.toml") + ":3:2: error: 'haas': a job file holds one [job] table of machine keys"));
+}
+
+TEST(JobOptions, SetErrorsAreLocatedAndSuggest) {
+  RunResult typo = post(kThreeTools, "-t fanuc-mill --set program.optionl_stop=operation");
+  EXPECT_EQ(typo.status, 1);
+  EXPECT_EQ(typo.err, "--set:1:9: error: unknown key 'optionl_stop' in fanuc-mill.program; did you mean 'optional_stop'?\n"
+                      " 1 | program.optionl_stop = \"operation\"\n   |         ^\n");
+  RunResult value = post(kThreeTools, "-t fanuc-mill --set program.smoothing=ultra");
+  EXPECT_EQ(value.status, 1);
+  EXPECT_THAT(value.err, StartsWith("--set:1:21: error: fanuc-mill.program.smoothing: expected one of \"off\", \"rough\", "
+                                    "\"medium\", \"finish\", found \"ultra\"\n"));
+  RunResult malformed = post(kThreeTools, "-t fanuc-mill --set program.park");
+  EXPECT_EQ(malformed.status, 1);
+  EXPECT_EQ(malformed.err, "clpc: error: --set program.park: expected KEY=VALUE, KEY a machine key such as "
+                           "program.optional_stop or units\n");
+  RunResult no_machine = run_clpc("check - --set units=inch", kThreeTools);
+  EXPECT_EQ(no_machine.status, 2);
+  EXPECT_EQ(no_machine.err, "clpc: error: --set and --job change a machine: name it with -t\n");
+  // A later --set of one key replaces an earlier one.
+  EXPECT_EQ(post(kThreeTools, "-t fanuc-mill --set program.number=5 --set program.number=6").out.substr(0, 8), "%\nO0006\n");
+}
+
+// --- The command line -------------------------------------------------------------------
+
+TEST(CommandLine, DidYouMeanForOptionCommandAndMachine) {
+  RunResult option = run_clpc("compile x.cls -t haas-umc750 --outptu x.nc");
+  EXPECT_EQ(option.status, 2);
+  EXPECT_EQ(option.err, "clpc: error: unknown option '--outptu'; did you mean '--output'?\nRun 'clpc compile --help' for the options.\n");
+  RunResult command = run_clpc("compil x.cls");
+  EXPECT_EQ(command.status, 2);
+  EXPECT_EQ(command.err, "clpc: error: unknown command 'compil'; did you mean 'compile'?\nRun 'clpc --help' for the options.\n");
+  RunResult machine = run_clpc("compile - -t haas-umc75", kThreeTools);
+  EXPECT_EQ(machine.status, 1);
+  EXPECT_EQ(machine.err, "clpc: error: no machine named 'haas-umc75'; did you mean 'haas-umc750'? (known: fanuc-lathe, "
+                         "fanuc-mill, haas-umc750; see 'clpc machines')\n");
+  RunResult value = run_clpc("compile - -t fanuc-mill --emit gcod", kThreeTools);
+  EXPECT_EQ(value.status, 2);
+  EXPECT_THAT(value.err, StartsWith("clpc: error: --emit: 'gcod' is not one of gcode, ir; did you mean 'gcode'?\n"));
+  RunResult warning = run_clpc("compile - -t fanuc-mill -Wno-spindle-stoped", kThreeTools);
+  EXPECT_EQ(warning.status, 2);
+  EXPECT_EQ(warning.err, "clpc: error: -Wno-spindle-stoped: no such warning switch (-Wno-NAME, -Werror); did you mean "
+                         "'-Wno-spindle-stopped'?\n");
+}
+
+TEST(CommandLine, ClpcAloneGivesTheShortHelp) {
+  RunResult r = run_clpc("");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_THAT(r.out, StartsWith("clpc - a CNC postprocessor: CL data (APT/CLSF) in, G-code out\n\nusage: clpc COMMAND [OPTIONS]\n"));
+  EXPECT_THAT(r.out, HasSubstr("  clpc compile part.cls -t haas-umc750     the main job\n"));
+}
+
+namespace {
+// Five cutting moves with the spindle stopped: five warnings of one name.
+const char* kNoSpindle = "UNITS/MM\nLOADTL/1\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,100\nGOTO/1,0,0\nGOTO/2,0,0\nGOTO/3,0,0\n"
+                         "GOTO/4,0,0\nGOTO/5,0,0\nFINI\n";
+}  // namespace
+
+TEST(CommandLine, RepeatedWarningsAreSummarisedAfterThree) {
+  RunResult r = post(kNoSpindle, "-t fanuc-mill");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:8:1: warning: cutting move with the spindle stopped [-Wspindle-stopped]\n"));
+  EXPECT_THAT(r.err, Not(HasSubstr("<stdin>:9:1")));
+  EXPECT_THAT(r.err, HasSubstr("<stdin>: note: 2 more warnings like these not shown (spindle-stopped; -Wno-spindle-stopped silences "
+                               "them)\nclpc: 0 errors, 5 warnings\n"));
+}
+
+TEST(CommandLine, WarningsSilencedByName) {
+  RunResult r = post(kNoSpindle, "-t fanuc-mill -Wno-spindle-stopped");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  RunResult werror = post(kNoSpindle, "-t fanuc-mill -Werror");
+  EXPECT_EQ(werror.status, 1);
+}
+
+TEST(CommandLine, ASubroutinesDiagnosticNamesTheCall) {
+  RunResult r = post("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nDEFSUB/1\nGOTO/1,2,3,4\nENDSUB\nRAPID\nGOTO/0,0,5\nCALSUB/1\nFINI\n",
+                     "-t fanuc-mill");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:5:12: error: GOTO needs 3 or 6 values (x,y,z[,i,j,k]), found 4\n"));
+  EXPECT_THAT(r.err, HasSubstr("<stdin>:9:1: note: called from line 9"));
+}
+
+// docs/reliability.md lists every warning name (the -W option's help points there).
+TEST(CommandLine, EveryWarningNameIsDocumented) {
+  const std::string doc = read_file(std::string(CLPC_SOURCE_DIR) + "/docs/reliability.md");
+  for (const WarningName& w : warning_names()) EXPECT_THAT(doc, HasSubstr("| `" + std::string(w.name) + "` |")) << w.name;
+}
