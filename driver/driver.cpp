@@ -93,7 +93,8 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
   }
 
   struct stat before {};
-  const bool replacing = opt.say_replaced && opt.emit == Emit::Gcode && output != "-" && stat(output.c_str(), &before) == 0;
+  const bool replacing = opt.say_replaced && opt.emit == Emit::Gcode && output != "-" && stat(output.c_str(), &before) == 0 &&
+                         S_ISREG(before.st_mode);
   OutputFile out;
   try {
     PrescanOptions po;

@@ -108,9 +108,17 @@ OutputFile::~OutputFile() { discard(); }
 bool OutputFile::open(const std::string& path, std::string& error) {
   path_ = path;
   to_stdout_ = path == "-";
+  // A device or pipe (/dev/null, a FIFO) cannot be renamed over: the program goes through an
+  // anonymous temporary file and is copied to it on success, as to standard output.
+  struct stat st;
+  to_special_ = !to_stdout_ && stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+  if (to_special_ && S_ISDIR(st.st_mode)) {
+    error = "cannot write '" + path + "': it is a directory";
+    return false;
+  }
   buf_.reserve(kBuffer);
   std::string dir, tmpl;
-  if (to_stdout_) {
+  if (to_stdout_ || to_special_) {
     const char* t = std::getenv("TMPDIR");
     dir = t && *t ? t : "/tmp";
     tmpl = dir + "/.clpc-stdout.clpc-" + std::to_string(getpid()) + "-XXXXXX";
@@ -127,7 +135,7 @@ bool OutputFile::open(const std::string& path, std::string& error) {
   }
   temp_ = tmpl;
   register_temp(temp_);
-  if (to_stdout_) {
+  if (to_stdout_ || to_special_) {
     unlink(temp_.c_str());  // anonymous: nothing to clean up, whatever happens
     unregister_temp(temp_);
   } else {
@@ -203,7 +211,13 @@ bool OutputFile::commit(std::string& error) {
     discard();
     return false;
   }
-  if (to_stdout_) {
+  if (to_stdout_ || to_special_) {
+    int out = 1;
+    if (to_special_ && (out = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC)) < 0) {
+      error = "cannot write '" + path_ + "': " + strerror(errno);
+      discard();
+      return false;
+    }
     char buf[1 << 16];
     off_t off = 0;
     for (;;) {
@@ -215,13 +229,16 @@ bool OutputFile::commit(std::string& error) {
         return false;
       }
       if (n == 0) break;
-      if (!write_all(1, buf, size_t(n))) {
-        error = "cannot write to standard output: " + std::string(strerror(errno));
+      if (!write_all(out, buf, size_t(n))) {
+        error = (to_special_ ? "cannot write '" + path_ + "': " : std::string("cannot write to standard output: ")) +
+                strerror(errno);
+        if (out != 1) close(out);
         discard();
         return false;
       }
       off += n;
     }
+    if (out != 1) close(out);
     close(fd_);
     fd_ = -1;
     return true;
@@ -251,7 +268,7 @@ void OutputFile::discard() {
     close(fd_);
     fd_ = -1;
   }
-  if (!temp_.empty() && !to_stdout_) {
+  if (!temp_.empty() && !to_stdout_ && !to_special_) {
     unlink(temp_.c_str());
     unregister_temp(temp_);
   }

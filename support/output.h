@@ -1,7 +1,8 @@
 // Where a program is written: a temporary file beside the target, renamed into place only
 // when the compile succeeded. A failed or interrupted run never leaves a half-written program
 // and never clobbers an older one. Output to "-" goes through an anonymous temporary file
-// too, and is copied to standard output only on success.
+// too, and is copied to standard output only on success; so is output to a device or a pipe
+// (/dev/null), which a rename would replace.
 #pragma once
 
 #include <condition_variable>
@@ -28,7 +29,8 @@ class OutputFile {
     if (buf_.size() + s.size() > kBuffer) flush();
     buf_.append(s);
   }
-  // Renames the temporary file into place (or copies it to standard output).
+  // Renames the temporary file into place (or copies it to standard output, a device or a
+  // pipe).
   bool commit(std::string& error);
   void discard();
   const std::string& temp_path() const { return temp_; }
@@ -44,6 +46,7 @@ class OutputFile {
   std::string path_, temp_;
   int fd_ = -1;
   bool to_stdout_ = false;
+  bool to_special_ = false;  // a device or pipe: copied to, like standard output
   bool null_ = false;
   bool failed_ = false;
   int errno_ = 0;

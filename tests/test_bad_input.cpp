@@ -4,6 +4,7 @@
 // intact, its temporary file removed at once (SIGTERM) or by the next run (SIGKILL).
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -257,4 +258,24 @@ TEST(OutputSafety, RefusesToOverwriteItsInput) {
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.err, HasSubstr("is the input file; refusing to overwrite it"));
   EXPECT_EQ(read_file(t.path("part.cls")), kHead + "RAPID\nGOTO/1,2,3\n");
+}
+
+// A pipe or a device (-o /dev/null) is written to, never renamed over: a rename would put a
+// regular file where the device was.
+TEST(OutputSafety, APipeIsWrittenToNotReplaced) {
+  TempDir t;
+  write_file(t.path("part.cls"), kHead + "RAPID\nGOTO/1,2,3\n");
+  ASSERT_EQ(mkfifo(t.path("pipe").c_str(), 0600), 0);
+  const std::string cmd = "cat '" + t.path("pipe") + "' > '" + t.path("got") + "' & " + CLPC_BINARY + " compile '" +
+                          t.path("part.cls") + "' -t fanuc-mill -o '" + t.path("pipe") + "' 2>'" + t.path("err") + "'; s=$?; wait; exit $s";
+  const int st = std::system(("sh -c \"" + std::regex_replace(cmd, std::regex("\""), "\\\"") + "\"").c_str());
+  EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0) << read_file(t.path("err"));
+  EXPECT_EQ(read_file(t.path("err")), "");  // no "replaced" note: nothing was replaced
+  struct stat s {};
+  ASSERT_EQ(stat(t.path("pipe").c_str(), &s), 0);
+  EXPECT_TRUE(S_ISFIFO(s.st_mode));
+  EXPECT_THAT(read_file(t.path("got")), HasSubstr("X1. Y2."));
+  RunResult dir = run_clpc("compile " + t.path("part.cls") + " -t fanuc-mill -o " + t.path(""));
+  EXPECT_EQ(dir.status, 1);
+  EXPECT_THAT(dir.err, HasSubstr("it is a directory"));
 }
