@@ -69,7 +69,7 @@ const std::string& text() {
 const Machine& haas() {
   static const Machine m = [] {
     Diagnostics d(nullptr);
-    MachineRegistry reg(pass_names());
+    MachineRegistry reg(pass_contracts());
     reg.load_builtin(d);
     return *reg.resolve("haas-umc750", d);
   }();

@@ -16,6 +16,7 @@
 #include "cli/usage.h"
 #include "driver/driver.h"
 #include "driver/readback_commands.h"
+#include "passes/describe.h"
 #include "passes/pass.h"
 #include "support/output.h"
 #include "support/suggest.h"
@@ -207,6 +208,8 @@ int main(int argc, char** argv) {
   add_job(explain);
 
   CLI::App* passes = app.add_subcommand("passes", "List the passes a pipeline may use, with their contracts");
+  bool passes_markdown_flag = false;
+  passes->add_flag("--markdown", passes_markdown_flag, "As the generated section of docs/passes.md");
 
   try {
     app.parse(argc, argv);
@@ -215,11 +218,10 @@ int main(int argc, char** argv) {
   }
 
   Diagnostics diags(&std::cerr);
-  MachineRegistry reg(pass_names());
+  MachineRegistry reg(pass_contracts());
 
   if (*passes) {
-    for (const PassInfo& p : all_passes())
-      std::cout << p.name << "\n  " << p.summary << "\n  contract: " << p.contract << "\n";
+    std::cout << (passes_markdown_flag ? passes_markdown() : describe_passes());
     return kOk;
   }
   if (*machines) {

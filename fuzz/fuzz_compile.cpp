@@ -17,7 +17,7 @@ namespace {
 const std::vector<clpc::Machine>& machines() {
   static const std::vector<clpc::Machine> m = [] {
     clpc::Diagnostics d(nullptr);
-    clpc::MachineRegistry reg(clpc::pass_names());
+    clpc::MachineRegistry reg(clpc::pass_contracts());
     reg.load_builtin(d);
     std::vector<clpc::Machine> out;
     for (const char* n : {"haas-umc750", "fanuc-mill", "fanuc-lathe"}) out.push_back(*reg.resolve(n, d));

@@ -9,7 +9,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   clpc::Diagnostics d(nullptr);
-  clpc::MachineRegistry reg(clpc::pass_names());
+  clpc::MachineRegistry reg(clpc::pass_contracts());
   reg.load_builtin(d);
   if (!reg.load_text("fuzz.toml", text, d)) return 0;
   for (const auto& [name, description] : reg.list()) {

@@ -1,16 +1,16 @@
 #include "machine/machine_loader.h"
 
-#include <cmath>
-#include <limits>
-
-#include "support/suggest.h"
-
-#include <algorithm>
-#include <fstream>
-#include <set>
-#include <sstream>
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "machine/pipeline_check.h"
+#include "support/suggest.h"
 #include "support/text.h"
 
 namespace clpc {
@@ -486,39 +486,13 @@ void read_format(Reader r, AddressFormat& f, bool length_like) {
   r.finish();
 }
 
-// The passes a machine's programs cannot do without, in the order their contracts need: a
-// pipeline without them would pass CL motion on unmade (a CYCLE's holes as plain moves, tool
-// axes never turned into rotary positions, SET registers never selected). One located error.
-void check_pipeline(Reader& r, const Machine& m) {
-  std::vector<std::pair<const char*, const char*>> need = {
-      {"arc-direction", "for every CIRCLE's sense"},
-      {"helix", "for helical and multi-turn arcs"},
-      {"arc-legalise", "for arcs the control cannot cut as they are"},
-      {"drill-cycles", "for CYCLE records: without it their holes would be cut as moves to their tops"},
-  };
-  if (m.is_lathe()) need.push_back({"groove-cycles", "for the groove cycle records"});
-  else need.push_back({"offset-table", "for SET registers and frames"});
-  if (m.kinematics.has_rotaries()) need.push_back({"kinematics", "to turn tool axes into rotary positions"});
-  auto at = [&](const char* p) {
-    auto it = std::find(m.pipeline.begin(), m.pipeline.end(), p);
-    return it == m.pipeline.end() ? -1 : int(it - m.pipeline.begin());
-  };
-  const toml::node* n = r.find("pipeline");
-  for (const auto& [pass, what] : need)
-    if (at(pass) < 0) {
-      const std::string msg = "machine '" + m.name + "' needs '" + pass + "' in its pipeline, " + what;
-      if (n) r.error(*n, "pipeline", msg);
-      else r.missing("pipeline", msg);
-      return;
-    }
-  // Order: the arc sense first; cycles and the offset table before the kinematics.
-  for (const auto& [before, after] : std::vector<std::pair<const char*, const char*>>{
-           {"arc-direction", "helix"}, {"arc-direction", "arc-legalise"}, {"drill-cycles", "kinematics"},
-           {"offset-table", "kinematics"}})
-    if (at(before) >= 0 && at(after) >= 0 && at(before) > at(after)) {
-      r.error(*n, "pipeline", "'" + std::string(before) + "' must come before '" + after + "'");
-      return;
-    }
+// A pipeline that does not make a legal program for the machine (machine/pipeline_check.h):
+// one located error at its `pipeline` key.
+void report_pipeline(Reader& r, const Machine& m, const ir::PassContracts& passes) {
+  const std::string problem = check_pipeline(m, passes);
+  if (problem.empty()) return;
+  if (const toml::node* n = r.find("pipeline")) r.error(*n, "pipeline", problem);
+  else r.missing("pipeline", problem);
 }
 
 // Per-job options that ask for what the machine cannot do (docs/machines.md, "Per-job
@@ -545,7 +519,7 @@ void check_job_codes(Reader& r, const Machine& m) {
     p->error(*n, "preselect", "machine '" + m.name + "' has no codes.tool_preselect");
 }
 
-Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, const std::vector<std::string>& known_passes,
+Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, const ir::PassContracts& passes,
                       const std::string& source) {
   Machine m;
   m.name = name;
@@ -576,9 +550,9 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   if (r.strings("pipeline", pipeline)) {
     const toml::node* n = r.find("pipeline");
     for (size_t i = 0; i < pipeline.size(); ++i) {
-      if (std::find(known_passes.begin(), known_passes.end(), pipeline[i]) == known_passes.end()) {
+      if (std::none_of(passes.begin(), passes.end(), [&](const ir::PassContract& p) { return p.name == pipeline[i]; })) {
         std::string all;
-        for (const auto& k : known_passes) all += (all.empty() ? "" : ", ") + k;
+        for (const auto& k : passes) all += (all.empty() ? "" : ", ") + k.name;
         r.error((*n->as_array())[i], "pipeline", "unknown pass '" + pipeline[i] + "' (passes: " + all + ")");
       }
     }
@@ -839,7 +813,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
     s->finish();
   }
-  check_pipeline(r, m);
+  report_pipeline(r, m, passes);
   check_job_codes(r, m);
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
@@ -910,7 +884,7 @@ Machine default_machine(Family family, ir::Units units) {
   return m;
 }
 
-MachineRegistry::MachineRegistry(std::vector<std::string> known_passes) : known_passes_(std::move(known_passes)) {}
+MachineRegistry::MachineRegistry(ir::PassContracts passes) : passes_(std::move(passes)) {}
 MachineRegistry::~MachineRegistry() = default;
 
 bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
@@ -1138,7 +1112,7 @@ std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& nam
     from_name_given = from_name_given || layers[i]->at_path("program.number_from_name");
   }
   Ctx c{d, &sources_};
-  Machine m = build_machine(c, name, std::move(layers), known_passes_, it->second.source->path);
+  Machine m = build_machine(c, name, std::move(layers), passes_, it->second.source->path);
   if (!c.ok) return std::nullopt;
   if (number_given && !from_name_given) m.number_from_name = false;
   return m;

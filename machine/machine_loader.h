@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "ir/stage.h"
 #include "machine/machine.h"
 #include "support/diagnostics.h"
 
@@ -25,8 +26,9 @@ std::string_view builtin_machines_toml();  // generated from machines.toml at bu
 
 class MachineRegistry {
  public:
-  // `known_passes` are the names a pipeline may use.
-  explicit MachineRegistry(std::vector<std::string> known_passes);
+  // `passes` are the passes a pipeline may name, with their contracts (passes/registry.cpp):
+  // a machine's pipeline must reach a legal program through them (machine/pipeline_check.h).
+  explicit MachineRegistry(ir::PassContracts passes);
   ~MachineRegistry();
 
   bool load_builtin(Diagnostics& d);
@@ -62,7 +64,7 @@ class MachineRegistry {
   bool flatten(const std::string& name, std::vector<const toml::table*>& layers, std::vector<std::string>& chain,
                Diagnostics& d);
 
-  std::vector<std::string> known_passes_;
+  ir::PassContracts passes_;
   std::vector<std::unique_ptr<Source>> sources_;
   std::map<std::string, Entry> machines_;
 };

@@ -1,13 +1,7 @@
 // arc-direction: decides which way each CL arc turns.
 //
-// Contract. Expects arcs as lowered: start, end, centre, axis, and the sense the CL gives
-// (`hint`: the CAM system's CIRCLE convention, a sense word, MOVARC's angle, INDIRV; see
-// lower/lower_motion.cpp). Guarantees every arc has dir Ccw or Cw about its axis and its sweep in
-// degrees (full turns included). The CL's sense decides; geometry (intermediate points, the
-// tangent of the cutting move entering or leaving the arc) only confirms it: where it
-// disagrees (a cusp, a plunge onto the arc) a warning names both readings and the CL's sense
-// is cut. Only an arc with no sense from the CL (made by a pass) is decided by geometry, and
-// one nothing decides is an error.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is arc_direction_pass() at the end of this file.
 #include "passes/arc_direction.h"
 
 #include <cmath>
@@ -158,6 +152,24 @@ ArcEvidence arc_evidence(const ir::Operation& op, const ir::Arc& a, const ir::Ve
   return e;
 }
 
-std::unique_ptr<Pass> make_arc_direction() { return std::make_unique<ArcDirection>(); }
+const PassInfo& arc_direction_pass() {
+  static const PassInfo info{
+      .name = "arc-direction",
+      .summary = "decide which way each CL arc turns (CW or CCW)",
+      .expects = "arcs as lowered: start, end, centre, axis, and the sense the CL gives (the CAM system's CIRCLE "
+                 "convention, a sense word, MOVARC's angle, INDIRV)",
+      .guarantees = "every arc has a direction (CW or CCW about its axis) and a sweep, full turns included; the "
+                    "CL's sense decides and geometry (intermediate points, tangent moves) only confirms it, with "
+                    "a warning naming both readings where they disagree; an arc nothing decides is an error",
+      .settings = "format.X (one output increment: how near a point must lie to the arc)",
+      .needs = 0,
+      .provides = ir::ArcsDecided,
+      .breaks = 0,
+      .costly = false,
+      .reference = true,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<ArcDirection>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

@@ -4,10 +4,8 @@
 // an arc too short to survive rounding (its rounded ends would meet, which a control reads as
 // a full circle) becomes a straight move.
 //
-// Contract. Expects: decided arcs without extra turns (helix). Guarantees: every arc lies in
-// a plane the machine has, with a radius within its limits, sweep <= arcs.max_sweep (and
-// < 360 in R format), and a chord of at least two output increments unless it is a whole
-// circle.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is arc_legalise_pass() at the end of this file.
 #include <cmath>
 
 #include "passes/arc_edit.h"
@@ -79,6 +77,26 @@ class ArcLegalise : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_arc_legalise() { return std::make_unique<ArcLegalise>(); }
+const PassInfo& arc_legalise_pass() {
+  static const PassInfo info{
+      .name = "arc-legalise",
+      .summary = "make every arc one the machine can do, or lines within tolerance",
+      .expects = "decided arcs without extra turns",
+      .guarantees = "every arc lies in a plane the machine has (arcs.planes; arbitrary planes are linearised "
+                    "within arcs.tolerance), with a radius inside arcs.min_radius / max_radius and a sweep of at "
+                    "most arcs.max_sweep (split into equal pieces); no full circle on an R-format machine; no arc "
+                    "whose rounded ends would meet (chord under two increments and sweep under 180 degrees: a "
+                    "straight move; a circle smaller than one increment: nothing)",
+      .settings = "arcs.planes, arcs.min_radius, arcs.max_radius, arcs.max_sweep, arcs.center, arcs.tolerance, "
+                  "format.X",
+      .needs = ir::ArcsDecided | ir::ArcsOneTurn,
+      .provides = ir::ArcsLegal,
+      .breaks = 0,
+      .costly = false,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<ArcLegalise>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

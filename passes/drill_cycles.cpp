@@ -2,10 +2,8 @@
 // a Hole (the machine's canned cycle), or, where the machine has no code for the cycle, the
 // plain moves the cycle would make.
 //
-// Contract. Expects: CycleOn / moves / CycleOff as lowered. Guarantees: every move inside a
-// cycle is a Hole (with the level the tool starts from) or expanded into moves; every cycle
-// ends with a CycleOff (a warning and an implicit cancel where the CL has none at the end of
-// an operation); no CycleOn remains for a cycle the machine lacks.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is drill_cycles_pass() at the end of this file.
 #include <cmath>
 
 #include "passes/cycle_expand.h"
@@ -53,6 +51,14 @@ class DrillCycles : public Pass {
         first_hole_ = true;
         cycle_on_at_ = out.size();
         if (!expand_) out.push_back(std::move(in));
+        continue;
+      }
+      // A lathe groove record (CYCLE/FACE|RADIUS) ends with CYCLE/OFF too: that one is
+      // groove-cycles' to read.
+      if (std::holds_alternative<ir::GrooveOn>(in.op)) groove_open_ = true;
+      if (std::holds_alternative<ir::CycleOff>(in.op) && groove_open_ && !active_) {
+        groove_open_ = false;
+        out.push_back(std::move(in));
         continue;
       }
       if (std::holds_alternative<ir::CycleOff>(in.op)) {
@@ -127,6 +133,8 @@ class DrillCycles : public Pass {
   }
 
  private:
+  bool groove_open_ = false;  // a GrooveOn whose CYCLE/OFF has not come yet
+
   void close(std::vector<ir::Instr>& out, SourceLoc loc, bool implicit, PassContext& ctx) {
     if (!expand_) out.push_back({loc, ir::CycleOff{}});
     active_.reset();
@@ -148,6 +156,25 @@ class DrillCycles : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_drill_cycles() { return std::make_unique<DrillCycles>(); }
+const PassInfo& drill_cycles_pass() {
+  static const PassInfo info{
+      .name = "drill-cycles",
+      .summary = "turn the GOTOs of a CYCLE into canned-cycle holes, or moves where the machine lacks the cycle",
+      .expects = "CYCLE records lowered to cycle-on / moves / cycle-off",
+      .guarantees = "every move inside a cycle becomes a hole, with the level the tool started the cycle at (for "
+                    "G98 returns; with RTRCTO the tool first goes to that level), or, where the machine has no "
+                    "code for the cycle or the pecks vary (2NDPECK), the plain moves the cycle makes; every cycle "
+                    "ends (a warning and an implicit cancel at the end of an operation without CYCLE/OFF); "
+                    "tapping and oriented boring cannot be written as moves: an error",
+      .settings = "cycles.return, cycles.tap_feed, cycles.peck_clearance, codes.cycle_*, codes.rigid_tap",
+      .needs = 0,
+      .provides = ir::CyclesFormed,
+      .breaks = 0,
+      .costly = false,
+      .reference = true,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<DrillCycles>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

@@ -15,10 +15,8 @@
 // stations, same bottom, same pecks), and every other move stays between the retract level
 // and the bottom. Other stations stay as motion.
 //
-// Contract. Expects: lathe data (x radius, z), groove-on / moves / cycle-off as lowered,
-// groove marks. Guarantees: a GrooveOn and its CYCLE/OFF are gone; each collapse is a rapid to
-// the cycle's start and a Groove whose expansion equals the motion it replaced; motion that
-// does not match stays as it was (a warning when a CYCLE record asked for a cycle).
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is groove_cycles_pass() at the end of this file.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -399,6 +397,24 @@ class GrooveCycles : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_groove_cycles() { return std::make_unique<GrooveCycles>(); }
+const PassInfo& groove_cycles_pass() {
+  static const PassInfo info{
+      .name = "groove-cycles",
+      .summary = "collapse lathe groove motion into one G74 (face) or G75 (radial) cycle where the cycle "
+                 "reproduces it",
+      .expects = "lathe data (x radius, z); groove records and marks as lowered",
+      .guarantees = "groove records are gone; each collapse is a move to the cycle's start and a groove whose "
+                    "G74/G75 expansion equals the motion it replaced; motion that does not match stays as it was "
+                    "(a warning where a CYCLE record asked for a cycle)",
+      .settings = "format.X (the resolution groove stations are compared at)",
+      .needs = 0,
+      .provides = ir::GroovesFormed,
+      .breaks = 0,
+      .costly = false,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<GrooveCycles>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

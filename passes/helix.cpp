@@ -4,10 +4,8 @@
 // helical arcs. Multi-turn arcs (NX TIMES,n) are split so no block turns more than allowed,
 // nor more than half a turn.
 //
-// Contract. Expects: decided arcs (arc-direction). Guarantees: no arc has extra turns; every
-// helical arc has sweep <= arcs.helix_max_sweep on a machine with arcs.helical, and there are
-// no helical arcs on a machine without; planar multi-turn arcs become pieces of at most
-// arcs.max_sweep.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is helix_pass() at the end of this file.
 #include <cmath>
 
 #include "passes/arc_edit.h"
@@ -48,6 +46,24 @@ class Helix : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_helix() { return std::make_unique<Helix>(); }
+const PassInfo& helix_pass() {
+  static const PassInfo info{
+      .name = "helix",
+      .summary = "keep, split or linearise helical and multi-turn arcs as the machine allows",
+      .expects = "decided arcs",
+      .guarantees = "no arc has extra turns; a helical arc (end more than half an increment off the start's "
+                    "plane) has a sweep of at most arcs.helix_max_sweep where arcs.helical, and there is none "
+                    "(linearised within arcs.tolerance) where not; planar multi-turn arcs are split into pieces "
+                    "of at most arcs.max_sweep, multi-turn arcs into pieces of at most half a turn",
+      .settings = "arcs.helical, arcs.helix_max_sweep, arcs.max_sweep, arcs.tolerance",
+      .needs = ir::ArcsDecided,
+      .provides = ir::ArcsOneTurn,
+      .breaks = 0,
+      .costly = false,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<Helix>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

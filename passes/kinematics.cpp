@@ -18,10 +18,8 @@
 // segment by more than the tolerance. Inverse-time feeds (G93) where the machine asks.
 // A long operation comes in chunks; once one is simultaneous, so is the rest of it.
 //
-// Contract. Expects: legal arcs, holes from drill-cycles, moves with tool axes in the part
-// frame. Guarantees (machines with rotaries): every move has its rotary positions; rotaries
-// within limits; holes along the machine's Z or expanded into moves; the control modes are
-// switched around the moves that need them. Machines without rotaries: unchanged.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is kinematics_pass() at the end of this file.
 #include <cmath>
 #include <optional>
 
@@ -630,6 +628,29 @@ class Kinematics : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_kinematics() { return std::make_unique<Kinematics>(); }
+const PassInfo& kinematics_pass() {
+  static const PassInfo info{
+      .name = "kinematics",
+      .summary = "turn tool axes into rotary positions and points into what the control is given (five-axis, 3+2)",
+      .expects = "decided arcs, holes, offsets assigned, tool axes in the part frame",
+      .guarantees = "on machines with rotary axes, every move and arc carries its rotary positions, within "
+                    "limits, chosen for the least travel and continuity (the preferred sign first at the start "
+                    "and at the singularity); operations with one tool axis are indexed: positioned once, "
+                    "clamped, cut 3-axis in the tilted frame; holes stay canned cycles only along the machine's "
+                    "Z; the TCPC / dynamic work offset modes are switched around the moves that need them and off "
+                    "at tool changes and the end of each operation; no solution within limits, or a jump the "
+                    "limits force, is an error naming the CL record (or, with on_limit = \"retract\", a retract, "
+                    "rotate and re-engage); arcs may leave the machine's planes, so arc-legalise must follow. On "
+                    "three-axis machines it changes nothing",
+      .settings = "kinematics.* (axes, pivot, simultaneous, indexed, inverse_time, on_limit), arcs.tolerance",
+      .needs = ir::ArcsDecided | ir::CyclesFormed | ir::OffsetsAssigned,
+      .provides = ir::Kinematic,
+      .breaks = ir::ArcsLegal,
+      .costly = true,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<Kinematics>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

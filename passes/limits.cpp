@@ -7,9 +7,8 @@
 // program zero is on the machine; otherwise the program's extent along each axis must fit the
 // travel wherever the part is set up.
 //
-// Contract. Expects: the output of the kinematics pass (rotary positions on moves, control
-// modes marked). Guarantees: nothing reaches the backend that the machine cannot reach, as far
-// as its description tells.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is limits_pass() at the end of this file.
 #include <cmath>
 
 #include "machine/kinematics.h"
@@ -154,6 +153,23 @@ class Limits : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_limits() { return std::make_unique<Limits>(); }
+const PassInfo& limits_pass() {
+  static const PassInfo info{
+      .name = "limits",
+      .summary = "check every rotary and linear position against the machine's travel",
+      .expects = "rotary positions on moves and the control modes marked (kinematics)",
+      .guarantees = "an error naming the CL record for a rotary beyond its limits, or a tool tip beyond "
+                    "kinematics.travel in machine coordinates: absolutely when kinematics.work_zero is given, "
+                    "otherwise when the program's extent along an axis exceeds the travel",
+      .settings = "kinematics.axes (min, max), kinematics.travel, kinematics.work_zero",
+      .needs = ir::Kinematic,
+      .provides = ir::LimitsChecked,
+      .breaks = 0,
+      .costly = false,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<Limits>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

@@ -17,10 +17,8 @@
 // base frame just select its register. Other five-axis operations are left to the kinematics
 // pass.
 //
-// Contract. Expects: frame and SET records as lowered; the pre-scan's frame list. Guarantees:
-// ProgramInfo::offsets holds the table (the backend writes it at the head of the program as the
-// machine's offsets.table says); every operation with a table entry selects its register;
-// 3+2 operations are positioned and in their frame's coordinates.
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
+// is offset_table_pass() at the end of this file.
 #include <cmath>
 #include <set>
 
@@ -350,6 +348,29 @@ class OffsetTablePass : public Pass {
 
 }  // namespace
 
-std::unique_ptr<Pass> make_offset_table() { return std::make_unique<OffsetTablePass>(); }
+const PassInfo& offset_table_pass() {
+  static const PassInfo info{
+      .name = "offset-table",
+      .summary = "gather SET/CAMERA (and per-frame MSYS/CSYS) frames into a work-offset table; select each "
+                 "operation's register and position its 3+2 work",
+      .expects = "frame and SET records as lowered; the pre-scan's frame list",
+      .guarantees = "the program's offset table holds one entry per distinct frame with a SET (every distinct "
+                    "frame with offsets.per_frame): equal frames share a register, SET registers are kept, the "
+                    "others given in order of first use from offsets.default (an error when the registers run "
+                    "out, or when one SET register is given two frames); each entry has its rotary position and "
+                    "its offset in machine coordinates; each operation selects its frame's register; an operation "
+                    "whose tool axis is its frame's Z (3+2) has its rotaries positioned and clamped before its "
+                    "spindle starts and its points in the frame's coordinates; other operations are left to "
+                    "kinematics; with no SET and no per_frame, nothing changes",
+      .settings = "offsets.*, codes.offset_set, codes.offset_set_extended, codes.macro_call, kinematics.*",
+      .needs = 0,
+      .provides = ir::OffsetsAssigned,
+      .breaks = 0,
+      .costly = false,
+      .reference = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<OffsetTablePass>()); },
+  };
+  return info;
+}
 
 }  // namespace clpc

@@ -1,6 +1,6 @@
 // A pass: a named transformation of the IR with a one-line summary and a contract (what it
-// expects, what it guarantees). Passes run one operation at a time, in the order the machine's
-// pipeline names them; state that must cross operations lives in the pass object.
+// expects and guarantees, in words and as IR facts). Passes run in the order the machine's
+// pipeline names them, which the machine loader has checked against their contracts.
 #pragma once
 
 #include <memory>
@@ -10,6 +10,7 @@
 #include "machine/machine.h"
 #include "support/diagnostics.h"
 #include "ir/ir.h"
+#include "ir/stage.h"
 
 namespace clpc {
 
@@ -29,6 +30,10 @@ struct PassContext {
   KinematicsSettings kinematics() const;
 };
 
+// A pass sees a program one operation at a time, in file order, and an operation may arrive
+// in chunks (very long operations: Operation::continued / last_chunk): state that crosses
+// operations or chunks lives in the pass object. begin() is called once, before the first
+// operation. A pass never sees two operations at once, on any schedule.
 class Pass {
  public:
   virtual ~Pass() = default;
@@ -36,19 +41,29 @@ class Pass {
   virtual void run(ir::Operation& op, PassContext& ctx) = 0;
 };
 
+// What a pass is and promises (Yosys's help() in spirit): defined at the end of the pass's own
+// file, listed by passes/registry.cpp, printed by `clpc passes`, copied into docs/passes.md.
 struct PassInfo {
-  std::string_view name;
-  std::string_view summary;
-  std::string_view contract;
-  std::unique_ptr<Pass> (*make)();
+  std::string_view name;        // as pipelines name it
+  std::string_view summary;     // one line
+  std::string_view expects;     // what it needs of the IR, in words
+  std::string_view guarantees;  // what is true after it, in words
+  std::string_view settings;    // the machine keys it reads
+  ir::Facts needs = 0;          // the facts (ir/stage.h) that must hold before it
+  ir::Facts provides = 0;       // the facts it establishes
+  ir::Facts breaks = 0;         // facts that held before and may not after
+  bool costly = false;          // most of the work: the threaded schedule splits after it
+  bool reference = false;       // gives the CL its meaning: verify's reference runs it
+  std::unique_ptr<Pass> (*make)() = nullptr;
 };
 
 // Every pass clpc has, in the order they are best run.
 const std::vector<PassInfo>& all_passes();
 const PassInfo* find_pass(std::string_view name);
-std::vector<std::string> pass_names();
-// The passes of `pipeline` that give the CL its meaning (arcs decided, cycles made holes), in
-// its order: verify's reference is the CL run through these alone.
+// The contracts the machine loader checks pipelines with.
+ir::PassContracts pass_contracts();
+// The passes of `pipeline` that give the CL its meaning (PassInfo::reference), in its order:
+// verify's reference is the CL run through these alone.
 std::vector<std::string> reference_passes(const std::vector<std::string>& pipeline);
 
 }  // namespace clpc

@@ -5,6 +5,7 @@
 #include "ir/printer.h"
 #include "ir/verify.h"
 #include "machine/format.h"
+#include "machine/pipeline_check.h"
 
 namespace clpc {
 
@@ -32,7 +33,7 @@ class PrintAfter : public PassInstrument {
   void after_lower(const ir::Operation& op, PassContext& ctx) override {
     if (name_ == "lower") print("lower", op, ctx);
   }
-  void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) override {
+  void after_pass(const PassInfo& pass, ir::Facts, const ir::Operation& op, PassContext& ctx) override {
     if (name_ == pass.name || name_ == "all") print(pass.name, op, ctx);
   }
 
@@ -48,8 +49,8 @@ class PrintAfter : public PassInstrument {
 
 class VerifyIr : public PassInstrument {
  public:
-  void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) override {
-    verify_operation(op, pass.name, ctx.diags);
+  void after_pass(const PassInfo& pass, ir::Facts established, const ir::Operation& op, PassContext& ctx) override {
+    verify_operation(op, pass.name, established, ctx.diags);
   }
 };
 
@@ -60,13 +61,19 @@ std::unique_ptr<PassInstrument> make_verify_ir() { return std::make_unique<Verif
 
 PassManager::PassManager(PassContext& ctx, const std::vector<std::string>& pipeline, std::vector<PassInstrument*> instruments)
     : ctx_(ctx), instruments_(std::move(instruments)) {
+  const ir::Facts given = given_facts(ctx.machine);
+  ir::Facts facts = 0;
   for (const std::string& n : pipeline)
-    if (const PassInfo* p = find_pass(n)) passes_.emplace_back(p, p->make());
+    if (const PassInfo* p = find_pass(n)) {
+      passes_.emplace_back(p, p->make());
+      facts = ((facts & ~p->breaks) | p->provides) & ~given;
+      established_.push_back(facts);
+    }
 }
 
 size_t PassManager::split_point() const {
   for (size_t i = 0; i < passes_.size(); ++i)
-    if (passes_[i].first->name == "kinematics") return i + 1;
+    if (passes_[i].first->costly) return i + 1;
   return passes_.size();
 }
 
@@ -82,7 +89,7 @@ void PassManager::run(ir::Operation& op, size_t from, size_t to, PassContext& ct
   for (size_t k = from; k < to && k < passes_.size(); ++k) {
     auto& [info, pass] = passes_[k];
     pass->run(op, ctx);
-    for (PassInstrument* i : instruments_) i->after_pass(*info, op, ctx);
+    for (PassInstrument* i : instruments_) i->after_pass(*info, established_[k], op, ctx);
   }
 }
 

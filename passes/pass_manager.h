@@ -17,7 +17,9 @@ class PassInstrument {
  public:
   virtual ~PassInstrument() = default;
   virtual void after_lower(const ir::Operation& op, PassContext& ctx) {}
-  virtual void after_pass(const PassInfo& pass, const ir::Operation& op, PassContext& ctx) {}
+  // `established`: the facts (ir/stage.h) the passes so far have made true, beyond those the
+  // machine gives (machine/pipeline_check.h).
+  virtual void after_pass(const PassInfo& pass, ir::Facts established, const ir::Operation& op, PassContext& ctx) {}
 };
 
 // --print-after: the IR after the pass `name` ("lower", a pass name, or "all").
@@ -34,13 +36,14 @@ class PassManager {
   // its own diagnostics): the pipeline may be split between two threads.
   void run(ir::Operation& op, size_t from, size_t to, PassContext& ctx);
   size_t size() const { return passes_.size(); }
-  // Where a two-thread split balances best: after the costliest pass ('kinematics'), else at
-  // the end.
+  // Where a two-thread split balances best: after the first costly pass (PassInfo::costly),
+  // else at the end.
   size_t split_point() const;
 
  private:
   PassContext& ctx_;
   std::vector<std::pair<const PassInfo*, std::unique_ptr<Pass>>> passes_;
+  std::vector<ir::Facts> established_;  // after each pass
   std::vector<PassInstrument*> instruments_;
 };
 

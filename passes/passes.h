@@ -1,19 +1,18 @@
-// Factories of every pass (registered in passes/registry.cpp).
+// Every pass's description and factory (each defined at the end of its own file, listed in
+// passes/registry.cpp).
 #pragma once
-
-#include <memory>
 
 #include "passes/pass.h"
 
 namespace clpc {
 
-std::unique_ptr<Pass> make_arc_direction();
-std::unique_ptr<Pass> make_helix();
-std::unique_ptr<Pass> make_arc_legalise();
-std::unique_ptr<Pass> make_drill_cycles();
-std::unique_ptr<Pass> make_groove_cycles();
-std::unique_ptr<Pass> make_offset_table();
-std::unique_ptr<Pass> make_kinematics();
-std::unique_ptr<Pass> make_limits();
+const PassInfo& arc_direction_pass();
+const PassInfo& helix_pass();
+const PassInfo& arc_legalise_pass();
+const PassInfo& drill_cycles_pass();
+const PassInfo& groove_cycles_pass();
+const PassInfo& offset_table_pass();
+const PassInfo& kinematics_pass();
+const PassInfo& limits_pass();
 
 }  // namespace clpc

@@ -139,7 +139,7 @@ Lowered lower_text(const std::string& text, const std::vector<std::string>& pass
 Machine machine(const std::string& name, const std::string& extra_toml) {
   std::ostringstream err;
   Diagnostics d(&err);
-  MachineRegistry reg(pass_names());
+  MachineRegistry reg(pass_contracts());
   EXPECT_TRUE(reg.load_builtin(d)) << err.str();
   if (!extra_toml.empty()) {
     EXPECT_TRUE(reg.load_text("extra.toml", extra_toml, d)) << err.str();
@@ -149,10 +149,21 @@ Machine machine(const std::string& name, const std::string& extra_toml) {
   return m ? *m : Machine{};
 }
 
+std::string machine_errors(const std::string& toml, std::string name) {
+  if (name.empty()) name = toml.substr(1, toml.find(']') - 1);
+  std::ostringstream err;
+  Diagnostics d(&err);
+  MachineRegistry reg(pass_contracts());
+  reg.load_builtin(d);
+  if (reg.load_text("shop.toml", toml, d)) reg.resolve(name, d);
+  return err.str();
+}
+
 Compiled compile_path(const std::string& path, const Machine& m, CompileOptions opt) {
   TempDir t;
   std::string out = t.path("out.nc");
   std::ostringstream err;
+  opt.verify_ir = true;  // every compile of the tests checks the IR's invariants after each pass
   CompileResult r = compile_file(path, out, m, opt, err);
   Compiled c;
   c.ok = r.ok;

@@ -54,6 +54,9 @@ Lowered lower_text(const std::string& text, const std::vector<std::string>& pass
 
 // A built-in machine (or one from extra TOML text).
 Machine machine(const std::string& name, const std::string& extra_toml = {});
+// Loads `toml` as the file "shop.toml" beside the built-ins and resolves `name` (the first
+// table's name when empty): the diagnostics printed.
+std::string machine_errors(const std::string& toml, std::string name = {});
 
 // Compiles a CL text for a machine; output text and diagnostics (as printed).
 struct Compiled {

@@ -23,7 +23,7 @@ TEST(FuzzRegressions, EveryInputEnds) {
       }
     } else if (ext == ".toml") {
       Diagnostics d(nullptr);
-      MachineRegistry reg(pass_names());
+      MachineRegistry reg(pass_contracts());
       reg.load_builtin(d);
       if (reg.load_text(path, read_file(path), d))
         for (const auto& [name, desc] : reg.list()) (void)reg.resolve(name, d);

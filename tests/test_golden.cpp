@@ -85,3 +85,30 @@ TEST(Golden, CorpusPrograms) {
     EXPECT_EQ(out.output, read_file(expected));
   }
 }
+
+// The schedule is how the pipeline runs, never what it writes: every golden case posted on one
+// thread and on three, whole and with operations cut into chunks of 64 instructions (so the
+// passes' state crosses chunks), gives the same program and the same diagnostics.
+TEST(Golden, EverySchedulePostsTheSameProgram) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.input + " for " + c.machine);
+    Machine m = machine(c.machine);
+    CompileOptions threaded;
+    threaded.schedule = Schedule::Threaded;
+    Compiled reference = compile_path(c.input, m, threaded);
+    ASSERT_TRUE(reference.ok) << reference.diags;
+    for (Schedule s : {Schedule::Single, Schedule::Threaded}) {
+      CompileOptions o;
+      o.schedule = s;
+      o.lower.chunk_size = 64;
+      Compiled chunked = compile_path(c.input, m, o);
+      EXPECT_EQ(chunked.output, reference.output) << (s == Schedule::Single ? "single" : "threaded") << ", chunks of 64";
+      EXPECT_EQ(chunked.diags, reference.diags);
+    }
+    CompileOptions single;
+    single.schedule = Schedule::Single;
+    Compiled one = compile_path(c.input, m, single);
+    EXPECT_EQ(one.output, reference.output) << "single, whole";
+    EXPECT_EQ(one.diags, reference.diags);
+  }
+}

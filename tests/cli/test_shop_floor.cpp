@@ -159,16 +159,7 @@ TEST(ShopFloor, EmptyAxesRemoveInheritedRotaries) {
 }
 
 namespace {
-std::string load_error(const std::string& toml) {
-  std::ostringstream err;
-  Diagnostics d(&err);
-  MachineRegistry reg(pass_names());
-  reg.load_builtin(d);
-  reg.load_text("shop.toml", toml, d);
-  auto m = reg.resolve(toml.substr(1, toml.find(']') - 1), d);
-  EXPECT_FALSE(m.has_value());
-  return err.str();
-}
+std::string load_error(const std::string& toml) { return machine_errors(toml); }
 }  // namespace
 
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {

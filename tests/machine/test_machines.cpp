@@ -9,15 +9,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-// Loads `toml` as file "shop.toml" and resolves `name`; returns the diagnostics printed.
-std::string load_error(const std::string& toml, const std::string& name = "m") {
-  std::ostringstream err;
-  Diagnostics d(&err);
-  MachineRegistry reg(pass_names());
-  reg.load_builtin(d);
-  if (reg.load_text("shop.toml", toml, d)) reg.resolve(name, d);
-  return err.str();
-}
+std::string load_error(const std::string& toml, const std::string& name = "m") { return machine_errors(toml, name); }
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
@@ -38,7 +30,7 @@ TEST(Machines, UserMachineFromTomlAloneGivesExactlyTheExpectedProgram) {
 TEST(Machines, MinimalMachineGetsSaneDefaults) {
   std::ostringstream err;
   Diagnostics d(&err);
-  MachineRegistry reg(pass_names());
+  MachineRegistry reg(pass_contracts());
   ASSERT_TRUE(reg.load_text("shop.toml", kMinimal, d));
   auto m = reg.resolve("m", d);
   ASSERT_TRUE(m) << err.str();
