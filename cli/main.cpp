@@ -21,6 +21,7 @@
 #include "support/output.h"
 #include "support/suggest.h"
 #include "machine/machine_loader.h"
+#include "machine/schema.h"
 
 using namespace clpc;
 

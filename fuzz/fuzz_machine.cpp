@@ -4,6 +4,7 @@
 #include <string>
 
 #include "machine/machine_loader.h"
+#include "machine/schema.h"
 #include "passes/pass.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

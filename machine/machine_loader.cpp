@@ -8,8 +8,10 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "machine/pipeline_check.h"
+#include "machine/schema.h"
 #include "support/suggest.h"
 #include "support/text.h"
 
@@ -75,9 +77,19 @@ class Reader {
   // `units`: the units each layer's machine is in (a layer without "units" has its parent's);
   // `target`: the machine's. A length or rate a layer in other units gives is converted, so a
   // machine can inherit from one in the other units (docs/machines.md, "Inheritance").
-  Reader(Ctx& c, Layers layers, std::string path, std::vector<ir::Units> units = {}, ir::Units target = ir::Units::Mm)
-      : c_(c), layers_(std::move(layers)), path_(std::move(path)), units_(std::move(units)), target_(target) {
+  // `section`: which of the schema's sections (machine/schema.h) the table is; every key read
+  // must be one of its keys, and takes its range or choices from there.
+  Reader(Ctx& c, Layers layers, std::string path, std::string section, std::vector<ir::Units> units = {},
+         ir::Units target = ir::Units::Mm)
+      : c_(c), layers_(std::move(layers)), path_(std::move(path)), section_(std::move(section)), units_(std::move(units)),
+        target_(target) {
     units_.resize(layers_.size(), target_);
+  }
+  // The schema's row for `k`: a key read that is not there is a bug in clpc, not in the file.
+  const KeySpec& spec(std::string_view k) const {
+    if (const KeySpec* s = find_key(section_, k)) return *s;
+    throw std::logic_error("internal: machine key '" + section_ + (section_.empty() ? "" : ".") + std::string(k) +
+                           "' is read but not in machine/schema.cpp");
   }
   // The factor from the units of the layer that gives `k` to the machine's (1 when it is not given).
   double to_target(std::string_view k) const {
@@ -86,10 +98,10 @@ class Reader {
     return 1;
   }
   // A length or a rate (per minute): a number, converted to the machine's units.
-  void length(std::string_view k, double& out, double lo, double hi) {
+  void length(std::string_view k, double& out) {
     const double f = to_target(k);
     double v = std::numeric_limits<double>::quiet_NaN();
-    number(k, v, lo, hi);
+    number(k, v);
     if (!std::isnan(v)) out = v * f;
   }
   bool length3(std::string_view k, ir::Vec3& out) {
@@ -118,7 +130,10 @@ class Reader {
     return out;
   }
 
+  // A key already reported as wrong: finish() need not call it unknown.
+  void reported(std::string_view k) { used_.insert(std::string(k)); }
   const toml::node* node(std::string_view k) {
+    spec(k);
     used_.insert(std::string(k));
     return find(k);
   }
@@ -137,7 +152,8 @@ class Reader {
     else error(*n, k, "expected true or false, found " + type_name(*n));
   }
   template <class Int>
-  void integer(std::string_view k, Int& out, long long lo, long long hi) {
+  void integer(std::string_view k, Int& out) {
+    const long long lo = (long long)spec(k).lo, hi = (long long)spec(k).hi;
     const toml::node* n = node(k);
     if (!n) return;
     if (!n->is_integer()) {
@@ -151,8 +167,9 @@ class Reader {
     }
     out = Int(v);
   }
-  // A number in [lo, hi]; open_lo excludes lo.
-  void number(std::string_view k, double& out, double lo, double hi, bool open_lo = false) {
+  // A number in the schema's [lo, hi].
+  void number(std::string_view k, double& out) {
+    const double lo = spec(k).lo, hi = spec(k).hi;
     const toml::node* n = node(k);
     if (!n) return;
     if (!n->is_number()) {
@@ -160,9 +177,8 @@ class Reader {
       return;
     }
     double v = *n->value<double>();
-    bool bad = open_lo ? !(v > lo) : !(v >= lo);
-    if (bad || !(v <= hi)) {
-      std::string range = (open_lo ? "greater than " : "at least ") + num_text(lo);
+    if (!(v >= lo) || !(v <= hi)) {
+      std::string range = "at least " + num_text(lo);
       if (hi < 1e300) range += " and at most " + num_text(hi);
       error(*n, k, "expected a number " + range + ", found " + num_text(v));
       return;
@@ -178,22 +194,20 @@ class Reader {
     }
     out = **n->as_string();
   }
-  // One of `options`; returns the index or -1.
-  int choice(std::string_view k, std::initializer_list<const char*> options) {
+  // One of the schema's choices; returns the index or -1.
+  int choice(std::string_view k) {
+    const std::vector<std::string> options = spec(k).choice_list();
     const toml::node* n = node(k);
     if (!n) return -1;
     std::string all;
-    for (const char* o : options) all += (all.empty() ? "\"" : ", \"") + std::string(o) + "\"";
+    for (const std::string& o : options) all += (all.empty() ? "\"" : ", \"") + o + "\"";
     if (!n->is_string()) {
       error(*n, k, "expected one of " + all + ", found " + type_name(*n));
       return -1;
     }
     const std::string& v = **n->as_string();
-    int i = 0;
-    for (const char* o : options) {
-      if (v == o) return i;
-      ++i;
-    }
+    for (size_t i = 0; i < options.size(); ++i)
+      if (v == options[i]) return int(i);
     error(*n, k, "expected one of " + all + ", found \"" + v + "\"");
     return -1;
   }
@@ -245,8 +259,8 @@ class Reader {
       }
     std::vector<Reader> out;
     for (size_t i = 0; i < a->size(); ++i)
-      out.emplace_back(c_, Layers{(*a)[i].as_table()}, key_path(k) + "[" + std::to_string(i) + "]", std::vector<ir::Units>{u},
-                       target_);
+      out.emplace_back(c_, Layers{(*a)[i].as_table()}, key_path(k) + "[" + std::to_string(i) + "]", sub_section(section_, k),
+                       std::vector<ir::Units>{u}, target_);
     return out;
   }
   // The sub-table `k`, merged over the layers (a layer that sets `k` to something else
@@ -271,7 +285,7 @@ class Reader {
         units.push_back(units_[i]);
       }
     }
-    return Reader(c_, std::move(sub), key_path(k), std::move(units), target_);
+    return Reader(c_, std::move(sub), key_path(k), sub_section(section_, k), std::move(units), target_);
   }
   // Reports every key that was not read.
   void finish() {
@@ -288,6 +302,7 @@ class Reader {
   Ctx& c_;
   Layers layers_;
   std::string path_;
+  std::string section_;
   std::vector<ir::Units> units_;
   ir::Units target_;
   std::set<std::string> used_;
@@ -351,8 +366,6 @@ CodeTemplate tpl(std::string_view s) {
   parse_template(s, t, err);
   return t;
 }
-
-constexpr uint32_t bit(Var v) { return 1u << unsigned(v); }
 
 // Defaults: a generic Fanuc-style control of the given family and output units.
 void set_defaults(Machine& m) {
@@ -465,23 +478,23 @@ void set_defaults(Machine& m) {
 // `length_like`: the address holds a length or a rate, so one written for a machine in the other
 // units has a decimal more (mm -> inch) or fewer.
 void read_format(Reader r, AddressFormat& f, bool length_like) {
-  r.integer("decimals", f.decimals, 0, 9);
+  r.integer("decimals", f.decimals);
   if (length_like && r.has("decimals")) {
     const double to = r.to_target("decimals");
     if (to > 1.5) f.decimals = std::max(0, f.decimals - 1);  // given in inches, for a machine in mm
     else if (to < 0.5) f.decimals = std::min(9, f.decimals + 1);
   }
-  int p = r.choice("point", {"always", "never", "if-fraction"});
+  int p = r.choice("point");
   if (p >= 0) f.point = AddressFormat::Point(p);
   r.boolean("leading_zero", f.leading_zero);
   r.boolean("trailing_zeros", f.trailing_zeros);
-  r.integer("digits", f.digits, 0, 12);
+  r.integer("digits", f.digits);
   // A scale is a diameter's 2 or a sign change, not a way to lose every digit.
   if (const toml::node* n = r.find("scale"); n && n->is_number() &&
                                              !(std::abs(*n->value<double>()) >= 1e-3 && std::abs(*n->value<double>()) <= 1e3))
     r.error(*n, "scale", "expected a number from 0.001 to 1000 (or -1000 to -0.001), found " + num_text(*n->value<double>()));
   else
-    r.number("scale", f.scale, -1e3, 1e3);
+    r.number("scale", f.scale);
   r.boolean("plus", f.plus);
   r.finish();
 }
@@ -532,12 +545,12 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       in_force = **n->as_string() == "inch" ? ir::Units::Inch : ir::Units::Mm;
     layer_units.push_back(in_force);
   }
-  Reader r(c, std::move(layers), name, layer_units, in_force);
+  Reader r(c, std::move(layers), name, "", layer_units, in_force);
   r.node("inherits");  // used while flattening
-  int fam = r.choice("family", {"mill", "lathe"});
+  int fam = r.choice("family");
   if (!r.has("family")) r.missing("family", "\"mill\" or \"lathe\"");
   if (fam >= 0) m.family = Family(fam);
-  int u = r.choice("units", {"mm", "inch"});
+  int u = r.choice("units");
   if (u >= 0) m.units = ir::Units(u);
   set_defaults(m);
   r.string("description", m.description);
@@ -558,43 +571,43 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     }
     m.pipeline = pipeline;
   }
-  r.length("rapid_rate", m.rapid_rate, 0, 1e9);
-  r.number("tool_change_time", m.tool_change_time, 0, 3600);
-  r.length("max_feed", m.max_feed, 0, 1e9);
-  r.number("max_rpm", m.max_rpm, 0, 1e6);
+  r.length("rapid_rate", m.rapid_rate);
+  r.number("tool_change_time", m.tool_change_time);
+  r.length("max_feed", m.max_feed);
+  r.number("max_rpm", m.max_rpm);
 
   if (auto p = r.sub("program")) {
-    p->integer("number", m.program_number, 0, 99999999);
+    p->integer("number", m.program_number);
     p->strings("start", m.program_start);
     p->strings("end", m.program_end);
     p->boolean("header", m.header);
     read_templates(*p, "safe_start", m.safe_start);
     read_templates(*p, "finish", m.finish);
     p->boolean("number_from_name", m.number_from_name);
-    int os = p->choice("optional_stop", {"off", "tool-change", "operation"});
+    int os = p->choice("optional_stop");
     if (os >= 0) m.optional_stop = Machine::OptionalStop(os);
     p->boolean("preselect", m.preselect);
     p->boolean("coolant_around_tool_change", m.coolant_around_tool_change);
-    int sm = p->choice("smoothing", {"off", "rough", "medium", "finish"});
+    int sm = p->choice("smoothing");
     if (sm >= 0) m.smoothing = sm;
-    p->length("smoothing_tolerance", m.smoothing_tolerance, 0, 1e3);
+    p->length("smoothing_tolerance", m.smoothing_tolerance);
     p->boolean("park", m.park);
     read_templates(*p, "park_blocks", m.park_blocks);
     p->string("date", m.date);
     p->string("programmer", m.programmer);
     p->string("stock", m.stock);
     check_job_options(*p, m);
-    int ins = p->choice("inserts", {"comment", "raw", "error"});
+    int ins = p->choice("inserts");
     if (ins >= 0) m.inserts = Machine::Inserts(ins);
     p->finish();
   }
   if (auto s = r.sub("sequence")) {
     SequenceSettings& q = m.sequence;
     s->boolean("enabled", q.enabled);
-    s->integer("start", q.start, 0, 999999999);
-    s->integer("step", q.step, 1, 100000);
-    s->integer("max", q.max, 1, 999999999);
-    s->integer("wrap_to", q.wrap_to, 0, 999999999);
+    s->integer("start", q.start);
+    s->integer("step", q.step);
+    s->integer("max", q.max);
+    s->integer("wrap_to", q.wrap_to);
     s->boolean("tool_change_only", q.tool_change_only);
     if (q.max < q.start) {
       if (const toml::node* n = s->find("max")) s->error(*n, "max", "must not be less than start (" + std::to_string(q.start) + ")");
@@ -607,7 +620,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->boolean("enabled", q.enabled);
     s->string("open", q.open);
     s->string("close", q.close);
-    s->integer("max_length", q.max_length, 0, 100000);
+    s->integer("max_length", q.max_length);
     s->boolean("upper_case", q.upper_case);
     s->string("replacement", q.replacement);
     s->finish();
@@ -621,7 +634,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     for (const auto& [k, key] : s->keys()) {
       if (k.size() != 1 || k[0] < 'A' || k[0] > 'Z') {
         c.error(key->source(), s->key_path(k) + ": expected an address letter A-Z");
-        s->node(k);
+        s->reported(k);
         continue;
       }
       if (auto f = s->sub(k))
@@ -643,15 +656,15 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       }
     }
     s->boolean("helical", a.helical);
-    s->number("max_sweep", a.max_sweep, 1, 360);
-    s->number("helix_max_sweep", a.helix_max_sweep, 1, 360);
-    s->length("min_radius", a.min_radius, 0, 1e9);
-    s->length("max_radius", a.max_radius, 0, 1e9);
+    s->number("max_sweep", a.max_sweep);
+    s->number("helix_max_sweep", a.helix_max_sweep);
+    s->length("min_radius", a.min_radius);
+    s->length("max_radius", a.max_radius);
     if (a.max_radius > 0 && a.max_radius < a.min_radius)
       s->error(*s->find("max_radius"), "max_radius", "must not be less than min_radius (" + num_text(a.min_radius) + ")");
-    int ctr = s->choice("center", {"incremental", "absolute", "radius"});
+    int ctr = s->choice("center");
     if (ctr >= 0) a.center = ArcCenter(ctr);
-    s->length("tolerance", a.tolerance, 1e-6, 1e3);
+    s->length("tolerance", a.tolerance);
     s->finish();
   }
   if (auto s = r.sub("modal")) {
@@ -661,20 +674,20 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->finish();
   }
   if (auto s = r.sub("lathe")) {
-    int v = s->choice("arcs_seen_from", {"+Y", "-Y"});
+    int v = s->choice("arcs_seen_from");
     if (v >= 0) m.lathe.arcs_from_minus_y = v == 1;
-    s->number("max_rpm", m.lathe.max_rpm, 0, 1e6);
+    s->number("max_rpm", m.lathe.max_rpm);
     s->finish();
   }
   if (auto s = r.sub("offsets")) {
     OffsetSettings& o = m.offsets;
-    s->integer("extended", o.extended_count, 0, 300);
-    s->integer("default", o.default_index, 1, 306);
-    int tb = s->choice("table", {"none", "g10", "g65-macro"});
+    s->integer("extended", o.extended_count);
+    s->integer("default", o.default_index);
+    int tb = s->choice("table");
     if (tb >= 0) o.table = OffsetTable(tb);
     s->boolean("per_frame", o.per_frame);
-    s->length("reference_height", o.reference_height, -1e5, 1e5);
-    s->integer("macro", o.macro, 1, 99999999);
+    s->length("reference_height", o.reference_height);
+    s->integer("macro", o.macro);
     s->boolean("macro_program", o.macro_program);
     s->finish();
   }
@@ -696,39 +709,39 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         } else if (!a.has("axis")) {
           a.missing("axis", "the direction the axis turns about, [x, y, z]");
         }
-        int side = a.choice("side", {"table", "head"});
+        int side = a.choice("side");
         if (side >= 0) ax.table = side == 0;
         int dir = 0;
-        a.integer("direction", dir, -1, 1);
+        a.integer("direction", dir);
         if (dir == 0 && a.has("direction")) a.error(*a.find("direction"), "direction", "expected 1 or -1, found 0");
         if (dir != 0) ax.direction = dir;
-        int cyc = a.choice("cyclic", {"no", "wind", "modulo"});
+        int cyc = a.choice("cyclic");
         if (cyc >= 0) ax.cyclic = Cyclic(cyc);
-        a.number("min", ax.min, -1e6, 1e6);
-        a.number("max", ax.max, -1e6, 1e6);
+        a.number("min", ax.min);
+        a.number("max", ax.max);
         if (ax.max <= ax.min && ax.cyclic == Cyclic::No)
           a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
         a.length3("center", ax.center);
         double prefer = 0;
-        a.number("prefer", prefer, -1, 1);
+        a.number("prefer", prefer);
         ax.prefer = prefer;
-        a.number("rate", ax.rate, 0, 1e9);
+        a.number("rate", ax.rate);
         a.string("clamp", ax.clamp);
         a.string("unclamp", ax.unclamp);
         a.finish();
         k.rotaries.push_back(ax);
       }
     }
-    int sim = s->choice("simultaneous", {"tcp", "transform"});
+    int sim = s->choice("simultaneous");
     if (sim >= 0) k.simultaneous = Simultaneous(sim);
-    int ind = s->choice("indexed", {"transform", "dwo", "tcp"});
+    int ind = s->choice("indexed");
     if (ind >= 0) k.indexed = Indexed(ind);
     s->boolean("inverse_time", k.inverse_time);
-    s->number("max_inverse_time", k.max_inverse_time, 0, 1e9);
-    int lim = s->choice("on_limit", {"error", "retract"});
+    s->number("max_inverse_time", k.max_inverse_time);
+    int lim = s->choice("on_limit");
     if (lim >= 0) k.retract_on_limit = lim == 1;
-    s->length("retract_distance", k.retract_distance, 0, 1e6);
-    s->length("pivot", k.pivot, 0, 1e6);
+    s->length("retract_distance", k.retract_distance);
+    s->length("pivot", k.pivot);
     if (auto t = s->sub("travel")) {
       for (int i = 0; i < 3; ++i) {
         const char* key = i == 0 ? "x" : i == 1 ? "y" : "z";
@@ -752,65 +765,16 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->finish();
   }
   if (auto s = r.sub("cycles")) {
-    int ret = s->choice("return", {"initial", "r-plane"});
+    int ret = s->choice("return");
     if (ret >= 0) m.cycles.return_initial = ret == 0;
-    int tf = s->choice("tap_feed", {"per-minute", "per-rev"});
+    int tf = s->choice("tap_feed");
     if (tf >= 0) m.cycles.tap_per_rev = tf == 1;
-    s->length("peck_clearance", m.cycles.peck_clearance, 0, 1e6);
+    s->length("peck_clearance", m.cycles.peck_clearance);
     s->finish();
   }
   if (auto s = r.sub("codes")) {
-    Codes& k = m.codes;
-    const uint32_t none = 0;
-    struct Key {
-      const char* name;
-      CodeTemplate* t;
-      uint32_t vars;
-    };
-    const Key keys[] = {
-        {"units_inch", &k.units_inch, none}, {"units_mm", &k.units_mm, none},
-        {"rapid", &k.rapid, none}, {"linear", &k.linear, none},
-        {"arc_cw", &k.arc_cw, none}, {"arc_ccw", &k.arc_ccw, none},
-        {"plane_xy", &k.plane_xy, none}, {"plane_zx", &k.plane_zx, none}, {"plane_yz", &k.plane_yz, none},
-        {"absolute", &k.absolute, none}, {"incremental", &k.incremental, none},
-        {"feed_per_minute", &k.feed_per_minute, none}, {"feed_per_rev", &k.feed_per_rev, none},
-        {"inverse_time", &k.inverse_time, none},
-        {"tool_change", &k.tool_change, bit(Var::Tool) | bit(Var::Offset)},
-        {"tool_preselect", &k.tool_preselect, bit(Var::Tool)},
-        {"length_offset", &k.length_offset, bit(Var::Offset) | bit(Var::Tool)},
-        {"length_cancel", &k.length_cancel, none},
-        {"spindle_cw", &k.spindle_cw, none}, {"spindle_ccw", &k.spindle_ccw, none},
-        {"spindle_off", &k.spindle_off, none},
-        {"spindle_rpm_mode", &k.spindle_rpm_mode, none}, {"spindle_css_mode", &k.spindle_css_mode, none},
-        {"spindle_clamp", &k.spindle_clamp, bit(Var::Max)},
-        {"coolant_flood", &k.coolant_flood, none}, {"coolant_mist", &k.coolant_mist, none},
-        {"coolant_thru", &k.coolant_thru, none}, {"coolant_air", &k.coolant_air, none},
-        {"coolant_tap", &k.coolant_tap, none}, {"coolant_off", &k.coolant_off, none},
-        {"dwell", &k.dwell, bit(Var::Seconds) | bit(Var::Milliseconds)},
-        {"optional_stop", &k.optional_stop, none}, {"stop", &k.stop, none},
-        {"comp_left", &k.comp_left, bit(Var::Register)}, {"comp_right", &k.comp_right, bit(Var::Register)},
-        {"comp_off", &k.comp_off, none},
-        {"work_offset", &k.work_offset, bit(Var::Number)},
-        {"work_offset_extended", &k.work_offset_extended, bit(Var::Number)},
-        {"offset_set", &k.offset_set, bit(Var::Number)},
-        {"offset_set_extended", &k.offset_set_extended, bit(Var::Number)},
-        {"macro_call", &k.macro_call, bit(Var::Number)},
-        {"safe_retract", &k.safe_retract, none},
-        {"cycle_drill", &k.cycle_drill, none}, {"cycle_dwell", &k.cycle_dwell, none},
-        {"cycle_peck", &k.cycle_peck, none}, {"cycle_chip_break", &k.cycle_chip_break, none},
-        {"cycle_tap", &k.cycle_tap, none}, {"cycle_tap_left", &k.cycle_tap_left, none},
-        {"cycle_bore", &k.cycle_bore, none}, {"cycle_bore_dwell", &k.cycle_bore_dwell, none},
-        {"cycle_bore_stop", &k.cycle_bore_stop, none}, {"cycle_fine_bore", &k.cycle_fine_bore, none},
-        {"cycle_back_bore", &k.cycle_back_bore, none}, {"cycle_cancel", &k.cycle_cancel, none},
-        {"cycle_return_initial", &k.cycle_return_initial, none}, {"cycle_return_r", &k.cycle_return_r, none},
-        {"cycle_dwell_word", &k.cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
-        {"rigid_tap", &k.rigid_tap, bit(Var::Speed)},
-        {"groove_face", &k.groove_face, none}, {"groove_radial", &k.groove_radial, none},
-        {"tcp_on", &k.tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &k.tcp_off, none},
-        {"dwo_on", &k.dwo_on, none}, {"dwo_off", &k.dwo_off, none},
-        {"smoothing_on", &k.smoothing_on, bit(Var::Level) | bit(Var::Tolerance)}, {"smoothing_off", &k.smoothing_off, none},
-    };
-    for (const Key& key : keys) read_template(*s, key.name, *key.t, key.vars);
+    for (const KeySpec& k : machine_keys())
+      if (k.section == "codes") read_template(*s, k.key, m.codes.*k.code, k.vars);
     s->finish();
   }
   report_pipeline(r, m, passes);
@@ -839,7 +803,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                                                           : m.feeds.inverse_time;
         if (auto t = s->sub(k)) read_format(*t, g, std::string(k) != "inverse_time");
       }
-      s->number("max_rounding", m.feeds.max_rounding, 0, 0.5);
+      s->number("max_rounding", m.feeds.max_rounding);
       s->finish();
     }
   }

@@ -72,7 +72,4 @@ class MachineRegistry {
 // A machine with every default and no description behind it (clpc check without -t).
 Machine default_machine(Family family, ir::Units units);
 
-// The resolved description as TOML with every key (clpc explain).
-std::string explain_machine(const Machine& m);
-
 }  // namespace clpc
