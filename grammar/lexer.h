@@ -28,7 +28,7 @@ class Lexer {
   // The commonest record — GOTO, CIRCLE, FROM or GODLTA, a slash and numbers on one line,
   // nothing else — read here without the parser. True with the line consumed and `s` filled;
   // false with nothing consumed, and the line goes through the grammar as any other. Both
-  // give the same record (tests/test_lexer.cpp compares them on the corpus).
+  // give the same record (tests/grammar/test_lexer.cpp compares them on the corpus).
   static constexpr size_t kMaxSimple = 16;
   struct Simple {
     MajorId id = MajorId::Unknown;

@@ -68,6 +68,12 @@ std::string type_name(const toml::node& n) {
   }
 }
 
+// `abstract = true`: a base to inherit from, never posted for.
+bool is_abstract(const toml::table& t) {
+  const toml::node* n = t.get("abstract");
+  return n && n->value<bool>().value_or(false) && n->is_boolean();
+}
+
 // Reads one machine table with validation. A machine that inherits is a stack of tables,
 // parent first: a key is looked up from the top, so every value keeps its own file and line.
 // Keys never read are reported by finish(), in whichever file they are.
@@ -360,14 +366,10 @@ bool read_templates(Reader& r, std::string_view key, std::vector<CodeTemplate>& 
   return true;
 }
 
-CodeTemplate tpl(std::string_view s) {
-  CodeTemplate t;
-  std::string err;
-  parse_template(s, t, err);
-  return t;
-}
-
-// Defaults: a generic Fanuc-style control of the given family and output units.
+// The defaults that depend on the output units. Everything else a family has by default (its
+// codes, pipeline, program start and end, a lathe's diameter X and ZX arcs) is in the
+// abstract bases `mill` and `lathe` of machines.toml, which a machine without `inherits`
+// starts from.
 void set_defaults(Machine& m) {
   const bool inch = m.units == ir::Units::Inch;
   for (char c = 'A'; c <= 'Z'; ++c) {
@@ -389,89 +391,14 @@ void set_defaults(Machine& m) {
     }
     m.formats[size_t(c - 'A')] = f;
   }
-  if (m.is_lathe()) m.formats['X' - 'A'].scale = 2;  // diameter
-  Codes& k = m.codes;
-  k.units_inch = tpl("G20");
-  k.units_mm = tpl("G21");
-  k.rapid = tpl("G00");
-  k.linear = tpl("G01");
-  k.arc_cw = tpl("G02");
-  k.arc_ccw = tpl("G03");
-  k.plane_xy = tpl("G17");
-  k.plane_zx = tpl("G18");
-  k.plane_yz = tpl("G19");
-  k.absolute = tpl("G90");
-  k.incremental = tpl("G91");
-  k.spindle_cw = tpl("M03");
-  k.spindle_ccw = tpl("M04");
-  k.spindle_off = tpl("M05");
-  k.spindle_rpm_mode = tpl("G97");
-  k.spindle_css_mode = tpl("G96");
-  k.spindle_clamp = tpl("G50 S{max}");
-  k.coolant_flood = tpl("M08");
-  k.coolant_mist = tpl("M07");
-  k.coolant_off = tpl("M09");
-  k.dwell = tpl("G04 P{milliseconds:1}");  // a plain whole number, whatever format.P says
-  k.optional_stop = tpl("M01");
-  k.stop = tpl("M00");
-  k.comp_left = tpl("G41 D{register}");
-  k.comp_right = tpl("G42 D{register}");
-  k.comp_off = tpl("G40");
   m.cycles.peck_clearance = inch ? 0.02 : 0.5;
   if (m.is_lathe()) {
-    k.feed_per_minute = tpl("G98");
-    k.feed_per_rev = tpl("G99");
-    k.tool_change = tpl("T{tool:2}{offset:2}");
-    k.safe_retract = tpl("G28 U0. W0.");
-    m.safe_start = {tpl("G00 G18 G40 G80 G99")};
-    m.finish = {tpl("M05"), tpl("M09"), tpl("G28 U0. W0."), tpl("M30")};
-    m.pipeline = {"arc-direction", "helix", "arc-legalise", "drill-cycles", "groove-cycles"};
-    k.groove_face = tpl("G74");
-    k.groove_radial = tpl("G75");
     // P and Q of G74/G75: least input increments, no point.
     for (char c : {'P', 'Q'}) {
       m.formats[size_t(c - 'A')].decimals = inch ? 4 : 3;
       m.formats[size_t(c - 'A')].point = AddressFormat::Point::Never;
     }
-    m.arcs.xy = m.arcs.yz = false;
-    m.arcs.helical = false;
-  } else {
-    k.feed_per_minute = tpl("G94");
-    k.feed_per_rev = tpl("G95");
-    k.inverse_time = tpl("G93");
-    k.tool_change = tpl("T{tool} M06");
-    k.tool_preselect = tpl("T{tool}");
-    k.length_offset = tpl("G43 H{offset}");
-    k.length_cancel = tpl("G49");
-    k.work_offset = tpl("G{number}");
-    k.work_offset_extended = tpl("G54.1 P{number}");
-    k.offset_set = tpl("G90 G10 L2 P{number:1}");
-    k.offset_set_extended = tpl("G90 G10 L20 P{number:1}");
-    k.macro_call = tpl("G65 P{number:1}");
-    k.smoothing_on = tpl("G05.1 Q1");
-    k.smoothing_off = tpl("G05.1 Q0");
-    k.safe_retract = tpl("G91 G28 Z0.");
-    k.cycle_drill = tpl("G81");
-    k.cycle_dwell = tpl("G82");
-    k.cycle_peck = tpl("G83");
-    k.cycle_chip_break = tpl("G73");
-    k.cycle_tap = tpl("G84");
-    k.cycle_tap_left = tpl("G74");
-    k.cycle_bore = tpl("G85");
-    k.cycle_bore_dwell = tpl("G89");
-    k.cycle_bore_stop = tpl("G86");
-    k.cycle_fine_bore = tpl("G76");
-    k.cycle_back_bore = tpl("G87");
-    k.cycle_cancel = tpl("G80");
-    k.cycle_return_initial = tpl("G98");
-    k.cycle_return_r = tpl("G99");
-    k.cycle_dwell_word = tpl("P{milliseconds:1}");
-    m.safe_start = {tpl("G00 G17 G40 G49 G80 G90")};
-    m.finish = {tpl("M05"), tpl("M09"), tpl("G91 G28 Z0."), tpl("G90"), tpl("M30")};
-    m.pipeline = {"arc-direction", "helix", "arc-legalise", "drill-cycles", "offset-table"};
   }
-  m.program_start = {"%"};
-  m.program_end = {"%"};
   m.arcs.tolerance = inch ? 0.0002 : 0.005;
 }
 
@@ -547,6 +474,8 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   }
   Reader r(c, std::move(layers), name, "", layer_units, in_force);
   r.node("inherits");  // used while flattening
+  bool abstract_base = false;  // only the named machine's own counts (resolve)
+  r.boolean("abstract", abstract_base);
   int fam = r.choice("family");
   if (!r.has("family")) r.missing("family", "\"mill\" or \"lathe\"");
   if (fam >= 0) m.family = Family(fam);
@@ -560,7 +489,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     r.string("extension", m.extension);
   if (!m.extension.empty() && m.extension[0] != '.') m.extension = "." + m.extension;
   std::vector<std::string> pipeline;
-  if (r.strings("pipeline", pipeline)) {
+  if (r.strings("pipeline", pipeline) && !passes.empty()) {
     const toml::node* n = r.find("pipeline");
     for (size_t i = 0; i < pipeline.size(); ++i) {
       if (std::none_of(passes.begin(), passes.end(), [&](const ir::PassContract& p) { return p.name == pipeline[i]; })) {
@@ -777,7 +706,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       if (k.section == "codes") read_template(*s, k.key, m.codes.*k.code, k.vars);
     s->finish();
   }
-  report_pipeline(r, m, passes);
+  if (!passes.empty()) report_pipeline(r, m, passes);
   check_job_codes(r, m);
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
@@ -840,15 +769,30 @@ std::unique_ptr<MachineRegistry::Source> read_source(const std::string& path, Di
 }  // namespace
 
 Machine default_machine(Family family, ir::Units units) {
-  Machine m;
-  m.name = family == Family::Lathe ? "generic-lathe" : "generic-mill";
-  m.family = family;
-  m.units = units;
-  set_defaults(m);
-  return m;
+  const bool lathe = family == Family::Lathe;
+  const std::string name = lathe ? "generic-lathe" : "generic-mill";
+  std::ostringstream err;
+  Diagnostics d(&err);
+  MachineRegistry reg({});  // no passes: the base's pipeline is taken as it is
+  reg.load_builtin(d);
+  reg.load_text("<generic>", "[" + name + "]\nfamily = \"" + (lathe ? "lathe" : "mill") + "\"\nunits = \"" +
+                                 (units == ir::Units::Inch ? "inch" : "mm") + "\"\n",
+                d);
+  std::optional<Machine> m = reg.resolve(name, d);
+  if (!m) throw std::logic_error("internal: the built-in base machines do not load: " + err.str());
+  return *m;
 }
 
-MachineRegistry::MachineRegistry(ir::PassContracts passes) : passes_(std::move(passes)) {}
+MachineRegistry::MachineRegistry(ir::PassContracts passes) : passes_(std::move(passes)) {
+  // The abstract bases, always at hand: every machine without a parent starts from one.
+  auto s = std::make_unique<Source>();
+  s->path = kBuiltinName;
+  s->text = std::string(builtin_machines_toml());
+  s->table = toml::parse(s->text, s->path);  // the built-in text: a parse error fails every test
+  for (auto&& [key, n] : s->table)
+    if (n.is_table() && is_abstract(*n.as_table())) bases_[std::string(key.str())] = Entry{s.get(), n.as_table()};
+  sources_.push_back(std::move(s));
+}
 MachineRegistry::~MachineRegistry() = default;
 
 bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, std::vector<std::string>* names) {
@@ -1034,6 +978,15 @@ bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::t
       return false;
     }
     if (!flatten(parent, layers, chain, d)) return false;
+  } else if (const toml::node* fam = t.get("family"); fam && fam->is_string() && !is_abstract(t)) {
+    // No parent named: the abstract base of its family (machines.toml): the registry's own
+    // (loaded, or a user's replacement), else the built-in one, which is always there.
+    const std::string base = **fam->as_string();
+    if (auto b = machines_.find(base); b != machines_.end() && is_abstract(*b->second.table)) {
+      if (!flatten(base, layers, chain, d)) return false;
+    } else if (auto k = bases_.find(base); k != bases_.end()) {
+      layers.push_back(k->second.table);
+    }
   }
   layers.push_back(&t);
   return true;
@@ -1055,13 +1008,22 @@ std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& nam
   auto it = machines_.find(name);
   if (it == machines_.end()) {
     std::string all;
-    for (const auto& [n, e] : machines_) all += (all.empty() ? "" : ", ") + n;
     std::vector<std::string> names;
-    for (const auto& [n, e] : machines_) names.push_back(n);
+    for (const auto& [n, e] : machines_)
+      if (!is_abstract(*e.table)) {
+        all += (all.empty() ? "" : ", ") + n;
+        names.push_back(n);
+      }
     const std::string near = closest(name, names);
     d.report_in(Severity::Error, "clpc", {},
                 "no machine named '" + name + "'" + (near.empty() ? std::string() : "; did you mean '" + near + "'?") +
                     " (known: " + all + "; see 'clpc machines')");
+    return std::nullopt;
+  }
+  if (is_abstract(*it->second.table)) {
+    d.report_in(Severity::Error, "clpc", {},
+                "machine '" + name + "' is an abstract base (the defaults of its family): post for a machine that inherits " +
+                    "from it, or write one with inherits = \"" + name + "\" (docs/machines.md)");
     return std::nullopt;
   }
   std::vector<const toml::table*> layers;
@@ -1085,6 +1047,7 @@ std::optional<Machine> MachineRegistry::resolve_unguarded(const std::string& nam
 std::vector<std::pair<std::string, std::string>> MachineRegistry::list() const {
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& [n, e] : machines_) {
+    if (is_abstract(*e.table)) continue;
     std::string desc;
     if (const toml::node* dn = e.table->get("description"); dn && dn->is_string()) desc = **dn->as_string();
     out.emplace_back(n, desc);

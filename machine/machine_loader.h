@@ -28,6 +28,7 @@ class MachineRegistry {
  public:
   // `passes` are the passes a pipeline may name, with their contracts (passes/registry.cpp):
   // a machine's pipeline must reach a legal program through them (machine/pipeline_check.h).
+  // None: pipelines are taken as they are (default_machine).
   explicit MachineRegistry(ir::PassContracts passes);
   ~MachineRegistry();
 
@@ -67,9 +68,11 @@ class MachineRegistry {
   ir::PassContracts passes_;
   std::vector<std::unique_ptr<Source>> sources_;
   std::map<std::string, Entry> machines_;
+  std::map<std::string, Entry> bases_;  // the built-in abstract bases (machines.toml)
 };
 
-// A machine with every default and no description behind it (clpc check without -t).
+// A machine with every default of its family (the abstract base of machines.toml) and no
+// description behind it (clpc check without -t, tests).
 Machine default_machine(Family family, ir::Units units);
 
 }  // namespace clpc

@@ -73,6 +73,7 @@ std::vector<KeySpec> build() {
 
   // --- the machine's own keys ---------------------------------------------------------------
   key("", "inherits", K::String, "a machine to start from", nullptr).shown = Shown::Never;
+  key("", "abstract", K::Bool, "a base to inherit from, never posted for", nullptr).shown = Shown::Never;
   key("", "description", K::String, "shown by clpc machines and in the program header",
       [](const Machine& m, size_t) { return quote(m.description); });
   choice("", "family", "mill|lathe", "which backend writes the program (required)",

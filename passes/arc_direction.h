@@ -1,5 +1,5 @@
 // The evidence the arc-direction pass weighs, exposed for tests and for the convention study
-// over the corpus (tests/test_arc_conventions.cpp).
+// over the corpus (tests/lower/test_arc_conventions.cpp).
 #pragma once
 
 #include <string>

@@ -158,7 +158,7 @@ TEST(Lexer, LongLinesAreFine) {
 // --- errors --------------------------------------------------------------------------------
 
 // Names are names: a parameter that is not a number as a whole is a word; lowering says where
-// a number was due (tests/test_lower.cpp). The parse itself goes on.
+// a number was due (tests/lower/test_lower.cpp). The parse itself goes on.
 TEST(Lexer, WhatIsNoNumberIsAWord) {
   EXPECT_THAT(recs("GOTO/1,2,3\nGOTO/1.2.3,4,5\nGOTO/--1,2E,3\nGOTO/1,2;3\nGOTO/1,$2,3\n"),
               ElementsAre("1:1 GOTO/1,2,3", "2:1 GOTO/1.2.3,4,5", "3:1 GOTO/--1,2E,3", "4:1 GOTO/1,2;3", "5:1 GOTO/1,$2,3"));

@@ -130,3 +130,20 @@ TEST(Machines, ExplainPrintsTheResolvedDescription) {
   EXPECT_EQ(again.out.substr(again.out.find('[')), r.out.substr(r.out.find('[')));
 }
 
+
+// The family defaults are the abstract bases `mill` and `lathe` of machines.toml: inherited by
+// every machine without a parent, never posted for, never listed.
+TEST(Machines, AbstractBasesGiveTheFamilyDefaults) {
+  RunResult r = run_clpc("compile - -t lathe -o -", "UNITS/MM\nLOADTL/1\nGOTO/1,0,1\nFINI\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "clpc: error: machine 'lathe' is an abstract base (the defaults of its family): post for a machine that "
+                   "inherits from it, or write one with inherits = \"lathe\" (docs/machines.md)\n");
+  RunResult list = run_clpc("machines");
+  EXPECT_EQ(list.out.find("mill\tgeneric"), std::string::npos) << list.out;
+  const Machine lathe = machine("my-lathe", "[my-lathe]\nfamily = \"lathe\"\nunits = \"inch\"\n");
+  EXPECT_EQ(lathe.codes.tool_change.text, "T{tool:2}{offset:2}");
+  EXPECT_EQ(lathe.format('X').scale, 2);
+  EXPECT_EQ(lathe.format('X').decimals, 4);  // inch: the loader's, not the base's
+  EXPECT_FALSE(lathe.arcs.xy);
+  EXPECT_EQ(lathe.pipeline.back(), "groove-cycles");
+}
