@@ -8,7 +8,7 @@ const std::array<FactInfo, 8>& all_facts() {
       {ArcsOneTurn, "arcs-one-turn", "for helical and multi-turn arcs",
        "no arc has extra turns or a sweep over 360 degrees"},
       {ArcsLegal, "arcs-legal", "for arcs the control cannot cut as they are",
-       "no arc over 360 degrees (the planes and radii the machine has: the backend's block check)"},
+       "no arc over 360 degrees (an arc in a plane the machine lacks: the backend refuses it)"},
       {CyclesFormed, "cycles-formed", "for CYCLE records: without it their holes would be cut as moves to their tops",
        "no rapid or feed move between a cycle-on and its cycle-off; no cycle open at the end of an operation"},
       {GroovesFormed, "grooves-formed", "for the groove cycle records", "no groove-on or groove mark left"},
