@@ -77,7 +77,7 @@ void header(Writer& w, int op, const char* name, const char* tool, int number, d
   w.line("$$ centerline data\n");
   w.line("PAINT/PATH\n");
   w.line("LOAD/TOOL,%d,ADJUST,%d\n", number, number);
-  w.line("SPINDL/RPM,%d,CLW\n", 6000 + 500 * (number % 8));
+  w.line("SPINDL/RPM,%d,CLW\n", 4500 + 500 * (number % 8));  // within the UMC-750's 8100 rpm
   w.line("COOLNT/FLOOD\n");
 }
 

@@ -154,6 +154,16 @@ int main(int argc, char** argv) {
   compile->add_option("--emit", emit, "What to write")->check(CLI::IsMember({"gcode", "ir"}));
   compile->add_option("--print-after", print_after, "Print the IR after this pass ('lower', a pass name or 'all') to stderr");
   compile->add_flag("--verify-ir", verify_ir, "Check the IR's invariants after every pass");
+  bool no_verify = false, compile_json = false;
+  double compile_tolerance = 0, compile_axis_tolerance = 0.01;
+  compile->add_flag("--no-verify", no_verify,
+                    "Write the program without reading it back and comparing it with the CL (the certificate)");
+  compile->add_option("--tolerance", compile_tolerance,
+                      "The certificate's largest deviation, in the machine's units (default: its arc tolerance plus one output increment)")
+      ->check(CLI::PositiveNumber);
+  compile->add_option("--axis-tolerance", compile_axis_tolerance, "The certificate's largest tool-axis deviation, degrees (five-axis)")
+      ->check(CLI::PositiveNumber);
+  compile->add_flag("--json", compile_json, "Give each program's certificate whole, as JSON on standard error");
   unsigned jobs = 1;
   compile->add_option("-j,--jobs", jobs, "Compile this many files at once (each file's diagnostics stay together, in input order)")
       ->check(CLI::Range(1u, 256u));
@@ -321,6 +331,10 @@ int main(int argc, char** argv) {
   // compile
   opt.emit = emit == "ir" ? Emit::Ir : Emit::Gcode;
   opt.say_replaced = true;
+  opt.certify = !no_verify && opt.emit == Emit::Gcode;
+  opt.tolerance = compile_tolerance;
+  opt.axis_tolerance = compile_axis_tolerance;
+  opt.certificate_json = compile_json;
   if (!output.empty() && inputs.size() > 1 && output != "-") {
     std::cerr << "clpc: error: -o names one output but " << inputs.size() << " inputs were given\n";
     return kUsage;

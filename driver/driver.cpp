@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "backends/backend.h"
+#include "driver/certify.h"
 #include "driver/pipeline.h"
 #include "ir/printer.h"
 #include "lower/prescan.h"
@@ -144,6 +145,27 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     const bool motion = pipeline.run(src, *sink);
     progress.clear();
     if (!motion && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
+    if (opt.certify && opt.emit == Emit::Gcode && !d.has_errors()) {
+      // The program is read back and compared with the CL before it is put in place.
+      if (!out.finish_writing(why)) {
+        err << "clpc: error: " << why << "\n";
+        res.errors = 1;
+        return res;
+      }
+      progress.phase("verify");
+      CertifyOptions c;
+      c.tolerance = opt.tolerance;
+      c.axis_tolerance = opt.axis_tolerance;
+      c.latin1 = opt.latin1;
+      VerifyReport r = certify(src, out.read_path(), machine, info, c, d);
+      progress.clear();
+      if (opt.certificate_json) print_report_json(err, r);
+      else err << certificate_line(r, output == "-" ? "(standard output)" : output) << "\n";
+      if (!r.ok)
+        d.error({}, "the program does not follow the CL within the tolerance: it is not written (--no-verify writes "
+                    "it unchecked)");
+      res.certificate = std::move(r);
+    }
     res.info = std::move(info);
   } catch (const FatalError&) {
   }

@@ -11,6 +11,7 @@
 #include "ir/ir.h"
 #include "lower/lower.h"
 #include "machine/machine.h"
+#include "readback/verify.h"
 
 namespace clpc {
 
@@ -31,6 +32,12 @@ struct CompileOptions {
   bool say_replaced = false;  // a note when the output replaces an earlier program (clpc compile)
   LowerOptions lower;     // how long operations are cut into chunks (tests make them short)
   Schedule schedule = Schedule::Threaded;
+  // Certify the program before it is put in place (clpc compile, unless --no-verify): read it
+  // back and compare it with the CL (driver/certify.h); a program that fails is not written.
+  bool certify = false;
+  double tolerance = 0;          // the certificate's; 0: the machine's default
+  double axis_tolerance = 0.01;  // degrees
+  bool certificate_json = false; // the whole report as JSON on `err` instead of the one line
 };
 
 struct CompileResult {
@@ -38,6 +45,7 @@ struct CompileResult {
   size_t errors = 0, warnings = 0;
   long blocks = 0;
   ir::ProgramInfo info;  // the program-wide tables, as the passes left them (tools, offsets)
+  std::optional<VerifyReport> certificate;  // when certified
 };
 
 // Compiles `input` ("-" = stdin) for `machine` into `output` ("-" = stdout). Diagnostics go

@@ -4,7 +4,7 @@
 
 #include <cstdlib>
 
-#include "driver/pipeline.h"
+#include "driver/certify.h"
 #include "support/progress.h"
 
 namespace clpc {
@@ -50,15 +50,10 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   rep.axis_tolerance = opt.axis_tolerance;
 
   CompiledProgram cp;
-  if (!compile_for_readback(input, m, opt.compile, opt.keep, opt.program, err, cp)) return rep;
-  rep.compiled = true;
+  CompileOptions co = opt.compile;
+  co.certify = false;  // certified here, with the whole report (and --program's program)
+  if (!compile_for_readback(input, m, co, opt.keep, opt.program, err, cp)) return rep;
   SourceFile& src = cp.source;
-  std::string why;
-  ProgramReader rd(m, cp.compiled.info);
-  if (!rd.open(cp.path, why)) {
-    err << "clpc: error: " << why << "\n";
-    return rep;
-  }
   Diagnostics d(&err);
   d.set_source(&src);
   Progress progress(input, src.size(), opt.compile.progress);
@@ -67,25 +62,14 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
     d.set_before_print([&] { progress.clear(); });
   }
   progress.phase("verify");
-  std::unique_ptr<ProgramSink> comparison = make_comparison(m, cp.compiled.info, rd, d, rep);
-  // The reference: the CL as lowered and given its meaning (arcs decided, cycles made holes),
-  // in the program's tables. The compile has reported the CL's own problems.
-  Diagnostics quiet(nullptr);
-  quiet.set_source(&src);
-  ir::ProgramInfo info = cp.compiled.info;
-  PipelineOptions po;
-  po.latin1 = opt.compile.latin1;
-  po.sink_after_errors = true;
-  Pipeline reference(m, reference_passes(m.pipeline), info, quiet, po);
-  try {
-    reference.run(src, *comparison);
-  } catch (const FatalError&) {
-    // More problems than are worth listing: the report says how many were found.
-  }
+  CertifyOptions c;
+  c.tolerance = opt.tolerance;
+  c.axis_tolerance = opt.axis_tolerance;
+  c.latin1 = opt.compile.latin1;
+  rep = certify(src, cp.path, m, cp.compiled.info, c, d);
+  rep.input = input;
   src.on_progress(nullptr);
   progress.clear();
-  rep.program = rd.totals();
-  rep.ok = rep.problem_count == 0 && rep.max_deviation <= rep.tolerance;
   return rep;
 }
 

@@ -166,7 +166,6 @@ const PassInfo& arc_direction_pass() {
       .provides = ir::ArcsDecided,
       .breaks = 0,
       .costly = false,
-      .reference = true,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<ArcDirection>()); },
   };
   return info;

@@ -93,7 +93,6 @@ const PassInfo& arc_legalise_pass() {
       .provides = ir::ArcsLegal,
       .breaks = 0,
       .costly = false,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<ArcLegalise>()); },
   };
   return info;

@@ -77,7 +77,6 @@ std::string passes_markdown() {
     if (p.breaks) o << "; breaks " << ir::fact_names(p.breaks);
     o << ".";
     if (p.costly) o << " The threaded schedule splits the pipeline after it.";
-    if (p.reference) o << " Verify's reference runs it.";
     o << "\n";
   }
   return o.str();

@@ -171,7 +171,6 @@ const PassInfo& drill_cycles_pass() {
       .provides = ir::CyclesFormed,
       .breaks = 0,
       .costly = false,
-      .reference = true,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<DrillCycles>()); },
   };
   return info;

@@ -411,7 +411,6 @@ const PassInfo& groove_cycles_pass() {
       .provides = ir::GroovesFormed,
       .breaks = 0,
       .costly = false,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<GrooveCycles>()); },
   };
   return info;

@@ -60,7 +60,6 @@ const PassInfo& helix_pass() {
       .provides = ir::ArcsOneTurn,
       .breaks = 0,
       .costly = false,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<Helix>()); },
   };
   return info;

@@ -647,7 +647,6 @@ const PassInfo& kinematics_pass() {
       .provides = ir::Kinematic,
       .breaks = ir::ArcsLegal,
       .costly = true,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<Kinematics>()); },
   };
   return info;

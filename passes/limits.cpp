@@ -166,7 +166,6 @@ const PassInfo& limits_pass() {
       .provides = ir::LimitsChecked,
       .breaks = 0,
       .costly = false,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<Limits>()); },
   };
   return info;

@@ -367,7 +367,6 @@ const PassInfo& offset_table_pass() {
       .provides = ir::OffsetsAssigned,
       .breaks = 0,
       .costly = false,
-      .reference = false,
       .make = [] { return std::unique_ptr<Pass>(std::make_unique<OffsetTablePass>()); },
   };
   return info;

@@ -1,4 +1,6 @@
 // The list of passes. Explicit rather than self-registering so the linker cannot drop one.
+#include <deque>
+
 #include "passes/passes.h"
 
 namespace clpc {
@@ -10,23 +12,29 @@ const std::vector<PassInfo>& all_passes() {
   return passes;
 }
 
+namespace {
+std::deque<PassInfo>& extra_passes() {  // a deque: find_pass's pointers stay valid
+  static std::deque<PassInfo> extra;
+  return extra;
+}
+}  // namespace
+
 const PassInfo* find_pass(std::string_view name) {
   for (const PassInfo& p : all_passes())
     if (p.name == name) return &p;
+  for (const PassInfo& p : extra_passes())
+    if (p.name == name) return &p;
   return nullptr;
+}
+
+void register_extra_pass(const PassInfo& p) {
+  if (!find_pass(p.name)) extra_passes().push_back(p);
 }
 
 ir::PassContracts pass_contracts() {
   ir::PassContracts c;
   for (const PassInfo& p : all_passes()) c.push_back({std::string(p.name), p.needs, p.provides, p.breaks});
   return c;
-}
-
-std::vector<std::string> reference_passes(const std::vector<std::string>& pipeline) {
-  std::vector<std::string> out;
-  for (const std::string& n : pipeline)
-    if (const PassInfo* p = find_pass(n); p && p->reference) out.push_back(n);
-  return out;
 }
 
 }  // namespace clpc

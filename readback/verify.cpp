@@ -1,6 +1,9 @@
-// clpc verify. The reference is the CL data itself, lowered again with only the passes that
-// give it meaning (arc-direction decides which way each CIRCLE turns; drill-cycles turns a
-// CYCLE's GOTOs into holes with their depths). The program is read back by the independent
+// clpc verify. The reference is the CL data itself, lowered again and given its meaning by
+// verify's own rules, none of the compile's passes: an arc turns the way the CL says (its CAM
+// system's CIRCLE convention, a sense word, MOVARC's angle, INDIRV: the `hint` lowering
+// records), the GOTOs between a CYCLE and CYCLE/OFF are holes of the cycle's depth. Where an
+// arc's tangent move contradicts its convention the CL is ambiguous: the report counts it.
+// The program is read back by the independent
 // reader (readback/gcode_interp.cpp) into tool-tip segments in the part frame
 // (readback/program_reader.cpp). The two are walked together, one CL record at a time, with a bounded
 // window of program segments:
@@ -106,6 +109,8 @@ class Comparison : public ProgramSink {
               if (x.kind == ir::MoveKind::From) {
                 prev_ = p;
                 have_prev_ = true;
+              } else if (cycle_on_ && !groove_) {
+                hole(x.point, x.axis);
               } else if (groove_) {
                 groove_point(p, x.kind == ir::MoveKind::Rapid);
               } else {
@@ -113,8 +118,9 @@ class Comparison : public ProgramSink {
               }
             } else if constexpr (std::is_same_v<T, ir::Arc>) {
               arc(x);
-            } else if constexpr (std::is_same_v<T, ir::Hole>) {
-              hole(op, x);
+            } else if constexpr (std::is_same_v<T, ir::CycleOn>) {
+              cycle_ = op.cycles.at(x.spec);  // by value: the cycle's GOTOs may come in later chunks
+              cycle_on_ = true;
             } else if constexpr (std::is_same_v<T, ir::GrooveOn>) {
               begin_groove();
             } else if constexpr (std::is_same_v<T, ir::GrooveMark>) {
@@ -122,6 +128,7 @@ class Comparison : public ProgramSink {
               else end_groove();
             } else if constexpr (std::is_same_v<T, ir::CycleOff>) {
               if (groove_) end_groove();
+              else cycle_on_ = false;
             }
           },
           in.op);
@@ -212,7 +219,11 @@ class Comparison : public ProgramSink {
   bool axis_ok(const TipSegment& s, const Vec3& axis) {
     if (!five_axis_) return true;
     double a = kin::angle_between(s.axis, axis.normalized());
-    rep_.max_axis_deviation = std::max(rep_.max_axis_deviation, a);
+    if (a > rep_.max_axis_deviation) {
+      rep_.max_axis_deviation = a;
+      rep_.max_axis_loc = loc_;
+      rep_.max_axis_gcode_line = s.raw.line;
+    }
     return a <= axis_tol_;
   }
 
@@ -379,9 +390,25 @@ class Comparison : public ProgramSink {
     if (already_there(p)) {
     } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) reached(*j, p, axis, rapid, passed_);
     else missed(p, nearest, at, "CL point");
+    incoming_ = rapid || !have_from ? Vec3::Zero() : Vec3(p - from);
     prev_ = p;
     have_prev_ = true;
     have_hole_ = false;
+  }
+
+  // Which way a CL arc turns, by the CL's own word (lowering's `hint`), and whether the move
+  // entering it agrees: a tangent move (at least 20 output increments long in the arc's plane,
+  // within 10 degrees of tangent) that runs against the arc's sense makes the CL ambiguous.
+  ir::ArcDir arc_sense(const ir::Arc& a) {
+    const ir::ArcDir dir = a.dir != ir::ArcDir::Unknown ? a.dir : a.hint;
+    if (dir == ir::ArcDir::Unknown) return dir;
+    const Vec3 n = a.axis.normalized();
+    const Vec3 in = incoming_ - incoming_.dot(n) * n;
+    const Vec3 t = arcgeo::sense(dir) * n.cross(arcgeo::radial(a, a.start));
+    if (in.norm() >= 20 * increment_ && t.norm() > 0 && in.dot(t) <= -0.985 * in.norm() * t.norm()) {
+      if (rep_.ambiguous_arcs++ == 0) rep_.ambiguous_loc = loc_;
+    }
+    return dir;
   }
 
   void arc(const ir::Arc& a0) {
@@ -392,6 +419,16 @@ class Comparison : public ProgramSink {
     a.center = model(a0.center);
     a.axis = model_dir(a0.axis);
     a.radius = a0.radius * k_;
+    a.dir = arc_sense(a);
+    incoming_ = Vec3::Zero();
+    if (a.dir == ir::ArcDir::Unknown) {
+      // Lowering gives every CL arc a sense; only an arc a pass made has none.
+      fail(loc_, 0, "verify cannot tell which way this CL arc turns", kInf);
+      prev_ = a.end;
+      have_prev_ = true;
+      return;
+    }
+    if (!(a.sweep > 0)) a.sweep = arcgeo::sweep_deg(a, a.dir, 1e-7);
     auto on_arc = [&](const Vec3& q) { return arcgeo::distance_to_arc(a, q); };
     double nearest;
     size_t at;
@@ -479,15 +516,18 @@ class Comparison : public ProgramSink {
         reached(*j, a.end, a.tool_axis, false, passed_);
       }
     }
+    incoming_ = arcgeo::tangent_at(a, 1.0) * (1e6 * increment_);  // leaves along its tangent
     prev_ = a.end;
     have_prev_ = true;
     have_hole_ = false;
   }
 
-  void hole(const ir::Operation& op, const ir::Hole& h) {
+  // A GOTO of a CYCLE: a hole at the point, down the tool axis by the cycle's depth.
+  void hole(const Vec3& point, const Vec3& tool_axis) {
     ++rep_.cl_holes;
-    const ir::CycleSpec& spec = op.cycles[h.spec];
-    const Vec3 top = model(h.point), axis = model_dir(h.axis).normalized();
+    const ir::CycleSpec& spec = cycle_;
+    incoming_ = Vec3::Zero();
+    const Vec3 top = model(point), axis = model_dir(tool_axis).normalized();
     const Vec3 bottom = top - axis * (spec.depth * k_);
     hole_point_ = top;
     hole_axis_ = axis;
@@ -637,6 +677,9 @@ class Comparison : public ProgramSink {
   double increment_ = 0;      // one output increment of Z
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ();
   bool have_hole_ = false;
+  ir::CycleSpec cycle_;       // the drilling cycle in force
+  bool cycle_on_ = false;
+  Vec3 incoming_ = Vec3::Zero();  // the last CL feed move (zero after a rapid or a hole)
   bool groove_ = false;
   size_t groove_reach_ = 0;
   int limit_reported_[26] = {};
@@ -720,8 +763,16 @@ void print_report(std::ostream& o, const VerifyReport& r) {
   else o << fixed(r.max_deviation, dec) << " " << u;
   if (r.max_loc.valid()) o << " at " << r.input << ":" << r.max_loc.line << ":" << r.max_loc.col;
   if (r.max_gcode_line) o << " (G-code line " << r.max_gcode_line << ")";
-  if (r.max_axis_deviation > 0) o << "; tool axis max " << fixed(r.max_axis_deviation, 4) << " deg";
+  if (r.max_axis_deviation > 0) {
+    o << "; tool axis max " << fixed(r.max_axis_deviation, 4) << " deg";
+    if (r.max_axis_loc.valid()) o << " at " << r.input << ":" << r.max_axis_loc.line << ":" << r.max_axis_loc.col;
+    if (r.max_axis_gcode_line) o << " (G-code line " << r.max_axis_gcode_line << ")";
+  }
   o << "\n";
+  if (r.ambiguous_arcs)
+    o << "  CL:         " << r.ambiguous_arcs << " arc" << (r.ambiguous_arcs == 1 ? "" : "s")
+      << " where the CAM system's convention and the CL's geometry disagree (first at " << r.input << ":"
+      << r.ambiguous_loc.line << "); the convention was followed\n";
   if (r.ok) o << "  result: PASS\n";
   else o << "  result: FAIL (" << r.problem_count << " problem" << (r.problem_count == 1 ? "" : "s") << ")\n";
 }
@@ -738,7 +789,9 @@ void print_report_json(std::ostream& o, const VerifyReport& r) {
   o << "  \"ok\": " << (r.ok ? "true" : "false") << ",\n";
   o << "  \"max_deviation\": {\"value\": " << json_number(r.max_deviation) << ", \"line\": " << r.max_loc.line
     << ", \"column\": " << r.max_loc.col << ", \"gcode_line\": " << r.max_gcode_line << "},\n";
-  o << "  \"max_axis_deviation_deg\": " << json_number(r.max_axis_deviation) << ",\n";
+  o << "  \"max_axis_deviation_deg\": {\"value\": " << json_number(r.max_axis_deviation) << ", \"line\": " << r.max_axis_loc.line
+    << ", \"column\": " << r.max_axis_loc.col << ", \"gcode_line\": " << r.max_axis_gcode_line << "},\n";
+  o << "  \"ambiguous_arcs\": {\"count\": " << r.ambiguous_arcs << ", \"first_line\": " << r.ambiguous_loc.line << "},\n";
   o << "  \"cl\": {\"points\": " << r.cl_points << ", \"arcs\": " << r.cl_arcs << ", \"holes\": " << r.cl_holes
     << ", \"groove_cuts\": " << r.cl_groove_points << "},\n";
   o << "  \"program\": {\"lines\": " << p.lines << ", \"bytes\": " << p.bytes << ", \"blocks\": " << p.blocks

@@ -35,6 +35,12 @@ struct VerifyReport {
   SourceLoc max_loc;
   int max_gcode_line = 0;
   double max_axis_deviation = 0;  // degrees
+  SourceLoc max_axis_loc;
+  int max_axis_gcode_line = 0;
+  // Arcs whose CAM-system convention the CL's own geometry contradicts (a tangent move into
+  // the arc runs against it): the convention is followed, the report says so.
+  long ambiguous_arcs = 0;
+  SourceLoc ambiguous_loc;
   long cl_points = 0, cl_arcs = 0, cl_holes = 0, cl_groove_points = 0;
   ProgramTotals program;
   long problem_count = 0;

@@ -194,7 +194,7 @@ void OutputFile::finish_writes() {
   writer_stop_ = false;
 }
 
-bool OutputFile::commit(std::string& error) {
+bool OutputFile::finish_writing(std::string& error) {
   if (fd_ < 0) {
     error = "no output open";
     return false;
@@ -208,6 +208,23 @@ bool OutputFile::commit(std::string& error) {
   buf_.clear();
   if (failed_) {
     error = "cannot write the output: " + std::string(strerror(errno_));
+    return false;
+  }
+  return true;
+}
+
+std::string OutputFile::read_path() const {
+  if (fd_ < 0) return {};
+  if (to_stdout_ || to_special_) return "/proc/self/fd/" + std::to_string(fd_);
+  return temp_;
+}
+
+bool OutputFile::commit(std::string& error) {
+  if (fd_ < 0) {
+    error = "no output open";
+    return false;
+  }
+  if (!finish_writing(error)) {
     discard();
     return false;
   }

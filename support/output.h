@@ -33,6 +33,11 @@ class OutputFile {
   // pipe).
   bool commit(std::string& error);
   void discard();
+  // Writes out everything written so far, so the program can be read back (verified) before
+  // it is committed; false, with the reason, when the file cannot be written. Then
+  // read_path() names the file: the temporary, or /proc/self/fd/N for an anonymous one.
+  bool finish_writing(std::string& error);
+  std::string read_path() const;
   const std::string& temp_path() const { return temp_; }
 
   static constexpr size_t kBuffer = 1 << 20;

@@ -147,7 +147,8 @@ TEST(Cli, ProgressBarOnlyOnATerminal) {
   const std::string args = "compile " + t.path("big.cls") + " -t fanuc-mill -o " + t.path("big.nc");
   RunResult quiet = run_clpc(args);
   EXPECT_EQ(quiet.status, 0);
-  EXPECT_EQ(quiet.err, "");
+  EXPECT_EQ(quiet.err, "clpc: certified " + t.path("big.nc") +
+                           ": 170001 points, 0 arcs, 0 holes checked; max deviation 0.0000 mm; tolerance 0.0060 mm\n");
   const std::string typed = t.path("typescript");
   std::string cmd = "script -qfec '" + std::string(CLPC_BINARY) + " " + args + "' " + typed + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);

@@ -1,0 +1,86 @@
+#include "driver/certify.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "driver/pipeline.h"
+#include "readback/program_reader.h"
+
+namespace clpc {
+
+VerifyReport certify(SourceFile& src, const std::string& program, const Machine& m, const ir::ProgramInfo& info,
+                     const CertifyOptions& opt, Diagnostics& d) {
+  VerifyReport rep;
+  rep.input = src.name();
+  rep.machine = m.name;
+  rep.units = m.units;
+  rep.five_axis = m.kinematics.has_rotaries();
+  rep.tolerance = opt.tolerance > 0 ? opt.tolerance : default_tolerance(m);
+  rep.axis_tolerance = opt.axis_tolerance;
+  rep.compiled = true;
+
+  std::string why;
+  ProgramReader rd(m, info);
+  if (!rd.open(program, why)) {
+    d.error({}, "cannot read the program back to verify it: " + why);
+    return rep;
+  }
+  std::unique_ptr<ProgramSink> comparison = make_comparison(m, info, rd, d, rep);
+  // The reference: the CL lowered again and given its meaning by verify's own rules, none of
+  // the compile's passes. The compile has reported the CL's own problems: quiet here.
+  Diagnostics quiet(nullptr);
+  quiet.set_source(&src);
+  ir::ProgramInfo tables = info;
+  PipelineOptions po;
+  po.latin1 = opt.latin1;
+  po.sink_after_errors = true;
+  Pipeline reference(m, {}, tables, quiet, po);
+  try {
+    reference.run(src, *comparison);
+  } catch (const FatalError&) {
+    // More problems than are worth listing: the report says how many were found.
+  }
+  rep.program = rd.totals();
+  rep.ok = rep.problem_count == 0 && rep.max_deviation <= rep.tolerance;
+  return rep;
+}
+
+namespace {
+
+std::string fixed(double v, int decimals) {
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
+std::string where(const VerifyReport& r, SourceLoc loc, int gcode_line) {
+  std::string s;
+  if (loc.valid()) s += " at " + r.input + ":" + std::to_string(loc.line);
+  if (gcode_line > 0) s += " (G-code line " + std::to_string(gcode_line) + ")";
+  return s;
+}
+
+}  // namespace
+
+std::string certificate_line(const VerifyReport& r, const std::string& program_name) {
+  const char* u = r.units == ir::Units::Inch ? "in" : "mm";
+  const int dec = r.units == ir::Units::Inch ? 5 : 4;
+  std::string s = std::string("clpc: ") + (r.ok ? "certified " : "NOT certified ") + program_name + ": " +
+                  std::to_string(r.cl_points) + " points, " + std::to_string(r.cl_arcs) + " arcs, " +
+                  std::to_string(r.cl_holes) + " holes";
+  if (r.cl_groove_points) s += ", " + std::to_string(r.cl_groove_points) + " groove cuts";
+  s += " checked; max deviation ";
+  s += std::isinf(r.max_deviation) ? std::string("unbounded") : fixed(r.max_deviation, dec) + " " + u;
+  s += where(r, r.max_loc, r.max_gcode_line);
+  if (r.five_axis) s += ", tool axis " + fixed(r.max_axis_deviation, 4) + " deg" + where(r, r.max_axis_loc, r.max_axis_gcode_line);
+  s += "; tolerance " + fixed(r.tolerance, dec) + " " + u;
+  if (r.five_axis) s += ", " + fixed(r.axis_tolerance, 4) + " deg";
+  if (r.ambiguous_arcs)
+    s += "; " + std::to_string(r.ambiguous_arcs) + " arc" + (r.ambiguous_arcs == 1 ? "" : "s") +
+         " where the CL's convention and its geometry disagree (first at " + r.input + ":" +
+         std::to_string(r.ambiguous_loc.line) + ")";
+  if (!r.ok) s += "; " + std::to_string(r.problem_count) + " problem" + (r.problem_count == 1 ? "" : "s");
+  return s;
+}
+
+}  // namespace clpc

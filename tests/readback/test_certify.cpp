@@ -1,0 +1,190 @@
+// Certified output: clpc compile reads every program back and compares it with the CL before
+// it puts it in place. A compile made wrong on purpose (a test double of a pass: arcs turned
+// the other way, points shifted) exits 1 and writes nothing, the old program untouched; the
+// certificate line and its JSON; --no-verify; a five-axis path in steps smaller than the
+// tolerance certifies.
+#include <cmath>
+
+#include "driver/driver.h"
+#include "helpers.h"
+#include "passes/pass.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+namespace {
+
+// The test doubles: passes that are wrong on purpose, run after arc-direction.
+class FlipArcs : public Pass {
+ public:
+  void run(ir::Operation& op, PassContext&) override {
+    for (ir::Instr& in : op.body)
+      if (auto* a = std::get_if<ir::Arc>(&in.op)) {
+        a->dir = a->dir == ir::ArcDir::Cw ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
+        a->sweep = 360 - a->sweep;
+      }
+  }
+};
+
+class ShiftX : public Pass {  // every cutting point 0.05 mm along X
+ public:
+  void run(ir::Operation& op, PassContext&) override {
+    for (ir::Instr& in : op.body)
+      if (auto* m = std::get_if<ir::Move>(&in.op); m && m->kind == ir::MoveKind::Feed) m->point.x() += 0.05;
+  }
+};
+
+void register_doubles() {
+  register_extra_pass(PassInfo{.name = "test-flip-arcs",
+                               .summary = "test double: every arc turned the other way",
+                               .needs = ir::ArcsDecided,
+                               .make = [] { return std::unique_ptr<Pass>(std::make_unique<FlipArcs>()); }});
+  register_extra_pass(PassInfo{.name = "test-shift-x",
+                               .summary = "test double: every cutting point 0.05 mm along X",
+                               .make = [] { return std::unique_ptr<Pass>(std::make_unique<ShiftX>()); }});
+}
+
+// fanuc-mill with the double right after arc-direction.
+Machine with_double(const std::string& pass) {
+  register_doubles();
+  Machine m = machine("fanuc-mill");
+  auto at = std::find(m.pipeline.begin(), m.pipeline.end(), "arc-direction");
+  m.pipeline.insert(at == m.pipeline.end() ? at : at + 1, pass);
+  return m;
+}
+
+// A plate: a line, a counter-clockwise arc (line 13), more lines.
+const char* kPlate =
+    "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,20\nRAPID\nGOTO/0,0,2\nFEDRAT/MMPM,300\n"
+    "GOTO/0,0,-2\nFEDRAT/MMPM,800\nGOTO/30,0,-2\nGOTO/30,20,-2\nCIRCLE/20,20,-2,0,0,-1,10,0.01,0.5,10,0\n"
+    "GOTO/10,20,-2\nGOTO/0,20,-2\nGOTO/0,5,-2\nRAPID\nGOTO/0,5,20\nFINI\n";
+
+struct Result {
+  CompileResult r;
+  std::string diags;
+};
+
+Result certified_compile(const std::string& in, const std::string& out, const Machine& m, bool certify = true) {
+  CompileOptions o;
+  o.certify = certify;
+  std::ostringstream err;
+  Result x;
+  x.r = compile_file(in, out, m, o, err);
+  x.diags = err.str();
+  return x;
+}
+
+}  // namespace
+
+TEST(Certify, ACorrectCompileEndsWithItsCertificate) {
+  TempDir t;
+  write_file(t.path("plate.cls"), kPlate);
+  Result x = certified_compile(t.path("plate.cls"), t.path("plate.nc"), machine("fanuc-mill"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  ASSERT_TRUE(x.r.certificate.has_value());
+  EXPECT_TRUE(x.r.certificate->ok);
+  EXPECT_EQ(x.diags, "clpc: certified " + t.path("plate.nc") +
+                         ": 8 points, 1 arcs, 0 holes checked; max deviation 0.0000 mm at " + t.path("plate.cls") +
+                         ":13 (G-code line 17); tolerance 0.0060 mm\n");
+  EXPECT_THAT(read_file(t.path("plate.nc")), HasSubstr("G03 X10. I-10. J0."));
+}
+
+// Arcs turned the other way by a wrong pass: the compile fails at the CIRCLE, writes nothing,
+// and leaves the program of an earlier run as it was.
+TEST(Certify, AWrongArcDirectionIsNeverWritten) {
+  TempDir t;
+  write_file(t.path("plate.cls"), kPlate);
+  write_file(t.path("plate.nc"), "the earlier program\n");
+  const Machine m = with_double("test-flip-arcs");
+  Result x = certified_compile(t.path("plate.cls"), t.path("plate.nc"), m);
+  EXPECT_FALSE(x.r.ok);
+  EXPECT_GE(x.r.errors, 2u);
+  EXPECT_THAT(x.diags, HasSubstr(t.path("plate.cls") + ":13:1: error: the program turns this CL arc the other way (the CL arc "
+                                 "turns counter-clockwise seen from +Z) [G-code line 17]\n"));
+  EXPECT_THAT(x.diags, HasSubstr("clpc: NOT certified " + t.path("plate.nc") + ": 8 points, 1 arcs, 0 holes checked;"));
+  EXPECT_THAT(x.diags, HasSubstr("error: the program does not follow the CL within the tolerance: it is not written "
+                                 "(--no-verify writes it unchecked)\n"));
+  EXPECT_EQ(read_file(t.path("plate.nc")), "the earlier program\n");
+  // The double is really wrong: unchecked, its program is written with the arc reversed.
+  Result unchecked = certified_compile(t.path("plate.cls"), t.path("plate.nc"), m, false);
+  EXPECT_TRUE(unchecked.r.ok) << unchecked.diags;
+  EXPECT_THAT(read_file(t.path("plate.nc")), HasSubstr("G02 X10. I-10. J0."));
+}
+
+TEST(Certify, AShiftedPathIsNeverWritten) {
+  TempDir t;
+  write_file(t.path("plate.cls"), kPlate);
+  Result x = certified_compile(t.path("plate.cls"), t.path("plate.nc"), with_double("test-shift-x"));
+  EXPECT_FALSE(x.r.ok);
+  // The first cutting point, GOTO/0,0,-2, is made at X0.05.
+  EXPECT_THAT(x.diags, HasSubstr(t.path("plate.cls") + ":9:1: error: CL point (0.0000, 0.0000, -2.0000) is never reached: the "
+                                 "program comes within 0.05000 of it"));
+  EXPECT_FALSE(std::filesystem::exists(t.path("plate.nc")));
+}
+
+// The command line: the certificate on standard error, --json whole, --no-verify none; a
+// program to standard output is certified before a byte of it is written.
+TEST(Certify, CommandLine) {
+  TempDir t;
+  write_file(t.path("plate.cls"), kPlate);
+  RunResult r = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o -");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("G03 X10. I-10. J0."));
+  EXPECT_EQ(r.err, "clpc: certified (standard output): 8 points, 1 arcs, 0 holes checked; max deviation 0.0000 mm at " +
+                       t.path("plate.cls") + ":13 (G-code line 17); tolerance 0.0060 mm\n");
+  RunResult json = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o " + t.path("a.nc") + " --json");
+  EXPECT_EQ(json.status, 0) << json.err;
+  EXPECT_THAT(json.err, HasSubstr("\"ok\": true,"));
+  EXPECT_THAT(json.err, HasSubstr("\"cl\": {\"points\": 8, \"arcs\": 1, \"holes\": 0, \"groove_cuts\": 0},"));
+  RunResult none = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o " + t.path("b.nc") + " --no-verify");
+  EXPECT_EQ(none.status, 0) << none.err;
+  EXPECT_EQ(none.err, "");
+  EXPECT_EQ(read_file(t.path("a.nc")), read_file(t.path("b.nc")));
+  RunResult tight = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o " + t.path("c.nc") + " --tolerance 0.0001");
+  EXPECT_EQ(tight.status, 0) << tight.err;
+  EXPECT_THAT(tight.err, HasSubstr("; tolerance 0.0001 mm\n"));
+}
+
+// A five-axis finish in steps of 0.002 mm, the tool axis turning 0.002 degrees a step: every
+// block end lies within the tolerance (0.0076 mm) of several CL points. Each CL point is
+// matched to its own block (the nearest, axis agreeing), not the first within the tolerance.
+TEST(Certify, FiveAxisStepsSmallerThanTheToleranceCertify) {
+  TempDir t;
+  std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nMULTAX/ON\nRAPID\nGOTO/0,0,50,0,0,1\nFEDRAT/MMPM,500\n";
+  char line[160];
+  for (int i = 0; i <= 3000; ++i) {
+    const double a = (i * 0.002) * M_PI / 180;  // about Y
+    std::snprintf(line, sizeof line, "GOTO/%.4f,%.4f,%.4f,%.7f,%.7f,%.7f\n", i * 0.002, 0.001 * std::sin(i * 0.01), 10.0,
+                  std::sin(a), 0.0, std::cos(a));
+    cl += line;
+  }
+  cl += "RAPID\nGOTO/6,0,50,0.1045285,0,0.9945219\nFINI\n";
+  write_file(t.path("fine.cls"), cl);
+  Result x = certified_compile(t.path("fine.cls"), t.path("fine.nc"), machine("haas-umc750"));
+  ASSERT_TRUE(x.r.ok) << x.diags.substr(0, 2000);
+  ASSERT_TRUE(x.r.certificate.has_value());
+  EXPECT_EQ(x.r.certificate->cl_points, 3003);
+  EXPECT_LE(x.r.certificate->max_deviation, x.r.certificate->tolerance);
+  EXPECT_LE(x.r.certificate->max_axis_deviation, 0.01);
+  EXPECT_THAT(x.diags, HasSubstr("clpc: certified "));
+  EXPECT_THAT(x.diags, Not(HasSubstr("error")));
+}
+
+// A CL that contradicts itself: the move into the NX arc (line 14) runs down -Y, against the
+// arc's counter-clockwise start. The compile warns, cuts the convention, and the certificate
+// says the CL is ambiguous there.
+TEST(Certify, AnArcAgainstItsConventionIsReportedAmbiguous) {
+  TempDir t;
+  std::string cl = kPlate;
+  const std::string from = "GOTO/30,20,-2\n";
+  cl.replace(cl.find(from), from.size(), "GOTO/30,40,-2\nGOTO/30,20,-2\n");
+  write_file(t.path("plate.cls"), cl);
+  Result x = certified_compile(t.path("plate.cls"), t.path("plate.nc"), machine("fanuc-mill"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  EXPECT_THAT(x.diags, HasSubstr(t.path("plate.cls") + ":14:1: warning: arc: the NX CLSF convention"));
+  EXPECT_EQ(x.r.certificate->ambiguous_arcs, 1);
+  EXPECT_THAT(x.diags, HasSubstr("; tolerance 0.0060 mm; 1 arc where the CL's convention and its geometry disagree (first at " +
+                                 t.path("plate.cls") + ":14)\n"));
+}
