@@ -50,6 +50,10 @@ class Interp {
   Interp(const Machine& m, const Options& opt) : m_(m), opt_(opt) {
     res_.units = m.units;
     pos_ = Vec3(kNaN, m.is_lathe() ? 0.0 : kNaN, kNaN);  // a lathe has no Y
+    // Where the rotaries stand when the program starts is as unknown as X, Y and Z: only a
+    // word of the program says.
+    for (const RotaryAxis& r : m.kinematics.rotaries)
+      if (r.name.size() == 1 && r.name[0] >= 'A' && r.name[0] <= 'C') rotary_[size_t(r.name[0] - 'A')] = kNaN;
     // One increment of the coarser of the end point and centre words (on a diameter lathe X
     // is finer in radius terms than I and K).
     double inc = std::max({std::abs(dequantize(1, m.format('X'))), std::abs(dequantize(1, m.format('I'))),
@@ -181,9 +185,10 @@ class Interp {
       else if (is_g(g, 40)) comp_ = 0;
       else if (is_g(g, 41)) comp_ = 1;
       else if (is_g(g, 42)) comp_ = 2;
-      else if (is_g(g, 43)) length_comp_ = true;
-      else if (is_g(g, 49)) length_comp_ = false, tcp_ = false;
-      else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5)) tcp_ = true, length_comp_ = true;
+      else if (is_g(g, 43)) length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
+      else if (is_g(g, 49)) length_comp_ = false, tcp_ = false, length_register_ = 0;
+      else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5))
+        tcp_ = true, length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
       else if (is_g(g, 187) || is_g(g, 5.1)) {}  // smoothing (Haas), AI contour control (Fanuc): the path is the same
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
@@ -229,6 +234,7 @@ class Interp {
           tool_ = has('T') ? int(std::round(a['T'])) : pending_tool_;
           ++res_.tool_changes;
           length_comp_ = false;  // must be applied again for the new tool
+          length_register_ = 0;
           spindle_on_ = false;
           res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
           break;
@@ -241,6 +247,7 @@ class Interp {
       // T0101: tool and offset, changed at once.
       int t = int(std::round(a['T']));
       tool_ = t / 100;
+      length_register_ = t % 100;  // the offset register: length and wear
       ++res_.tool_changes;
       res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
     } else if (!lathe && has('T') && std::find_if(ms.begin(), ms.end(), [](double v) { return std::round(v) == 6; }) == ms.end()) {
@@ -498,6 +505,7 @@ class Interp {
     s.rotary = rot;
     s.line = line;
     s.tool = tool_;
+    s.length_register = length_register_;
     s.work_offset = work_offset_;
     s.inverse_time = inverse_time_;
     s.tcp = tcp_;
@@ -517,6 +525,14 @@ class Interp {
       s.feed = 0;
     } else {
       if (!(feed_ > 0)) problem(line, "cutting move with no feed rate (F)");
+      if (!rotary_unknown_reported_)
+        for (const RotaryAxis& r : m_.kinematics.rotaries)
+          if (r.name.size() == 1 && std::isnan(rot[size_t(r.name[0] - 'A')])) {
+            problem(line, "cutting move with the " + r.name + " axis where the program has not put it (no " + r.name +
+                              " word since the start)");
+            rotary_unknown_reported_ = true;
+            break;
+          }
       if (inverse_time_ && !a.count('F')) problem(line, "inverse time (G93) needs F in every cutting block");
       s.feed = feed_;
       if (motion_ == Motion::Linear) {
@@ -624,6 +640,8 @@ class Interp {
   bool per_rev_ = false;
   bool css_ = false;
   bool length_comp_ = false;
+  int length_register_ = 0;
+  bool rotary_unknown_reported_ = false;  // H of the G43 in force (lathe: the T word's offset)
   bool tcp_ = false, dwo_ = false;
   int comp_ = 0;
   int cycle_ = 0;

@@ -36,6 +36,7 @@ struct Segment {
   std::array<double, 3> rotary_start{0, 0, 0};
   int work_offset = 1;        // 1 = G54 ... 6 = G59, 7.. = extended
   int tool = 0;
+  int length_register = 0;    // the tool length offset in force (G43 H; lathe T's offset), 0: none
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
   bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame

@@ -17,6 +17,8 @@ bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y())
 }  // namespace
 
 ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m) {
+  known_registers_.insert(m.offsets.default_index);
+  for (const ir::WorkOffset& w : info.offsets) known_registers_.insert(w.index);
   use_offsets_ = !info.offsets.empty();
   if (use_offsets_) {
     reference_height_ = m.offsets.reference_height;
@@ -147,6 +149,7 @@ void ProgramReader::take_events() {
   for (const gcode::Event& e : r.events) {
     switch (e.kind) {
       case gcode::Event::Kind::OffsetSet:
+        known_registers_.insert(e.reg);
         if (use_offsets_) offsets_[e.reg] = e.v;
         break;
       case gcode::Event::Kind::ToolChange:
@@ -176,6 +179,13 @@ bool ProgramReader::next(TipSegment& out) {
   }
   const gcode::Segment& s = r.segments[next_segment_++];
   account(s);
+  if (!known_registers_.count(s.work_offset) && reported_registers_.insert(s.work_offset).second) {
+    const std::string name = s.work_offset <= 6 ? "G" + std::to_string(53 + s.work_offset)
+                                                : "extended work offset " + std::to_string(s.work_offset - 6);
+    r.problems.push_back({s.line, "the program works in " + name +
+                                      ", which it never sets and the setup does not list: the tool goes wherever that "
+                                      "register's zero happens to be"});
+  }
   out.raw = s;
   const kin::Angles a0 = angles(s.rotary_start), a1 = angles(s.rotary);
   out.start = part_point(s, s.start, a0);

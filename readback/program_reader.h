@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 #include <ostream>
 #include <string>
 
@@ -75,6 +76,10 @@ class ProgramReader {
   std::map<int, ir::Mat3> setup_turns_;
   const ir::Mat3& setup_turn(int reg) const;
   double reference_height_ = 0;
+  // The work offset registers whose zero is known: the machine's default, those the setup
+  // lists (the offset table), those the program sets (G10, the G65 macro). A program working
+  // in another register cuts wherever that register's zero happens to be.
+  std::set<int> known_registers_, reported_registers_;
   ProgramTotals totals_;
 };
 

@@ -102,6 +102,11 @@ class Comparison : public ProgramSink {
             } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {
               std::string why;  // the compile reports a machine without the axis
               indexing_.apply(m_.kinematics, x, why);
+            } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
+              want_tool_ = x.tool;
+              want_h_ = x.length_offset > 0 ? x.length_offset : x.tool;
+              want_tool_loc_ = loc_;
+              tool_reported_ = false;
             } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
               frame_ = x.frame;
             } else if constexpr (std::is_same_v<T, ir::Move>) {
@@ -351,10 +356,43 @@ class Comparison : public ProgramSink {
     if (s && nearest <= std::max(20 * tol_, 0.1 / ir::mm_per_unit(m_.units))) consume(nearest_at + 1);
   }
 
+  // The tool the CL loaded cuts, with its own length offset (a wrong H puts the tip where
+  // another tool's length says). Reported once per tool change.
+  void tool_ok(const TipSegment& s) {
+    if (want_tool_ <= 0 || tool_reported_ || s.raw.tool <= 0) return;
+    const std::string cl = " (the CL loads tool " + std::to_string(want_tool_) + " at line " + std::to_string(want_tool_loc_.line) + ")";
+    if (s.raw.tool != want_tool_) {
+      fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl, 0);
+      tool_reported_ = true;
+    } else if (s.raw.length_register > 0 && s.raw.length_register != want_h_) {
+      fail(loc_, s.raw.line,
+           "the tool length offset in force is register " + std::to_string(s.raw.length_register) + ", tool " +
+               std::to_string(want_tool_) + "'s is " + std::to_string(want_h_) + cl,
+           0);
+      tool_reported_ = true;
+    }
+  }
+
+  // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
+  // it) is the cut made at rapid traverse; a rapid the post adds (a retract, a positioning
+  // move) leaves the path.
+  template <class OnPath>
+  void no_rapid_cut(size_t j, OnPath on_path) {
+    for (size_t i = 0; i < j && i < win_.size(); ++i) {
+      const TipSegment& s = win_[i];
+      if (s.raw.kind != gcode::Segment::Kind::Rapid || s.raw.from_cycle || !finite(s.start) || !finite(s.end)) continue;
+      if ((s.end - s.start).norm() > tol_ && on_path(s.start) <= tol_ && on_path(s.end) <= tol_) {
+        fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
+        return;
+      }
+    }
+  }
+
   // The segment at j reached CL point p: the segments before it were passed over.
   void reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, const std::vector<double>& passed) {
     for (size_t i = 0; i < j && i < passed.size(); ++i) deviate(passed[i], loc_, win_[i].raw.line);
     const TipSegment& s = win_[j];
+    tool_ok(s);
     double d = (s.end - p).norm();
     deviate(d, loc_, s.raw.line);
     if (!axis_ok(s, axis))
@@ -388,8 +426,12 @@ class Comparison : public ProgramSink {
     double nearest;
     size_t at;
     if (already_there(p)) {
-    } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) reached(*j, p, axis, rapid, passed_);
-    else missed(p, nearest, at, "CL point");
+    } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) {
+      if (!rapid) no_rapid_cut(*j, on_path);
+      reached(*j, p, axis, rapid, passed_);
+    } else {
+      missed(p, nearest, at, "CL point");
+    }
     incoming_ = rapid || !have_from ? Vec3::Zero() : Vec3(p - from);
     prev_ = p;
     have_prev_ = true;
@@ -497,6 +539,7 @@ class Comparison : public ProgramSink {
         have_hole_ = false;
         return;
       }
+      no_rapid_cut(*j, on_arc);
       for (size_t s = 0; s <= *j; ++s) {
         const TipSegment& g = win_[s];
         if (g.raw.kind != gcode::Segment::Kind::Arc || !finite(g.start)) continue;
@@ -544,6 +587,7 @@ class Comparison : public ProgramSink {
       missed(bottom, nearest, at, "the bottom of the hole at");
     } else {
       const TipSegment& s = win_[*j];
+      tool_ok(s);
       deviate((s.end - bottom).norm(), loc_, s.raw.line);
       if (s.raw.kind == gcode::Segment::Kind::Rapid)
         fail(loc_, s.raw.line, "the hole's bottom is reached at rapid traverse", 0);
@@ -568,33 +612,54 @@ class Comparison : public ProgramSink {
     groove_reach_ = 0;
   }
 
+  // A groove's CL feed move: its end and its middle must each lie on a feed of the program
+  // (the cycle pecks in its own order, so the order is not checked).
   void groove_point(const Vec3& p, bool rapid) {
+    const Vec3 from = prev_;
+    const bool have_from = have_prev_;
     prev_ = p;
     have_prev_ = true;
     if (rapid) return;
     ++rep_.cl_groove_points;
+    if (groove_cut(p, p) && have_from && (p - from).norm() > 2 * tol_) groove_cut((from + p) / 2, p);
+  }
+
+  // Is `q` (on the CL move to `p`) on a cutting move of the program? False, reported, if not.
+  bool groove_cut(const Vec3& q, const Vec3& p) {
     double best = kInf;
     size_t best_at = 0;
+    int rapid_line = 0;  // a rapid through the cut, while no feed made it
     for (size_t j = 0; j < kMaxLookahead; ++j) {
       const TipSegment* s = peek(j);
       if (!s) break;
       if (!finite(s->start) || !finite(s->end)) continue;
-      double d = point_segment(p, s->start, s->end);
+      double d = point_segment(q, s->start, s->end);
+      if (s->raw.kind == gcode::Segment::Kind::Rapid) {
+        if (d <= tol_ && !rapid_line) rapid_line = s->raw.line;
+        continue;
+      }
       if (d < best) {
         best = d;
         best_at = j;
       }
-      if (d <= tol_ && s->raw.kind != gcode::Segment::Kind::Rapid) break;
+      if (d <= tol_) break;
       // Past the groove's own motion: stop at the first feed that is not a cycle's.
-      if (!s->raw.from_cycle && s->raw.kind != gcode::Segment::Kind::Rapid && j > groove_reach_ + 64) break;
+      if (!s->raw.from_cycle && j > groove_reach_ + 64) break;
     }
     if (best <= tol_) {
       deviate(best, loc_, win_[best_at].raw.line);
       groove_reach_ = std::max(groove_reach_, best_at + 1);
+      return true;
+    }
+    if (rapid_line) {
+      fail(loc_, rapid_line, "groove cut to " + xyz(p) + " is made at rapid traverse (G00)", 0);
     } else {
       fail(loc_, std::isfinite(best) ? win_[best_at].raw.line : 0,
-           "groove cut " + xyz(p) + " is not made: the program's path passes " + fixed(best, 5) + " from it", best);
+           "groove cut to " + xyz(p) + " is not made: the program's path passes " + fixed(best, 5) + " from " +
+               (q == p ? "it" : "its middle"),
+           best);
     }
+    return false;
   }
 
   void end_groove() {
@@ -677,6 +742,9 @@ class Comparison : public ProgramSink {
   double increment_ = 0;      // one output increment of Z
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ();
   bool have_hole_ = false;
+  int want_tool_ = 0, want_h_ = 0;  // the CL's tool and its length offset register
+  SourceLoc want_tool_loc_;
+  bool tool_reported_ = false;
   ir::CycleSpec cycle_;       // the drilling cycle in force
   bool cycle_on_ = false;
   Vec3 incoming_ = Vec3::Zero();  // the last CL feed move (zero after a rapid or a hole)
