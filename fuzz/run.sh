@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (AddressSanitizer + UBSan) and runs each for a given
-# time, from seed corpora: the repository's CL files (tests/golden, tests/offsets, examples),
+# time, from seed corpora (fuzz_certify, the differential target, from random choices): the repository's CL files (tests/golden, tests/offsets, examples),
 # ../shared/corpus when it is there, and fuzz/seeds; machine descriptions from machines.toml,
 # tests/machines and examples, one machine per seed.
 #
@@ -17,7 +17,7 @@ build=build-fuzz
 bash scripts/setup.sh >/dev/null
 CC=clang CXX=clang++ cmake -S . -B $build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLPC_FUZZ=ON \
   -DCLPC_TESTS=OFF -DCLPC_BENCH=OFF >/dev/null
-cmake --build $build --target fuzz_parse fuzz_compile fuzz_machine >/dev/null
+cmake --build $build --target fuzz_parse fuzz_compile fuzz_machine fuzz_certify >/dev/null
 
 corpus=$build/corpus
 mkdir -p "$corpus"/{parse,compile,machine} $build/artifacts
@@ -53,10 +53,13 @@ for path in sys.argv[2:]:
             n += 1
 PY
 cp fuzz/seeds/machine/* "$corpus/machine"/ 2>/dev/null || true
+# fuzz_certify's inputs are choices, not text: random bytes for each family (the first byte).
+mkdir -p "$corpus/certify"
+for i in 0 1 2 3 4 5 6 7; do head -c 600 /dev/urandom >"$corpus/certify/random$i"; done
 
 status=0
 report=""
-for t in parse compile machine; do
+for t in parse compile machine certify; do
   log=$build/fuzz_$t.log
   max_len=16384
   [[ $t == machine ]] && max_len=8192
@@ -74,6 +77,6 @@ for t in parse compile machine; do
     report+="  fuzz_$t: ${execs:-?} executions in ${seconds} s, coverage ${cov:-?} edges, no findings"$'\n'
   fi
 done
-echo "fuzz: $((3 * seconds)) s in all"
+echo "fuzz: $((4 * seconds)) s in all"
 printf '%s' "$report"
 exit $status

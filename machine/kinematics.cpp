@@ -1,6 +1,7 @@
 #include "machine/kinematics.h"
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 
 namespace clpc::kin {
@@ -92,6 +93,17 @@ Solutions solve_one(const Vec3& u, const Vec3& p, const Vec3& q) {
 }  // namespace
 
 Mat3 rotation(const Vec3& axis, double degrees) {
+  // The same few rotations come again and again (a segment starts where the last one ended;
+  // each axis is undone and redone): the last eight made on this thread are kept.
+  struct Kept {
+    Vec3 axis;
+    double degrees;
+    Mat3 r;
+  };
+  thread_local std::array<Kept, 8> kept{};
+  thread_local size_t kept_count = 0, next = 0;
+  for (size_t i = 0; i < kept_count; ++i)
+    if (kept[i].degrees == degrees && kept[i].axis == axis) return kept[i].r;
   // Rodrigues: R = c I + s [u]x + (1 - c) u u^T.
   const double n2 = axis.squaredNorm();
   const Vec3 u = std::abs(n2 - 1) < 1e-15 ? axis : Vec3(axis / std::sqrt(n2));
@@ -100,6 +112,9 @@ Mat3 rotation(const Vec3& axis, double degrees) {
   r << c + k * u.x() * u.x(), k * u.x() * u.y() - s * u.z(), k * u.x() * u.z() + s * u.y(),
       k * u.y() * u.x() + s * u.z(), c + k * u.y() * u.y(), k * u.y() * u.z() - s * u.x(),
       k * u.z() * u.x() - s * u.y(), k * u.z() * u.y() + s * u.x(), c + k * u.z() * u.z();
+  kept[next] = {axis, degrees, r};
+  next = (next + 1) % kept.size();
+  kept_count = std::min(kept_count + 1, kept.size());
   return r;
 }
 

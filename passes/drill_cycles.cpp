@@ -75,8 +75,23 @@ class DrillCycles : public Pass {
         if (m) {
           pos_ = m->point;
           have_pos_ = true;
+          returned_ = false;
         } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
           if (active_) ctx.diags.error(in.loc, "an arc inside a drilling cycle (no CYCLE/OFF before it?)");
+          if (returned_ && !active_ && (a->start - pos_).norm() > 1e-9) {
+            // The CL's arc starts at the last hole, but the cycle left the tool at its return
+            // level: an arc from there would be another arc. Down to its start first, at feed.
+            ctx.diags.warning(in.loc,
+                              "this arc starts at the last hole of the cycle before it, where the tool no longer is "
+                              "(the cycle returned it): a feed move to the arc's start is added",
+                              "cycle");
+            ir::Move down;
+            down.kind = ir::MoveKind::Feed;
+            down.point = a->start;
+            down.axis = a->tool_axis;
+            out.push_back({in.loc, down});
+          }
+          returned_ = false;
           pos_ = a->end;
           have_pos_ = true;
         }
@@ -120,6 +135,7 @@ class DrillCycles : public Pass {
       double ret = ctx.machine.cycles.return_initial ? std::max(h.initial, active_->clearance) : active_->clearance;
       pos_ = h.point + h.axis * ret;
       have_pos_ = true;
+      returned_ = true;
       if (active_->retract < 0 && !ctx.machine.cycles.return_initial) {
         // G99: later holes start from the R plane of this one.
       }
@@ -134,6 +150,7 @@ class DrillCycles : public Pass {
 
  private:
   bool groove_open_ = false;  // a GrooveOn whose CYCLE/OFF has not come yet
+  bool returned_ = false;     // the tool is where the last hole's cycle returned it
 
   void close(std::vector<ir::Instr>& out, SourceLoc loc, bool implicit, PassContext& ctx) {
     if (!expand_) out.push_back({loc, ir::CycleOff{}});

@@ -223,6 +223,11 @@ class Comparison : public ProgramSink {
 
   bool axis_ok(const TipSegment& s, const Vec3& axis) {
     if (!five_axis_) return true;
+    // The angle (an atan2) only where it may be a new largest or beyond the tolerance.
+    const double c = s.axis.dot(axis) / (s.axis.norm() * axis.norm());
+    const double cut = std::min(rep_.max_axis_deviation, axis_tol_);
+    if (cut != cut_deg_) cut_deg_ = cut, cut_cos_ = std::cos(cut * arcgeo::kPi / 180);
+    if (c >= cut_cos_) return true;
     double a = kin::angle_between(s.axis, axis.normalized());
     if (a > rep_.max_axis_deviation) {
       rep_.max_axis_deviation = a;
@@ -319,8 +324,9 @@ class Comparison : public ProgramSink {
   // nearest.
   template <class OnPath>
   size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
+    const double cos_tol = std::cos(axis_tol_ * arcgeo::kPi / 180);
     auto axis_off = [&](const TipSegment& t) {
-      return five_axis_ && axis && kin::angle_between(t.axis, axis->normalized()) > axis_tol_;
+      return five_axis_ && axis && t.axis.dot(*axis) < cos_tol * t.axis.norm() * axis->norm();
     };
     size_t best = j;
     bool best_off = axis_off(*peek(j));
@@ -572,6 +578,9 @@ class Comparison : public ProgramSink {
     incoming_ = Vec3::Zero();
     const Vec3 top = model(point), axis = model_dir(tool_axis).normalized();
     const Vec3 bottom = top - axis * (spec.depth * k_);
+    // The same hole again (a GOTO repeated in the cycle): drilled already, nothing to reach.
+    if (have_hole_ && (hole_point_ - top).norm() <= tol_ && (hole_bottom_ - bottom).norm() <= tol_) return;
+    hole_bottom_ = bottom;
     hole_point_ = top;
     hole_axis_ = axis;
     have_hole_ = true;
@@ -740,8 +749,9 @@ class Comparison : public ProgramSink {
   SourceLoc cl_feed_loc_;
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
-  Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ();
+  Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
   bool have_hole_ = false;
+  double cut_deg_ = -1, cut_cos_ = 1;  // axis_ok's angle below which nothing changes, and its cosine
   int want_tool_ = 0, want_h_ = 0;  // the CL's tool and its length offset register
   SourceLoc want_tool_loc_;
   bool tool_reported_ = false;

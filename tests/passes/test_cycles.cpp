@@ -186,3 +186,22 @@ TEST(Cycles, HoleBottomsReadBackFromTheGcode) {
   EXPECT_NEAR((bottoms[0] - ir::Vec3(10, 10, -12)).norm(), 0, 1e-9);
   EXPECT_NEAR((bottoms[1] - ir::Vec3(30, 10, -14)).norm(), 0, 1e-9);
 }
+
+// An arc right after CYCLE/OFF starts, in the CL, at the last hole; the cycle left the tool at
+// its return level. Found by differential fuzzing (the certificate refused the program): the
+// arc was written from the return level, another arc. Now the tool feeds down to its start.
+TEST(Cycles, AnArcAfterACycleStartsAtTheLastHole) {
+  const std::string cl = "UNITS/MM\nLOADTL/20\nSPINDL/RPM,2000,CLW\nFEDRAT/MMPM,1430\nRAPID\nGOTO/1.6883,59.4809,40.0000\n"
+                         "CYCLE/DEEP,DEPTH,8.5554,STEP,1.1854,MMPM,201,CLEAR,4.3721\nGOTO/73.5286,16.7071,-1.8423\nCYCLE/OFF\n"
+                         "CIRCLE/73.5286,6.5882,-16.4502,1.0000000,0.0000000,0.0000000,17.7703\n"
+                         "GOTO/73.5286,8.8397,-34.0773\nRAPID\nGOTO/70,91,24\nFINI\n";
+  CompileOptions o;
+  o.certify = true;
+  Compiled c = compile_text(cl, machine("fanuc-mill"), o);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G98 G83 X73.529 Y16.707 Z-10.398 R2.53 Q1.185 F201.\nN80 G80\n"
+                                  "N90 G01 Z-1.842 F1430.\nN100 G19 G03 Y8.84 Z-34.077 J-10.119 K-14.608\n"));
+  EXPECT_THAT(c.diags, HasSubstr(":10:1: warning: this arc starts at the last hole of the cycle before it, where the tool "
+                                 "no longer is (the cycle returned it): a feed move to the arc's start is added [-Wcycle]"));
+  EXPECT_THAT(c.diags, HasSubstr("clpc: certified "));
+}
