@@ -100,6 +100,16 @@ struct LinearLimits {
 enum class Simultaneous : uint8_t { Tcp, Transform };  // 5-axis moves: TCPC, or clpc transforms
 enum class Indexed : uint8_t { Transform, Dwo, Tcp };    // 3+2: transform, Haas G254, or TCPC
 
+// How fast the axes may go and speed up, for cycle times a shop can trust (verify's dynamic
+// estimate, readback/motion_time.h). Zero: unknown (no dynamic estimate).
+struct MotionSettings {
+  ir::Vec3 velocity = ir::Vec3::Zero();      // X Y Z, output units per minute
+  ir::Vec3 acceleration = ir::Vec3::Zero();  // X Y Z, output units per second squared
+  ir::Vec3 rotary_velocity = ir::Vec3::Zero();  // A B C, degrees per second
+  double junction_deviation = 0;             // output units: how far the control may cut a corner at speed
+  bool known() const { return velocity.minCoeff() > 0 && acceleration.minCoeff() > 0; }
+};
+
 struct KinematicsSettings {
   std::vector<RotaryAxis> rotaries;   // from the machine base outwards (table and head axes)
   Simultaneous simultaneous = Simultaneous::Transform;
@@ -216,6 +226,7 @@ struct Machine {
   ModalSettings modal;
   LatheSettings lathe;
   KinematicsSettings kinematics;
+  MotionSettings motion;
   OffsetSettings offsets;
   CycleSettings cycles;
   FeedSettings feeds;

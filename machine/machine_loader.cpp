@@ -608,6 +608,17 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->number("max_rpm", m.lathe.max_rpm);
     s->finish();
   }
+  if (auto s = r.sub("motion")) {
+    MotionSettings& mo = m.motion;
+    s->length3("velocity", mo.velocity);
+    s->length3("acceleration", mo.acceleration);
+    s->vec3("rotary_velocity", mo.rotary_velocity);
+    s->length("junction_deviation", mo.junction_deviation);
+    for (const char* k : {"velocity", "acceleration", "rotary_velocity"})
+      if (const toml::node* n = s->find(k); n && (k[0] == 'v' ? mo.velocity : k[0] == 'a' ? mo.acceleration : mo.rotary_velocity).minCoeff() < 0)
+        s->error(*n, k, "expected numbers of at least 0 (0: unknown)");
+    s->finish();
+  }
   if (auto s = r.sub("offsets")) {
     OffsetSettings& o = m.offsets;
     s->integer("extended", o.extended_count);

@@ -102,6 +102,7 @@ std::vector<KeySpec> build() {
   section("", "offsets", "work offsets");
   section("", "kinematics", "rotary axes (five-axis, 3+2)", Shown::Rotaries);
   section("", "cycles", "canned drilling cycles");
+  section("", "motion", "axis velocities and accelerations, for cycle times (verify's dynamic estimate)");
   section("", "codes", "code templates");
 
   // --- [program] ------------------------------------------------------------------------------
@@ -206,6 +207,15 @@ std::vector<KeySpec> build() {
   choice("lathe", "arcs_seen_from", "+Y|-Y", "G02/G03 as seen from +Y (ISO, Fanuc) or -Y",
          [](const Machine& m, size_t) { return pick("+Y|-Y", m.lathe.arcs_from_minus_y); });
   ranged("lathe", "max_rpm", K::Number, 0, 1e6, "caps the G50 S clamp", [](const Machine& m, size_t) { return n(m.lathe.max_rpm); });
+  key("motion", "velocity", K::Length3, "X Y Z: each axis's fastest, output units per minute (0: unknown)",
+      [](const Machine& m, size_t) { return v3(m.motion.velocity); });
+  key("motion", "acceleration", K::Length3, "X Y Z: each axis's acceleration, output units per second squared (0: unknown)",
+      [](const Machine& m, size_t) { return v3(m.motion.acceleration); });
+  key("motion", "rotary_velocity", K::Vec3, "A B C: each rotary's fastest, degrees per second (0: unknown)",
+      [](const Machine& m, size_t) { return v3(m.motion.rotary_velocity); });
+  ranged("motion", "junction_deviation", K::Length, 0, 1e3,
+         "how far the control may round a corner at speed (the corner slowdown), output units",
+         [](const Machine& m, size_t) { return n(m.motion.junction_deviation); });
 
   // --- [offsets] ------------------------------------------------------------------------------------
   const std::string_view o = "offsets";

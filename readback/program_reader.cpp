@@ -16,7 +16,7 @@ constexpr size_t kChunk = 1 << 20;
 bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 }  // namespace
 
-ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m) {
+ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m), timer_(m.motion) {
   known_registers_.insert(m.offsets.default_index);
   for (const ir::WorkOffset& w : info.offsets) known_registers_.insert(w.index);
   use_offsets_ = !info.offsets.empty();
@@ -108,6 +108,7 @@ Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
 
 void ProgramReader::account(const gcode::Segment& s) {
   ProgramTotals& t = totals_;
+  timer_.add(s);
   const bool known = finite(s.start) && finite(s.end);
   double len = 0;
   if (known) {
@@ -153,11 +154,17 @@ void ProgramReader::take_events() {
         if (use_offsets_) offsets_[e.reg] = e.v;
         break;
       case gcode::Event::Kind::ToolChange:
+        timer_.stop();
         ++totals_.tool_changes;
         if (m_.tool_change_time > 0) totals_.tool_change_minutes += m_.tool_change_time / 60;
         else totals_.tool_change_time_known = false;
         break;
-      case gcode::Event::Kind::Dwell: totals_.dwell_minutes += e.value / 60; break;
+      case gcode::Event::Kind::Dwell:
+        timer_.stop();
+        totals_.dwell_minutes += e.value / 60;
+        break;
+      case gcode::Event::Kind::Stop:
+      case gcode::Event::Kind::Spindle: timer_.stop(); break;
       case gcode::Event::Kind::CycleStart: ++totals_.cycle_holes; break;
       default: break;
     }
@@ -170,7 +177,13 @@ bool ProgramReader::next(TipSegment& out) {
   while (next_segment_ >= r.segments.size()) {
     r.segments.clear();
     next_segment_ = 0;
-    if (!read_line(line_)) return false;
+    if (!read_line(line_)) {
+      if (timer_.known()) {
+        totals_.dynamic_known = true;
+        totals_.dynamic_minutes = timer_.minutes() + totals_.dwell_minutes + totals_.tool_change_minutes;
+      }
+      return false;
+    }
     ++totals_.lines;
     totals_.bytes += long(line_.size()) + 1;
     reader_.line(line_);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "readback/gcode_interp.h"
+#include "readback/motion_time.h"
 #include "machine/kinematics.h"
 #include "machine/machine.h"
 #include "support/source.h"
@@ -35,6 +36,10 @@ struct ProgramTotals {
   double rapid_length = 0, feed_length = 0;      // output units (tool tip in the program's frame)
   double feed_minutes = 0, rapid_minutes = 0, dwell_minutes = 0, tool_change_minutes = 0;
   bool rapid_time_known = true, feed_time_known = true, tool_change_time_known = true;
+  // The dynamic estimate (readback/motion_time.h): motion with the machine's velocities and
+  // accelerations, plus the dwells and tool changes; known when the machine gives them.
+  bool dynamic_known = false;
+  double dynamic_minutes = 0;
 
   double total_minutes() const { return feed_minutes + rapid_minutes + dwell_minutes + tool_change_minutes; }
   bool time_complete() const { return feed_time_known && rapid_time_known && tool_change_time_known; }
@@ -81,6 +86,7 @@ class ProgramReader {
   // in another register cuts wherever that register's zero happens to be.
   std::set<int> known_registers_, reported_registers_;
   ProgramTotals totals_;
+  MotionTimer timer_;
 };
 
 }  // namespace clpc

@@ -836,6 +836,11 @@ void print_report(std::ostream& o, const VerifyReport& r) {
     << minutes_text(p.rapid_minutes) << (p.rapid_time_known ? "" : "+, rapid rate unknown") << ", dwells "
     << minutes_text(p.dwell_minutes) << ", tool changes " << minutes_text(p.tool_change_minutes)
     << (p.tool_change_time_known ? "" : "+, tool change time unknown") << ")\n";
+  if (p.dynamic_known)
+    o << "  dynamic:    " << minutes_text(p.dynamic_minutes) << (p.tool_change_time_known ? "" : "+")
+      << " (each axis's velocity and acceleration, corners slowed; the cycle time above is its lower bound)\n";
+  else
+    o << "  dynamic:    unknown (the machine's [motion] table gives no velocities and accelerations)\n";
   o << "  deviation:  max ";
   if (std::isinf(r.max_deviation)) o << "unbounded (a CL point never reached)";
   else o << fixed(r.max_deviation, dec) << " " << u;
@@ -879,7 +884,8 @@ void print_report_json(std::ostream& o, const VerifyReport& r) {
   o << "  \"cycle_time_s\": {\"total\": " << json_number(p.total_minutes() * 60)
     << ", \"cutting\": " << json_number(p.feed_minutes * 60) << ", \"rapid\": " << json_number(p.rapid_minutes * 60)
     << ", \"dwell\": " << json_number(p.dwell_minutes * 60) << ", \"tool_change\": " << json_number(p.tool_change_minutes * 60)
-    << ", \"complete\": " << (p.time_complete() ? "true" : "false") << "},\n";
+    << ", \"complete\": " << (p.time_complete() ? "true" : "false")
+    << ", \"dynamic\": " << (p.dynamic_known ? json_number(p.dynamic_minutes * 60) : std::string("null")) << "},\n";
   o << "  \"problem_count\": " << r.problem_count << ",\n";
   o << "  \"problems\": [";
   for (size_t i = 0; i < r.problems.size(); ++i) {

@@ -107,7 +107,7 @@ TEST_F(VerifyPlate, CycleTimeWithoutAToolChangeTimeIsALowerBound) {
   print_report_json(json, c.report);
   EXPECT_THAT(text.str(), HasSubstr("  cycle time: 0:09+ (cutting 0:09, rapids 0:00, dwells 0:00, tool changes 0:00+, tool change time "
                                     "unknown)\n"));
-  EXPECT_THAT(json.str(), HasSubstr("\"tool_change\": 0, \"complete\": false}"));
+  EXPECT_THAT(json.str(), HasSubstr("\"tool_change\": 0, \"complete\": false, \"dynamic\": "));
 }
 
 TEST_F(VerifyPlate, FlippedArcFailsAtTheCircle) {
