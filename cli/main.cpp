@@ -191,6 +191,8 @@ int main(int argc, char** argv) {
   verify->add_flag("--json", json, "Write the report as JSON");
   std::string verify_program;
   verify->add_option("-o,--output", output, "Also keep the program in this file");
+  std::string verify_report;
+  verify->add_option("--report", verify_report, "Also write the report as an HTML page (operations, deviations, backplot)");
   verify->add_option("--program", verify_program, "Check this program (say, one edited by hand) against the CL instead of clpc's own")
       ->check(CLI::ExistingFile);
   add_machine_files(verify);
@@ -295,6 +297,7 @@ int main(int argc, char** argv) {
     vo.compile = opt;
     vo.keep = output;
     vo.program = verify_program;
+    vo.report = verify_report;
     VerifyReport r = verify_file(verify_input, *machine, vo, std::cerr);
     if (json) print_report_json(std::cout, r);
     else print_report(std::cout, r);

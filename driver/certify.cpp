@@ -18,6 +18,7 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
   rep.tolerance = opt.tolerance > 0 ? opt.tolerance : default_tolerance(m);
   rep.axis_tolerance = opt.axis_tolerance;
   rep.compiled = true;
+  rep.collect_samples = opt.collect_samples;
 
   std::string why;
   ProgramReader rd(m, info);

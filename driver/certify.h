@@ -18,6 +18,7 @@ struct CertifyOptions {
   double tolerance = 0;          // output units; 0: default_tolerance(m)
   double axis_tolerance = 0.01;  // degrees, tool axis (five-axis)
   bool latin1 = false;           // the CL's comments in Latin-1
+  bool collect_samples = false;  // keep the CL points' deviations (the HTML report's map)
 };
 
 // Reads the program at `program` back and walks it beside the CL of `src` lowered again, with

@@ -5,6 +5,11 @@
 #include <cstdlib>
 
 #include "driver/certify.h"
+#include "readback/report_html.h"
+#include "support/output.h"
+
+#include <fstream>
+#include <sstream>
 #include "support/progress.h"
 
 namespace clpc {
@@ -66,11 +71,43 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   c.tolerance = opt.tolerance;
   c.axis_tolerance = opt.axis_tolerance;
   c.latin1 = opt.compile.latin1;
+  c.collect_samples = !opt.report.empty();
   rep = certify(src, cp.path, m, cp.compiled.info, c, d);
   rep.input = input;
   src.on_progress(nullptr);
   progress.clear();
+  if (!opt.report.empty()) write_report(opt.report, rep, cp, m, err);
   return rep;
+}
+
+bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
+                  std::ostream& err) {
+  // The backplot, drawn by clpc plot into a temporary file, goes inline.
+  TempProgram svg;
+  std::string drawing;
+  if (!svg.path().empty()) {
+    std::ostringstream quiet;
+    if (plot_program(cp.path, rep.input, cp.compiled.info, svg.path(), m, PlotOptions{}, quiet).ok) {
+      std::ifstream in(svg.path(), std::ios::binary);
+      std::ostringstream all;
+      all << in.rdbuf();
+      drawing = all.str();
+    }
+  }
+  std::ostringstream html;
+  write_report_html(html, rep, drawing);
+  OutputFile out;
+  std::string why;
+  if (!out.open(path, why)) {
+    err << "clpc: error: " << why << "\n";
+    return false;
+  }
+  out.write(html.str());
+  if (!out.commit(why)) {
+    err << "clpc: error: " << why << "\n";
+    return false;
+  }
+  return true;
 }
 
 PlotResult plot_file(const std::string& input, const std::string& output, const Machine& m, const PlotFileOptions& opt,

@@ -45,11 +45,17 @@ struct VerifyOptions {
   CompileOptions compile;
   std::string keep;              // also write the program here (empty: a temporary file)
   std::string program;           // check this program (say, edited by hand) instead of clpc's
+  std::string report;            // also write the HTML report here (readback/report_html.h)
 };
 
 // Compiles `input` for `m`, reads the program back and compares. Problems are reported as
 // diagnostics on `err` (with the CL record's source line) and in the report.
 VerifyReport verify_file(const std::string& input, const Machine& m, const VerifyOptions& opt, std::ostream& err);
+
+// The HTML report of a verification (readback/report_html.h), with the program's backplot,
+// written atomically to `path`.
+bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
+                  std::ostream& err);
 
 struct PlotFileOptions {
   CompileOptions compile;

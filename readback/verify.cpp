@@ -22,6 +22,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,8 +91,10 @@ class Comparison : public ProgramSink {
   }
 
   void operation(const ir::Operation& op) override {
+    if (!op.continued || rep_.operations.empty()) begin_operation(op);
     for (const ir::Instr& in : op.body) {
       loc_ = in.loc;
+      point_dev_ = -1;
       std::visit(
           [&](const auto& x) {
             using T = std::decay_t<decltype(x)>;
@@ -103,6 +106,7 @@ class Comparison : public ProgramSink {
               std::string why;  // the compile reports a machine without the axis
               indexing_.apply(m_.kinematics, x, why);
             } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
+              if (!rep_.operations.empty()) rep_.operations.back().tool = x.tool;
               want_tool_ = x.tool;
               want_h_ = x.length_offset > 0 ? x.length_offset : x.tool;
               want_tool_loc_ = loc_;
@@ -121,8 +125,10 @@ class Comparison : public ProgramSink {
               } else {
                 point(p, a, x.kind == ir::MoveKind::Rapid);
               }
+              if (x.kind != ir::MoveKind::From) sample(p);
             } else if constexpr (std::is_same_v<T, ir::Arc>) {
               arc(x);
+              sample(model(x.end));
             } else if constexpr (std::is_same_v<T, ir::CycleOn>) {
               cycle_ = op.cycles.at(x.spec);  // by value: the cycle's GOTOs may come in later chunks
               cycle_on_ = true;
@@ -142,6 +148,7 @@ class Comparison : public ProgramSink {
 
   // After the last CL record: what the program does beyond the CL path.
   void end() override {
+    end_operation();
     if (groove_) end_groove();
     bool reported = false;
     while (const TipSegment* s = peek(0)) {
@@ -196,6 +203,7 @@ class Comparison : public ProgramSink {
   // --- reporting -------------------------------------------------------------------------
 
   void fail(SourceLoc loc, int gline, const std::string& msg, double deviation) {
+    if (!rep_.operations.empty()) ++rep_.operations.back().problems;
     std::string text = msg;
     if (gline > 0) text += " [G-code line " + std::to_string(gline) + "]";
     d_.error(loc, text);
@@ -205,10 +213,54 @@ class Comparison : public ProgramSink {
   }
 
   void deviate(double d, SourceLoc loc, int gline) {
+    point_dev_ = std::max(point_dev_, d);
+    if (!rep_.operations.empty()) {
+      OperationCheck& o = rep_.operations.back();
+      if (d > o.max_deviation || (std::isinf(d) && !std::isinf(o.max_deviation))) {
+        o.max_deviation = d;
+        o.max_loc = loc;
+        o.max_gcode_line = gline;
+      }
+    }
     if (d > rep_.max_deviation || (std::isinf(d) && !std::isinf(rep_.max_deviation))) {
       rep_.max_deviation = d;
       rep_.max_loc = loc;
       rep_.max_gcode_line = gline;
+    }
+  }
+
+  // --- the report's operations and deviation map -----------------------------------------
+
+  void begin_operation(const ir::Operation& op) {
+    end_operation();
+    OperationCheck o;
+    o.number = op.number;
+    o.name = op.name;
+    o.loc = op.loc;
+    o.tool = want_tool_;
+    rep_.operations.push_back(std::move(o));
+    counts_at_start_ = {rep_.cl_points, rep_.cl_arcs, rep_.cl_holes, rep_.cl_groove_points};
+  }
+
+  void end_operation() {
+    if (rep_.operations.empty()) return;
+    OperationCheck& o = rep_.operations.back();
+    o.points = rep_.cl_points - counts_at_start_[0];
+    o.arcs = rep_.cl_arcs - counts_at_start_[1];
+    o.holes = rep_.cl_holes - counts_at_start_[2];
+    o.groove_points = rep_.cl_groove_points - counts_at_start_[3];
+  }
+
+  // The CL point just checked, with the largest deviation found for it.
+  void sample(const Vec3& p) {
+    if (!rep_.collect_samples || point_dev_ < 0) return;
+    if (++sample_count_ % rep_.sample_stride != 0) return;
+    rep_.samples.push_back({p, point_dev_});
+    if (rep_.samples.size() >= VerifyReport::kMaxSamples) {  // thin out: every other one
+      size_t k = 0;
+      for (size_t i = 0; i < rep_.samples.size(); i += 2) rep_.samples[k++] = rep_.samples[i];
+      rep_.samples.resize(k);
+      rep_.sample_stride *= 2;
     }
   }
 
@@ -752,6 +804,9 @@ class Comparison : public ProgramSink {
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
   bool have_hole_ = false;
   double cut_deg_ = -1, cut_cos_ = 1;  // axis_ok's angle below which nothing changes, and its cosine
+  double point_dev_ = -1;      // the largest deviation found for the CL record being checked
+  long sample_count_ = 0;
+  std::array<long, 4> counts_at_start_{};  // points, arcs, holes, groove cuts when the operation began
   int want_tool_ = 0, want_h_ = 0;  // the CL's tool and its length offset register
   SourceLoc want_tool_loc_;
   bool tool_reported_ = false;

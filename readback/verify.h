@@ -24,6 +24,24 @@ struct VerifyProblem {
   double deviation = 0;
 };
 
+// One operation (TOOL PATH, FEATNO) of the CL, as checked.
+struct OperationCheck {
+  uint32_t number = 0;
+  std::string name;
+  int tool = 0;
+  SourceLoc loc;
+  long points = 0, arcs = 0, holes = 0, groove_points = 0, problems = 0;
+  double max_deviation = 0;
+  SourceLoc max_loc;
+  int max_gcode_line = 0;
+};
+
+// A CL point and how far the program passed from it (for the report's deviation map).
+struct DeviationSample {
+  ir::Vec3 point;
+  double deviation = 0;
+};
+
 struct VerifyReport {
   std::string input, machine;
   ir::Units units = ir::Units::Mm;
@@ -45,6 +63,13 @@ struct VerifyReport {
   ProgramTotals program;
   long problem_count = 0;
   std::vector<VerifyProblem> problems;  // the first ones
+  std::vector<OperationCheck> operations;
+  // With collect_samples set before the check: the CL points and their deviations, thinned to
+  // at most kMaxSamples (every 2nd, 4th, ... once there are more) so memory stays bounded.
+  bool collect_samples = false;
+  std::vector<DeviationSample> samples;
+  size_t sample_stride = 1;
+  static constexpr size_t kMaxSamples = 100000;
 };
 
 // The comparison, as the sink of the reference pipeline: each CL operation against the

@@ -188,3 +188,36 @@ TEST_F(VerifyPlate, CommandLine) {
   EXPECT_THAT(bad.err, HasSubstr("\n 12 | GOTO/30,20,-2\n"));
 }
 
+
+// --report: one self-contained page with the operations, the deviation map and the backplot;
+// a program with a shifted point shows it red, in its operation's row.
+TEST_F(VerifyPlate, HtmlReport) {
+  VerifyOptions o;
+  o.report = t.path("report.html");
+  std::ostringstream err;
+  VerifyReport r = verify_file(cl, m, o, err);
+  ASSERT_TRUE(r.ok) << err.str();
+  ASSERT_EQ(r.operations.size(), 1u);
+  EXPECT_EQ(r.operations[0].points, 8);
+  EXPECT_EQ(r.operations[0].arcs, 1);
+  EXPECT_EQ(r.samples.size(), 9u);  // 8 points and the arc's end
+  const std::string html = read_file(o.report);
+  EXPECT_THAT(html, HasSubstr("<h1>clpc verify: " + cl + " on fanuc-mill — PASS</h1>"));
+  EXPECT_THAT(html, HasSubstr("<td class=\"l\">(unnamed)</td><td>T1</td>"));
+  EXPECT_THAT(html, HasSubstr("<h2>Backplot</h2>\n<svg"));
+  size_t circles = 0;  // in the deviation map (the backplot marks tool changes with circles too)
+  const size_t map_end = html.find("<h2>Backplot");
+  for (size_t at = html.find("<circle"); at < map_end; at = html.find("<circle", at + 1)) ++circles;
+  EXPECT_EQ(circles, 2 * 9u);  // top and front
+  EXPECT_EQ(html.find("#d73027\"/>"), std::string::npos);  // nothing red
+
+  o.program = t.path("edited.nc");
+  write_file(o.program, edit(program_for(cl, m), "X30. F800.", "X30.01 F800."));
+  o.report = t.path("bad.html");
+  VerifyReport bad = verify_file(cl, m, o, err);
+  EXPECT_FALSE(bad.ok);
+  const std::string red = read_file(o.report);
+  EXPECT_THAT(red, HasSubstr("— FAIL</h1>"));
+  EXPECT_THAT(red, HasSubstr("fill=\"#d73027\"/>"));
+  EXPECT_THAT(red, HasSubstr("<h2>Problems</h2>"));
+}
