@@ -40,18 +40,6 @@ void num(std::string& o, double v) {
   o.append(b, size_t(n));
 }
 
-std::string xml_text(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else if (static_cast<unsigned char>(c) >= 0x20) o += c;
-  }
-  return o;
-}
-
 struct Box {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());

@@ -16,6 +16,18 @@ constexpr size_t kChunk = 1 << 20;
 bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 }  // namespace
 
+ir::Arc arc_of(const TipSegment& s) {
+  ir::Arc a;
+  a.start = s.start;
+  a.end = s.end;
+  a.center = s.center;
+  a.axis = s.normal;
+  a.radius = s.raw.start_radius;
+  a.dir = s.raw.ccw ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
+  a.sweep = s.raw.sweep;
+  return a;
+}
+
 ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m), timer_(m.motion) {
   known_registers_.insert(m.offsets.default_index);
   for (const ir::WorkOffset& w : info.offsets) known_registers_.insert(w.index);

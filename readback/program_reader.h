@@ -29,6 +29,9 @@ struct TipSegment {
   int index = 0;            // 0, 1, ... in program order
 };
 
+// A program arc as an IR arc (part frame), for the arc geometry functions (ir/arc_geometry.h).
+ir::Arc arc_of(const TipSegment& s);
+
 // What the program does besides moving, as read.
 struct ProgramTotals {
   long lines = 0, bytes = 0, blocks = 0;

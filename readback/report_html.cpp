@@ -6,21 +6,11 @@
 #include <limits>
 #include <sstream>
 
+#include "support/text.h"
+
 namespace clpc {
 
 namespace {
-
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else if (c == '"') o += "&quot;";
-    else o += c;
-  }
-  return o;
-}
 
 std::string fixed(double v, int decimals) {
   if (std::isinf(v)) return "never reached";
@@ -91,19 +81,19 @@ void write_report_html(std::ostream& o, const VerifyReport& r, const std::string
   const int dec = r.units == ir::Units::Inch ? 5 : 4;
   std::ostringstream summary;
   print_report(summary, r);
-  o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>clpc verify: " << esc(r.input) << "</title>\n"
+  o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>clpc verify: " << xml_text(r.input) << "</title>\n"
     << "<style>body{font-family:sans-serif;margin:2em;color:#222}table{border-collapse:collapse}"
        "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}td.l,th.l{text-align:left}"
        "pre{background:#f4f4f4;padding:1em}figure{display:inline-block;margin:0 1em 1em 0}"
        ".key span{display:inline-block;width:1em;height:1em;margin:0 .3em 0 1em;vertical-align:middle}</style></head><body>\n";
-  o << "<h1>clpc verify: " << esc(r.input) << " on " << esc(r.machine) << " — " << (r.ok ? "PASS" : "FAIL") << "</h1>\n";
-  o << "<pre>" << esc(summary.str()) << "</pre>\n";
+  o << "<h1>clpc verify: " << xml_text(r.input) << " on " << xml_text(r.machine) << " — " << (r.ok ? "PASS" : "FAIL") << "</h1>\n";
+  o << "<pre>" << xml_text(summary.str()) << "</pre>\n";
 
   o << "<h2>Operations</h2>\n<table><tr><th>#</th><th class=\"l\">operation</th><th>tool</th><th>CL line</th><th>points</th>"
        "<th>arcs</th><th>holes</th><th>groove cuts</th><th>max deviation (" << u << ")</th><th>at CL line</th><th>G-code line</th>"
        "<th>problems</th></tr>\n";
   for (const OperationCheck& op : r.operations) {
-    o << "<tr><td>" << op.number << "</td><td class=\"l\">" << esc(op.name.empty() ? "(unnamed)" : op.name) << "</td><td>"
+    o << "<tr><td>" << op.number << "</td><td class=\"l\">" << xml_text(op.name.empty() ? "(unnamed)" : op.name) << "</td><td>"
       << (op.tool ? "T" + std::to_string(op.tool) : std::string()) << "</td><td>" << op.loc.line << "</td><td>" << op.points
       << "</td><td>" << op.arcs << "</td><td>" << op.holes << "</td><td>" << op.groove_points << "</td><td style=\"background:"
       << colour(op.max_deviation, r.tolerance) << "33\">" << fixed(op.max_deviation, dec) << "</td><td>"
@@ -116,7 +106,7 @@ void write_report_html(std::ostream& o, const VerifyReport& r, const std::string
     o << "<h2>Problems</h2>\n<table><tr><th>CL line</th><th>G-code line</th><th class=\"l\">what</th></tr>\n";
     for (const VerifyProblem& p : r.problems)
       o << "<tr><td>" << p.loc.line << "</td><td>" << (p.gcode_line ? std::to_string(p.gcode_line) : "") << "</td><td class=\"l\">"
-        << esc(p.message) << "</td></tr>\n";
+        << xml_text(p.message) << "</td></tr>\n";
     o << "</table>\n";
     if (r.problem_count > long(r.problems.size())) o << "<p>… and " << r.problem_count - long(r.problems.size()) << " more.</p>\n";
   }

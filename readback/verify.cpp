@@ -67,19 +67,6 @@ std::string fixed(double v, int decimals) {
   return b;
 }
 
-// A program arc as an IR arc (part frame), for the arc geometry functions.
-ir::Arc as_arc(const TipSegment& s) {
-  ir::Arc a;
-  a.start = s.start;
-  a.end = s.end;
-  a.center = s.center;
-  a.axis = s.normal;
-  a.radius = s.raw.start_radius;
-  a.dir = s.raw.ccw ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
-  a.sweep = s.raw.sweep;
-  return a;
-}
-
 class Comparison : public ProgramSink {
  public:
   Comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
@@ -555,7 +542,7 @@ class Comparison : public ProgramSink {
         for (size_t s = 0; s <= *j; ++s) {
           const TipSegment& g = win_[s];
           if (!finite(g.start) || !finite(g.end)) continue;
-          double d = g.raw.kind == gcode::Segment::Kind::Arc ? arcgeo::distance_to_arc(as_arc(g), q) : point_segment(q, g.start, g.end);
+          double d = g.raw.kind == gcode::Segment::Kind::Arc ? arcgeo::distance_to_arc(arc_of(g), q) : point_segment(q, g.start, g.end);
           if (d < best) {
             best = d;
             line = g.raw.line;
@@ -601,7 +588,7 @@ class Comparison : public ProgramSink {
       for (size_t s = 0; s <= *j; ++s) {
         const TipSegment& g = win_[s];
         if (g.raw.kind != gcode::Segment::Kind::Arc || !finite(g.start)) continue;
-        double d = arcgeo::distance_to_arc(a, arcgeo::point_at(as_arc(g), 0.5));
+        double d = arcgeo::distance_to_arc(a, arcgeo::point_at(arc_of(g), 0.5));
         if (d > worst) {
           worst = d;
           worst_line = g.raw.line;

@@ -13,6 +13,18 @@ std::string upper(std::string_view s) {
   return u;
 }
 
+std::string xml_text(std::string_view s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '<') o += "&lt;";
+    else if (c == '>') o += "&gt;";
+    else if (c == '&') o += "&amp;";
+    else if (c == '"') o += "&quot;";
+    else if (static_cast<unsigned char>(c) >= 0x20) o += c;
+  }
+  return o;
+}
+
 std::string num_text(double v) {
   if (v == 0) return "0";  // also folds -0
   if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(int64_t(v));

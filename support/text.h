@@ -1,5 +1,5 @@
 // Text helpers every layer uses for messages: numbers as their shortest round-trip text, ASCII
-// upper case.
+// upper case, text made safe inside XML and HTML.
 #pragma once
 
 #include <string>
@@ -10,5 +10,8 @@ namespace clpc {
 // Shortest round-trip text of a number, for messages and the IR printer ("0", "12", "0.004").
 std::string num_text(double v);
 std::string upper(std::string_view s);  // ASCII upper case
+// Text for an XML or HTML page (the backplot, the verify report): < > & " escaped, control
+// characters dropped.
+std::string xml_text(std::string_view s);
 
 }  // namespace clpc

@@ -129,19 +129,8 @@ Sampled read_back(const std::string& path, const Machine& m, const ir::ProgramIn
     const bool known = std::isfinite(s.start.x()) && std::isfinite(s.end.x());
     for (int k = 1; k < 4; ++k) {
       if (!known) p[k] = Vec3(nan, nan, nan);
-      else if (s.raw.kind == gcode::Segment::Kind::Arc) {
-        ir::Arc a;
-        a.start = s.start;
-        a.end = s.end;
-        a.center = s.center;
-        a.axis = s.normal;
-        a.radius = s.raw.start_radius;
-        a.dir = s.raw.ccw ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
-        a.sweep = s.raw.sweep;
-        p[k] = arcgeo::point_at(a, k / 4.0);
-      } else {
-        p[k] = rd.tip_at(s, k / 4.0);
-      }
+      else if (s.raw.kind == gcode::Segment::Kind::Arc) p[k] = arcgeo::point_at(arc_of(s), k / 4.0);
+      else p[k] = rd.tip_at(s, k / 4.0);
     }
     out.at.push_back(p);
     out.axis.push_back(s.axis);
