@@ -3,8 +3,9 @@
 # reading the file") on generated CL files, with wall time, MB/s and peak RSS from
 # /usr/bin/time. Run from the repository root after a build (cmake --build build):
 #
-#   bash bench/run.sh ratio     200 MB mixed file to haas-umc750: clpc / floor, medians of 5 alternating runs
-#   bash bench/run.sh rss       1 GB mixed file, operations of at most 20 MB: peak RSS (must stay under 128 MB)
+#   bash bench/run.sh ratio     200 MB mixed file to haas-umc750: clpc (--no-verify and certified) / floor,
+#                               medians of 5 alternating runs
+#   bash bench/run.sh rss       1 GB mixed file, operations of at most 20 MB, certified: peak RSS (under 128 MB)
 #   bash bench/run.sh linear    10, 100 and 1000 MB: time per MB stays flat
 #   bash bench/run.sh all       the three
 #
@@ -45,20 +46,27 @@ mb() { awk -v b="$(stat -c %s "$1")" 'BEGIN {printf "%.1f", b/1e6}'; }
 ratio() {
   local f; f=$(make_file 200 8)
   local size; size=$(mb "$f")
-  : >"$dir/floor.t"; : >"$dir/clpc.t"; : >"$dir/clpc.rss"
+  : >"$dir/floor.t"; : >"$dir/clpc.t"; : >"$dir/clpc.rss"; : >"$dir/cert.t"; : >"$dir/cert.rss"
   for ((i = 0; i < runs; i++)); do
     timed "$floor" "$f" "$dir/floor.out" | awk '{print $1}' >>"$dir/floor.t"
-    timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc" >"$dir/one.txt"
+    timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc" --no-verify >"$dir/one.txt"
     awk '{print $1}' "$dir/one.txt" >>"$dir/clpc.t"
     awk '{print $2}' "$dir/one.txt" >>"$dir/clpc.rss"
+    timed "$clpc" compile "$f" -t "$machine" -o "$dir/out.nc" >"$dir/one.txt"
+    awk '{print $1}' "$dir/one.txt" >>"$dir/cert.t"
+    awk '{print $2}' "$dir/one.txt" >>"$dir/cert.rss"
   done
-  local tf tc rss
+  local tf tc rss tv rv
   tf=$(median <"$dir/floor.t"); tc=$(median <"$dir/clpc.t"); rss=$(sort -n "$dir/clpc.rss" | tail -1)
-  awk -v s="$size" -v tf="$tf" -v tc="$tc" -v r="$rss" -v n="$runs" -v m="$machine" 'BEGIN {
+  tv=$(median <"$dir/cert.t"); rv=$(sort -n "$dir/cert.rss" | tail -1)
+  awk -v s="$size" -v tf="$tf" -v tc="$tc" -v r="$rss" -v tv="$tv" -v rv="$rv" -v n="$runs" -v m="$machine" 'BEGIN {
     printf "ratio: %s MB mixed, %d alternating runs, medians\n", s, n
-    printf "  floor          %6.2f s  %7.1f MB/s\n", tf, s/tf
-    printf "  clpc (%s) %6.2f s  %7.1f MB/s  peak RSS %.1f MB\n", m, tc, s/tc, r/1024
-    printf "  clpc / floor   %6.2f (target: at most 3)\n", tc/tf }'
+    printf "  floor                      %6.2f s  %7.1f MB/s\n", tf, s/tf
+    printf "  clpc --no-verify (%s) %6.2f s  %7.1f MB/s  peak RSS %.1f MB\n", m, tc, s/tc, r/1024
+    printf "  clpc, certified            %6.2f s  %7.1f MB/s  peak RSS %.1f MB\n", tv, s/tv, rv/1024
+    printf "  clpc --no-verify / floor   %6.2f (target: at most 2)\n", tc/tf
+    printf "  certified / floor          %6.2f (target: at most 2.5)\n", tv/tf
+    printf "  certified / --no-verify    %6.2f (target: at most 1.25)\n", tv/tc }'
 }
 
 rss() {

@@ -177,9 +177,16 @@ class Comparison : public ProgramSink {
 
   // A CL point within the tolerance of where the tool is already needs no block of its own
   // (a move shorter than the output resolution is rightly dropped).
+  // Blocks that follow and end within the tolerance of the point too (the CL dithering about
+  // it by less than the tolerance, each step written) are this point's: taken with it.
   bool already_there(const Vec3& p) {
     if (!have_at_ || (at_ - p).norm() > tol_) return false;
     deviate((at_ - p).norm(), loc_, 0);
+    while (const TipSegment* s = peek(0)) {
+      if (!finite(s->end) || (s->end - p).norm() > tol_ || s->rotates) break;
+      deviate((s->end - p).norm(), loc_, s->raw.line);
+      consume(1);
+    }
     return true;
   }
 

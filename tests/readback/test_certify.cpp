@@ -188,3 +188,20 @@ TEST(Certify, AnArcAgainstItsConventionIsReportedAmbiguous) {
   EXPECT_THAT(x.diags, HasSubstr("; tolerance 0.0060 mm; 1 arc where the CL's convention and its geometry disagree (first at " +
                                  t.path("plate.cls") + ":14)\n"));
 }
+
+// Found by fuzz_certify: the CL dithers about a point by less than the tolerance (15.8824,
+// 15.8799, 15.8824), each step written; the walk took the first as the point already reached
+// and stuck on the small move after it, failing every record after. Such blocks go with the
+// point.
+TEST(Certify, StepsWithinTheToleranceOfAPointGoWithIt) {
+  TempDir t;
+  write_file(t.path("dither.cls"),
+             "UNITS/MM\nLOADTL/7\nSPINDL/RPM,1500,CLW\nFEDRAT/MMPM,1070\nRAPID\nGOTO/64.7059,64.7059,40\n"
+             "GOTO/64.7059,64.7059,15.8824\nGOTO/64.7059,64.7059,15.8824\nGOTO/64.7059,64.7059,15.8799\n"
+             "GOTO/64.7059,64.7059,15.8824\nCYCLE/DEEP,DEPTH,29.5827,STEP,7.1705,MMPM,94,CLEAR,3.4015\n"
+             "GOTO/35.4467,98.7747,9.3225\nGOTO/65.7374,78.2513,9.3225\nCYCLE/OFF\nRAPID\nGOTO/65.7374,78.2513,40\nFINI\n");
+  Result x = certified_compile(t.path("dither.cls"), t.path("dither.nc"), machine("fanuc-mill"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  EXPECT_THAT(read_file(t.path("dither.nc")), HasSubstr("Z15.882 F1070.\nN80 Z15.88\nN90 Z15.882\n"));
+  EXPECT_EQ(x.r.certificate->cl_holes, 2);
+}
