@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (AddressSanitizer + UBSan) and runs each for a given
-# time, from seed corpora (fuzz_certify, the differential target, from random choices): the repository's CL files (tests/golden, tests/offsets, examples),
+# time, from seed corpora (fuzz_certify, the differential target, from random choices; the
+# others from the repository's CL files: tests/golden, tests/offsets, examples),
 # ../shared/corpus when it is there, and fuzz/seeds; machine descriptions from machines.toml,
 # tests/machines and examples, one machine per seed.
 #
-#   bash fuzz/run.sh [SECONDS_PER_TARGET]     default 600 (ten minutes each, half an hour in all)
+#   bash fuzz/run.sh [SECONDS_PER_TARGET]     default 600 (ten minutes each, forty minutes in all)
 #
 # Prints each target's executions and findings; exits 1 if anything crashed, hung or leaked.
 # A finding is left in build-fuzz/artifacts/: reproduce it with build-fuzz/fuzz/TARGET FILE,
