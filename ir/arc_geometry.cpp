@@ -51,11 +51,27 @@ double distance_to_arc(const Arc& a, const Vec3& p) {
   double phi = ccw_angle(rs, rp, a.axis) * 180 / kPi;
   if (a.dir == ir::ArcDir::Cw && phi > 0) phi = 360 - phi;
   double best = std::min((p - a.start).norm(), (p - a.end).norm());
+  // On a helix the nearest point is not at p's own angle: a steep one rises so fast that a
+  // point a hair round the turn is nearer. Searched for around that angle, within the
+  // parameter span the distance found there allows.
+  const double rise = std::abs(axial(a, a.end) - axial(a, a.start));
+  const double length = std::hypot(radial(a, a.start).norm() * a.sweep * kPi / 180, rise);
+  auto at = [&](double t) { return (point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm(); };
   // The angle may be reached on any turn of a multi-turn arc.
   for (double turn = 0; turn * 360 <= a.sweep + 1e-9; ++turn) {
     double t = (phi + 360 * turn) / a.sweep;
     if (t < -1e-9 || t > 1 + 1e-9) continue;
-    best = std::min(best, (point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm());
+    double d = at(t);
+    if (rise > 1e-12 && length > 0 && d > 0) {
+      double lo = std::max(0.0, t - 2 * d / length), hi = std::min(1.0, t + 2 * d / length);
+      for (int k = 0; k < 40; ++k) {  // the distance is unimodal this near the curve
+        const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+        if (at(m1) < at(m2)) hi = m2;
+        else lo = m1;
+      }
+      d = std::min(d, at(0.5 * (lo + hi)));
+    }
+    best = std::min(best, d);
   }
   return best;
 }

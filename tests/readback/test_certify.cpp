@@ -205,3 +205,20 @@ TEST(Certify, StepsWithinTheToleranceOfAPointGoWithIt) {
   EXPECT_THAT(read_file(t.path("dither.nc")), HasSubstr("Z15.882 F1070.\nN80 Z15.88\nN90 Z15.882\n"));
   EXPECT_EQ(x.r.certificate->cl_holes, 2);
 }
+
+// Found by fuzz_certify: a steep helix (5 mm down over 10 degrees of a 2 mm radius). Its
+// ends rounded to 0.0001 in turn it by a hair, and at a point's own angle the heights differ
+// by 0.0005 in; the nearest point of the helix is a hair round the turn. Verify measured at
+// the same angle and failed a correct program.
+TEST(Certify, ASteepHelixIsMeasuredToItsNearestPoint) {
+  TempDir t;
+  write_file(t.path("helix.cls"),
+             "UNITS/MM\nLOADTL/14\nSPINDL/RPM,1100,CLW\nFEDRAT/MMPM,680\nRAPID\nGOTO/35.6841,45.8833,40.0000\n"
+             "CIRCLE/35.9473,45.8833,47.4048,0.0000000,-1.0000000,0.0000000,7.4094\nGOTO/36.9740,40.9101,40.0668\n"
+             "CIRCLE/34.9740,40.9101,40.0668,0.0000000,0.0000000,-1.0000000,2.0000\nGOTO/36.9436,40.5628,35.0668\n"
+             "RAPID\nGOTO/36.9436,40.5628,50.0000\nFINI\n");
+  Result x = certified_compile(t.path("helix.cls"), t.path("helix.nc"), machine("haas-umc750"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  EXPECT_THAT(read_file(t.path("helix.nc")), HasSubstr("G17 X1.4545 Y1.597 Z1.3806 I-0.0788 J0.0001\n"));
+  EXPECT_LE(x.r.certificate->max_deviation, 0.0001);
+}
