@@ -451,7 +451,9 @@ class Comparison : public ProgramSink {
       fail(loc_, s.raw.line,
            "the tool axis at this CL point is off by " + fixed(kin::angle_between(s.axis, axis.normalized()), 4) + " degrees",
            0);
-    if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid)
+    // (A canned cycle's own return may bring the tool there: the CL's feed up from the last
+    // hole to where the cycle returned it is made by the cycle, at rapid, away from the part.)
+    if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !s.raw.from_cycle)
       fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
     if (!rapid) feed_ok(s, have_cl_feed_ ? &cl_feed_ : nullptr);
     if (s.rotates && have_prev_ && finite(s.start) && !rapid) {

@@ -222,3 +222,17 @@ TEST(Certify, ASteepHelixIsMeasuredToItsNearestPoint) {
   EXPECT_THAT(read_file(t.path("helix.nc")), HasSubstr("G17 X1.4545 Y1.597 Z1.3806 I-0.0788 J0.0001\n"));
   EXPECT_LE(x.r.certificate->max_deviation, 0.0001);
 }
+
+// Found by fuzz_certify: after CYCLE/OFF the CL feeds up from the last hole to the level the
+// cycle started at; the G98 return has put the tool there already, at rapid, so the move is
+// not written. The cycle's own return reaching a CL feed point is no feed made rapid.
+TEST(Certify, ACycleReturnMayReachTheNextFeedPoint) {
+  TempDir t;
+  write_file(t.path("ret.cls"),
+             "UNITS/MM\nLOADTL/4\nSPINDL/RPM,1500,CLW\nFEDRAT/MMPM,1000\nRAPID\nGOTO/21.5686,54.3816,11.8039\nFEDRAT/MMPM,1000\n"
+             "GOTO/21.5686,54.3816,11.8039\nCYCLE/BORE,DEPTH,16.8078,MMPM,173,CLEAR,3.1804\nGOTO/54.5098,54.5098,3.1765\n"
+             "GOTO/21.5686,21.5686,3.1765\nCYCLE/OFF\nGOTO/21.5686,21.5686,11.8039\nRAPID\nGOTO/21.5686,21.5686,40\nFINI\n");
+  Result x = certified_compile(t.path("ret.cls"), t.path("ret.nc"), machine("fanuc-mill"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  EXPECT_THAT(read_file(t.path("ret.nc")), HasSubstr("N80 X21.569 Y21.569\nN90 G80\nN100 G00 Z40.\n"));
+}
