@@ -1,6 +1,6 @@
 #include "backends/lathe.h"
 
-#include "backends/arc_center.h"
+#include "machine/arc_center.h"
 #include "ir/arc_geometry.h"
 
 #include <cmath>

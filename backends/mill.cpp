@@ -2,7 +2,7 @@
 // arcs in G17/G18/G19 for a machine whose spindle is along Z.
 #include "backends/mill.h"
 
-#include "backends/arc_center.h"
+#include "machine/arc_center.h"
 #include "ir/arc_geometry.h"
 
 #include <cmath>

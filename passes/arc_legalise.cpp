@@ -2,14 +2,17 @@
 // machine's planes (or in an arbitrary plane) and radii outside min/max are linearised within
 // tolerance; sweeps over the maximum are split; R-format machines never get a full circle;
 // an arc too short to survive rounding (its rounded ends would meet, which a control reads as
-// a full circle) becomes a straight move.
+// a full circle) becomes a straight move; an arc over half a turn whose centre, once its ends
+// are rounded, would put the arc off the CL arc by more than the tolerance is split in two.
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
 // is arc_legalise_pass() at the end of this file.
 #include <cmath>
 
-#include "passes/arc_edit.h"
 #include "ir/arc_geometry.h"
+#include "machine/arc_center.h"
+#include "machine/format.h"
+#include "passes/arc_edit.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -22,6 +25,34 @@ bool plane_ok(const ArcSettings& s, const ir::Vec3& axis) {
   if (std::abs(axis.y()) > k) return s.zx;
   if (std::abs(axis.x()) > k) return s.yz;
   return false;
+}
+
+double rounded(double value, const AddressFormat& f) {
+  int64_t q;
+  return quantize(value, f, q) ? dequantize(q, f) : value;
+}
+
+// How far the arc the control cuts passes from this one at its midpoint, with the centre the
+// backend will choose for the rounded ends (output units). Over half a turn the centre lies
+// beyond the chord: a short chord turns each increment of rounding at its ends into R/chord
+// increments at the centre, and twice that on the far side of the arc (a near-full helix of
+// 0.74 in radius with a 0.135 in chord came out 0.00042 in off on the UMC-750).
+double rounded_centre_deviation(const ir::Arc& a, const Machine& m, double to_out) {
+  struct Plane {
+    int u, v;
+    char lu, lv, cu, cv;
+  } p;
+  if (std::abs(a.axis.z()) > 1 - 1e-9) p = {0, 1, 'X', 'Y', 'I', 'J'};
+  else if (std::abs(a.axis.y()) > 1 - 1e-9) p = {2, 0, 'Z', 'X', 'K', 'I'};
+  else p = {1, 2, 'Y', 'Z', 'J', 'K'};
+  const ir::Vec3 s = a.start * to_out, e = a.end * to_out, c = a.center * to_out;
+  const ir::Vec3 mid = arcgeo::point_at(a, 0.5) * to_out;
+  const ir::Vec3 normal = ir::Vec3::Unit(p.u == 0 ? 2 : p.u == 2 ? 1 : 0);
+  const bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.dot(normal) > 0);
+  ArcCenterInput in{rounded(s[p.u], m.format(p.lu)), rounded(s[p.v], m.format(p.lv)),
+                    rounded(e[p.u], m.format(p.lu)), rounded(e[p.v], m.format(p.lv)),
+                    c[p.u], c[p.v], mid[p.u], mid[p.v], ccw, false};
+  return choose_arc_center(in, m.format(p.cu), m.format(p.cv), m.arcs.center == ArcCenter::Incremental).deviation;
 }
 
 class ArcLegalise : public Pass {
@@ -68,6 +99,9 @@ class ArcLegalise : public Pass {
       double limit = s.max_sweep;
       if (r_format && closed) limit = std::min(limit, 180.0);
       int n = int(std::ceil(a->sweep / limit - 1e-9));
+      if (n <= 1 && !closed && a->sweep > 180 &&
+          rounded_centre_deviation(*a, ctx.machine, 1 / to_prog) > s.tolerance)
+        n = 2;  // each half's chord is nearly a diameter: its centre is well placed
       if (n <= 1) return false;
       arcedit::split(*a, n, in.loc, out);
       return true;
@@ -86,9 +120,11 @@ const PassInfo& arc_legalise_pass() {
                     "within arcs.tolerance), with a radius inside arcs.min_radius / max_radius and a sweep of at "
                     "most arcs.max_sweep (split into equal pieces); no full circle on an R-format machine; no arc "
                     "whose rounded ends would meet (chord under two increments and sweep under 180 degrees: a "
-                    "straight move; a circle smaller than one increment: nothing)",
+                    "straight move; a circle smaller than one increment: nothing); an arc over 180 degrees whose "
+                    "centre, chosen for its rounded ends, would leave its midpoint more than arcs.tolerance off "
+                    "is split in two",
       .settings = "arcs.planes, arcs.min_radius, arcs.max_radius, arcs.max_sweep, arcs.center, arcs.tolerance, "
-                  "format.X",
+                  "format.X, format.Y, format.Z, format.I, format.J, format.K",
       .needs = ir::ArcsDecided | ir::ArcsOneTurn,
       .provides = ir::ArcsLegal,
       .breaks = 0,

@@ -331,6 +331,24 @@ TEST(ArcLegalise, SweepOverTheMaximumIsSplit) {
   for (auto* a : as) EXPECT_NEAR(a->sweep, 359.0 / 4, 1e-9);
 }
 
+// Over half a turn the centre lies beyond the chord; a short chord makes it move R/chord
+// increments per increment of rounding at the ends. 359.1 degrees of 10 mm radius (chord
+// 0.16 mm) as one G03 would pass 0.024 mm from the arc's midpoint: split in two. Three
+// quarters of a turn (chord 14 mm) stays one arc.
+TEST(ArcLegalise, AShortChordOverHalfATurnIsSplitWhereRoundingWouldMoveTheCentre) {
+  Machine m = mill();
+  ArcCase c;
+  c.deg = 359.1;
+  Ran r = run(make_op(c), {"arc-direction", "arc-legalise"}, m);
+  auto as = arcs(r.op);
+  ASSERT_EQ(as.size(), 2u);
+  EXPECT_NEAR(as[0]->sweep, 359.1 / 2, 1e-9);
+  EXPECT_NEAR(as[1]->sweep, 359.1 / 2, 1e-9);
+  c.deg = 270.0123;
+  Ran q = run(make_op(c), {"arc-direction", "arc-legalise"}, m);
+  EXPECT_EQ(arcs(q.op).size(), 1u);
+}
+
 TEST(ArcLegalise, RFormatNeverGetsAFullCircle) {
   Machine m = mill();
   m.arcs.center = ArcCenter::Radius;

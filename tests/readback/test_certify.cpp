@@ -236,3 +236,19 @@ TEST(Certify, ACycleReturnMayReachTheNextFeedPoint) {
   ASSERT_TRUE(x.r.ok) << x.diags;
   EXPECT_THAT(read_file(t.path("ret.nc")), HasSubstr("N80 X21.569 Y21.569\nN90 G80\nN100 G00 Z40.\n"));
 }
+
+// Found by fuzz_certify: a helix of nearly a whole turn (349.6 degrees, radius 0.744 in) whose
+// chord is 0.135 in. Written as one G03, its centre placed for the rounded ends left the far
+// side of the arc 0.00042 in off (tolerance 0.0003 in); arc-legalise now splits it in two.
+TEST(Certify, ANearlyWholeHelixWithAShortChordIsSplit) {
+  TempDir t;
+  write_file(t.path("turn.cls"),
+             "UNITS/MM\nLOADTL/1\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,1540\nGOTO/103.3081,41.9109,-8.8609\n"
+             "CIRCLE/85.4071,41.9109,-14.9345,0.0000000,1.0000000,0.0000000,18.9034\n"
+             "GOTO/101.9119,39.4108,-5.7188\nFINI\n");
+  Result x = certified_compile(t.path("turn.cls"), t.path("turn.nc"), machine("haas-umc750"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  EXPECT_THAT(read_file(t.path("turn.nc")),
+              HasSubstr("G18 G03 X2.6824 Y1.6008 Z-0.8902 K-0.2391 I-0.7047\nN50 X4.0123 Y1.5516 Z-0.2251 K0.3022 I0.6801\n"));
+  EXPECT_LE(x.r.certificate->max_deviation, 0.0001);
+}

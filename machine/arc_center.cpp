@@ -1,4 +1,4 @@
-#include "backends/arc_center.h"
+#include "machine/arc_center.h"
 
 #include <cmath>
 
