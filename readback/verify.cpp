@@ -367,7 +367,7 @@ class Comparison : public ProgramSink {
   // Where blocks lie closer together than the tolerance (a five-axis finish in tiny steps),
   // the first block end within it may not be the CL point's own: of the blocks that follow on
   // the path with their ends within the tolerance, the one whose tool axis agrees, then the
-  // nearest.
+  // nearest (the earlier on a tie).
   template <class OnPath>
   size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
     const double cos_tol = std::cos(axis_tol_ * arcgeo::kPi / 180);
@@ -382,7 +382,10 @@ class Comparison : public ProgramSink {
       if (!passable(*peek(k - 1), on_path, dev)) break;
       devs.push_back(dev);
       const TipSegment* t = peek(k);
-      if (!t || !finite(t->end)) break;
+      // The path must run on unbroken, with the same tool: a block after a move the reader
+      // cannot place (G53, G28) or after a tool change may come back to the same point, and
+      // is then the next CL record's, not this one's.
+      if (!t || !finite(t->end) || !finite(t->start) || t->raw.tool != peek(j)->raw.tool) break;
       double dk = (t->end - p).norm();
       if (dk > tol_) break;
       const bool off = axis_off(*t);

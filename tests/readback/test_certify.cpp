@@ -252,3 +252,53 @@ TEST(Certify, ANearlyWholeHelixWithAShortChordIsSplit) {
               HasSubstr("G18 G03 X2.6824 Y1.6008 Z-0.8902 K-0.2391 I-0.7047\nN50 X4.0123 Y1.5516 Z-0.2251 K0.3022 I0.6801\n"));
   EXPECT_LE(x.r.certificate->max_deviation, 0.0001);
 }
+
+// Found on the 200 MB benchmark: a 3-axis operation under G254 with the table still turned
+// from the five-axis one before ends on a retract point; the next tool's first block (under
+// G234, after G53 and the tool change) returns to that very point, its coordinates exactly as
+// the CL's where the turned ones are rounded. The nearer block end was taken, so the retract
+// was "cut with tool 5". The search for a nearer end stops at a tool change and at a block
+// the reader cannot place.
+TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
+  TempDir t;
+  write_file(t.path("ops.cls"),
+             "UNITS/MM\n"
+             "TOOL PATH/CONTOUR_1,TOOL,BALL6\n"
+             "LOAD/TOOL,6,ADJUST,6\n"
+             "SPINDL/RPM,7500,CLW\n"
+             "RAPID\n"
+             "GOTO/40.0000,30.0000,-4.8607,0.4624384,0.0622863,0.8844609\n"
+             "FEDRAT/MMPM,3407.2360\n"
+             "GOTO/40.2389,30.0000,-4.8697,0.4623385,0.0618584,0.8845432\n"
+             "GOTO/40.4777,30.0000,-4.8781,0.4622336,0.0614339,0.8846276\n"
+             "RAPID\n"
+             "GOTO/40.4777,30.0000,50.0000,0.0000000,0.0000000,1.0000000\n"
+             "END-OF-PATH\n"
+             "TOOL PATH/ROUGH_2,TOOL,EM12\n"
+             "LOAD/TOOL,3,ADJUST,3\n"
+             "SPINDL/RPM,6000,CLW\n"
+             "RAPID\n"
+             "GOTO/70.0939,35.6920,50.0000,0.0000000,0.0000000,1.0000000\n"
+             "GOTO/70.0939,35.6920,3.0000\n"
+             "FEDRAT/MMPM,1256.8139\n"
+             "GOTO/70.0939,35.6920,0.0000\n"
+             "GOTO/90.0939,35.6920,0.0000\n"
+             "RAPID\n"
+             "GOTO/70.0939,35.6920,50.0000\n"
+             "END-OF-PATH\n"
+             "TOOL PATH/CONTOUR_3,TOOL,BALL6\n"
+             "LOAD/TOOL,5,ADJUST,5\n"
+             "SPINDL/RPM,7000,CLW\n"
+             "RAPID\n"
+             "GOTO/40.0000,30.0000,2.1262,0.2860252,0.3686712,0.8844609\n"
+             "FEDRAT/MMPM,3013.5509\n"
+             "GOTO/40.2389,30.0000,2.1300,0.2855252,0.3691712,0.8844114\n"
+             "GOTO/40.4777,30.0000,2.1350,0.2850252,0.3696712,0.8843609\n"
+             "END-OF-PATH\n"
+             "FINI\n");
+  Result x = certified_compile(t.path("ops.cls"), t.path("ops.nc"), machine("haas-umc750"));
+  ASSERT_TRUE(x.r.ok) << x.diags;
+  const std::string nc = read_file(t.path("ops.nc"));
+  EXPECT_THAT(nc, HasSubstr("N115 G00 X2.9207 Y1.0294 Z1.9685\nN120 G255\n"));
+  EXPECT_THAT(nc, HasSubstr("N150 G94 G01 X2.7596 Y1.4052 Z1.9685 C52.195 F49.48\n"));
+}
