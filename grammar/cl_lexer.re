@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "grammar/lexer.h"
+#include "support/decimal.h"
 
 namespace clpc::grammar {
 
@@ -337,7 +338,7 @@ bool Lexer::simple_record(Simple& s) {
     if (!e || s.n == kMaxSimple) return false;
     if (e < nl && !is_ws(*e) && *e != ',') return false;  // a word, "1.2.3", "$": the grammar's
     const char* b = reinterpret_cast<const char*>(*p == '+' ? p + 1 : p);
-    auto [end, ec] = std::from_chars(b, reinterpret_cast<const char*>(e), s.value[s.n]);
+    auto [end, ec] = read_decimal(b, reinterpret_cast<const char*>(e), s.value[s.n]);
     if (ec != std::errc() || end != reinterpret_cast<const char*>(e)) return false;
     s.col[s.n++] = uint32_t(abs(p) - line_start_ + 1);
     p = e;
@@ -659,7 +660,7 @@ Lexer::Symbol Lexer::number_token(const unsigned char* b, const unsigned char* e
   const char* end_text = reinterpret_cast<const char*>(e);
   const char* digits = *s == '+' ? s + 1 : s;
   double v = 0;
-  auto [end, ec] = std::from_chars(digits, end_text, v);
+  auto [end, ec] = read_decimal(digits, end_text, v);
   if (ec == std::errc::result_out_of_range) {
     // Underflow reads as zero; overflow is an error.
     const char* exp = digits;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "machine/format.h"
+#include "support/decimal.h"
 #include "ir/groove_model.h"
 
 namespace clpc::gcode {
@@ -87,12 +88,7 @@ class Interp {
 
   // Converts a word's number as the control would: a value without a decimal point on an
   // address whose format never writes one is in least-input increments.
-  double convert(char letter, std::string_view digits, bool has_point) {
-    double v = 0;
-    const char* b = digits.data();
-    const char* e = b + digits.size();
-    if (b < e && *b == '+') ++b;
-    std::from_chars(b, e, v);
+  double convert(char letter, double v, bool has_point) {
     const AddressFormat& f = m_.format(letter);
     if (!has_point && f.point == AddressFormat::Point::Never && f.decimals > 0) v /= std::pow(10.0, f.decimals);
     return v;
@@ -136,8 +132,8 @@ class Interp {
       Word w;
       w.letter = letter;
       w.has_point = point;
-      std::from_chars(num.data() + (num[0] == '+'), num.data() + num.size(), w.raw);
-      w.value = convert(letter, num, point);
+      read_decimal(num.data() + (num[0] == '+'), num.data() + num.size(), w.raw);
+      w.value = convert(letter, w.raw, point);
       words.push_back(w);
     }
     return true;

@@ -1,0 +1,44 @@
+// Decimal numbers as CL and G-code files write them ("-12.3456", "5.", ".25"), read exactly
+// as std::from_chars reads them but faster: up to 15 significant digits and 22 decimals, the
+// digits make an integer below 2^53 and the value is that integer divided by a power of ten
+// no larger than 1e22. Both are exact doubles, so the one division rounds correctly: the same
+// double from_chars gives. Anything else (an exponent, more digits, "inf") goes to from_chars.
+#pragma once
+
+#include <charconv>
+#include <cstdint>
+
+namespace clpc {
+
+inline std::from_chars_result read_decimal(const char* b, const char* e, double& v) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const char* p = b;
+  const bool negative = p < e && *p == '-';
+  if (negative) ++p;
+  uint64_t m = 0;
+  int digits = 0, decimals = 0;
+  bool any = false;
+  for (; p < e && unsigned(*p - '0') < 10; ++p) {
+    any = true;
+    if (m == 0 && *p == '0') continue;  // leading zeros are not significant
+    m = m * 10 + unsigned(*p - '0');
+    ++digits;
+  }
+  if (p < e && *p == '.') {
+    ++p;
+    for (; p < e && unsigned(*p - '0') < 10; ++p) {
+      any = true;
+      ++decimals;
+      if (m == 0 && *p == '0') continue;
+      m = m * 10 + unsigned(*p - '0');
+      ++digits;
+    }
+  }
+  if (!any || digits > 15 || decimals > 22 || (p < e && (*p == 'e' || *p == 'E'))) return std::from_chars(b, e, v);
+  const double x = double(m) / kPow10[decimals];
+  v = negative ? -x : x;
+  return {p, std::errc()};
+}
+
+}  // namespace clpc
