@@ -8,8 +8,9 @@
 
 namespace clpc {
 
-VerifyReport certify(SourceFile& src, const std::string& program, const Machine& m, const ir::ProgramInfo& info,
-                     const CertifyOptions& opt, Diagnostics& d) {
+namespace {
+
+VerifyReport new_report(SourceFile& src, const Machine& m, const CertifyOptions& opt) {
   VerifyReport rep;
   rep.input = src.name();
   rep.machine = m.name;
@@ -19,16 +20,15 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
   rep.axis_tolerance = opt.axis_tolerance;
   rep.compiled = true;
   rep.collect_samples = opt.collect_samples;
+  return rep;
+}
 
-  std::string why;
-  ProgramReader rd(m, info);
-  if (!rd.open(program, why)) {
-    d.error({}, "cannot read the program back to verify it: " + why);
-    return rep;
-  }
+// The program from `rd` against the reference: the CL lowered again and given its meaning
+// by verify's own rules, none of the compile's passes. The compile has reported the CL's own
+// problems: quiet here.
+void compare(SourceFile& src, ProgramReader& rd, const Machine& m, const ir::ProgramInfo& info, const CertifyOptions& opt,
+             Diagnostics& d, VerifyReport& rep) {
   std::unique_ptr<ProgramSink> comparison = make_comparison(m, info, rd, d, rep);
-  // The reference: the CL lowered again and given its meaning by verify's own rules, none of
-  // the compile's passes. The compile has reported the CL's own problems: quiet here.
   Diagnostics quiet(nullptr);
   quiet.set_source(&src);
   ir::ProgramInfo tables = info;
@@ -43,7 +43,80 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
   }
   rep.program = rd.totals();
   rep.ok = rep.problem_count == 0 && rep.max_deviation <= rep.tolerance;
+}
+
+}  // namespace
+
+VerifyReport certify(SourceFile& src, const std::string& program, const Machine& m, const ir::ProgramInfo& info,
+                     const CertifyOptions& opt, Diagnostics& d) {
+  VerifyReport rep = new_report(src, m, opt);
+  std::string why;
+  ProgramReader rd(m, info);
+  if (!rd.open(program, why)) {
+    d.error({}, "cannot read the program back to verify it: " + why);
+    return rep;
+  }
+  compare(src, rd, m, info, opt, d, rep);
   return rep;
+}
+
+// The compile's sink with the certificate beside it.
+class CertifyBeside::Sink : public ProgramSink {
+ public:
+  Sink(CertifyBeside& c, std::unique_ptr<ProgramSink> inner) : c_(c), inner_(std::move(inner)) {}
+  void begin(const ir::ProgramInfo& info) override {
+    inner_->begin(info);
+    c_.start(info);  // the passes' begin() have filled the tables (the offset table) by now
+  }
+  void operation(const ir::Operation& op) override { inner_->operation(op); }
+  void end() override {
+    inner_->end();
+    c_.out_.end_tee();
+  }
+
+ private:
+  CertifyBeside& c_;
+  std::unique_ptr<ProgramSink> inner_;
+};
+
+CertifyBeside::CertifyBeside(SourceFile& src, const Machine& m, OutputFile& out, CertifyOptions opt)
+    : src_(src), m_(m), out_(out), opt_(opt), diags_(nullptr), report_(new_report(src, m, opt)) {
+  diags_.set_source(&src);
+  diags_.set_deferred(true);
+}
+
+CertifyBeside::~CertifyBeside() {
+  // A compile that stopped: the certificate reads to the end of what there is, then stops.
+  out_.tee(nullptr);
+  channel_.close();
+  if (thread_.joinable()) thread_.join();
+}
+
+std::unique_ptr<ProgramSink> CertifyBeside::wrap(std::unique_ptr<ProgramSink> sink) {
+  out_.tee(&channel_);
+  return std::make_unique<Sink>(*this, std::move(sink));
+}
+
+void CertifyBeside::start(const ir::ProgramInfo& info) {
+  info_ = info;
+  thread_ = std::thread([this] {
+    ProgramReader rd(m_, info_);
+    rd.open(channel_);
+    try {
+      compare(src_, rd, m_, info_, opt_, diags_, report_);
+    } catch (const FatalError&) {
+    }
+    // Whatever is still to come is not read: the compile must not wait for it.
+    channel_.abandon();
+  });
+}
+
+VerifyReport CertifyBeside::finish(Diagnostics& d) {
+  out_.end_tee();  // (done already when the pipeline ended normally)
+  channel_.close();
+  if (thread_.joinable()) thread_.join();
+  for (const Diagnostics::Deferred& x : diags_.take_deferred()) d.replay(x);
+  return std::move(report_);
 }
 
 namespace {

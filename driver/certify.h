@@ -4,13 +4,18 @@
 // the whole report.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <thread>
 
 #include "ir/ir.h"
 #include "machine/machine.h"
 #include "readback/verify.h"
+#include "ir/sink.h"
 #include "support/diagnostics.h"
+#include "support/output.h"
 #include "support/source.h"
+#include "support/text_channel.h"
 
 namespace clpc {
 
@@ -27,6 +32,37 @@ struct CertifyOptions {
 // Each problem is an error on `d`, located at its CL record; the report has them all.
 VerifyReport certify(SourceFile& src, const std::string& program, const Machine& m, const ir::ProgramInfo& info,
                      const CertifyOptions& opt, Diagnostics& d);
+
+// The certificate made beside the compile (clpc compile): the program is read back as the
+// backend writes it (handed over through a TextChannel, never read from the disk) and compared
+// on a thread of its own while the compile goes on, so the two share the processors. wrap()
+// the compile's sink; the certificate starts when the pipeline begins (the program tables
+// complete) and finish() waits for it and replays its problems into the compile's
+// diagnostics, in order, after the compile's own. Destroyed unfinished (a compile that
+// failed), it stops and is waited for.
+class CertifyBeside {
+ public:
+  CertifyBeside(SourceFile& src, const Machine& m, OutputFile& out, CertifyOptions opt);
+  ~CertifyBeside();
+  CertifyBeside(const CertifyBeside&) = delete;
+  CertifyBeside& operator=(const CertifyBeside&) = delete;
+
+  std::unique_ptr<ProgramSink> wrap(std::unique_ptr<ProgramSink> sink);
+  VerifyReport finish(Diagnostics& d);
+
+ private:
+  class Sink;
+  void start(const ir::ProgramInfo& info);
+  SourceFile& src_;
+  const Machine& m_;
+  OutputFile& out_;
+  CertifyOptions opt_;
+  Diagnostics diags_;
+  VerifyReport report_;
+  ir::ProgramInfo info_;
+  TextChannel channel_;
+  std::thread thread_;
+};
 
 // The one line a certified compile ends with, on standard error:
 //   clpc: certified part.nc: 1204 points, 37 arcs, 8 holes; max deviation 0.0021 mm at

@@ -129,6 +129,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       return res;
     }
     std::unique_ptr<ProgramSink> sink;
+    std::unique_ptr<CertifyBeside> certificate;
     if (gcode) sink = make_backend(machine, out, d);
     else if (opt.emit == Emit::Ir) sink = std::make_unique<IrPrinter>(out);
     else sink = std::make_unique<NullSink>();
@@ -140,6 +141,14 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     popt.schedule = opt.schedule;
     if (!opt.print_after.empty()) popt.instruments.push_back((print = make_print_after(opt.print_after)).get());
     if (opt.verify_ir) popt.instruments.push_back((verify = make_verify_ir()).get());
+    if (opt.certify && opt.emit == Emit::Gcode) {
+      CertifyOptions c;
+      c.tolerance = opt.tolerance;
+      c.axis_tolerance = opt.axis_tolerance;
+      c.latin1 = opt.latin1;
+      certificate = std::make_unique<CertifyBeside>(src, machine, out, c);
+      sink = certificate->wrap(std::move(sink));
+    }
     progress.phase("compile");
     Pipeline pipeline(machine, machine.pipeline, info, d, popt);
     const bool motion = pipeline.run(src, *sink);
@@ -153,11 +162,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
         return res;
       }
       progress.phase("verify");
-      CertifyOptions c;
-      c.tolerance = opt.tolerance;
-      c.axis_tolerance = opt.axis_tolerance;
-      c.latin1 = opt.latin1;
-      VerifyReport r = certify(src, out.read_path(), machine, info, c, d);
+      VerifyReport r = certificate->finish(d);
       progress.clear();
       if (opt.certificate_json) print_report_json(err, r);
       else err << certificate_line(r, output == "-" ? "(standard output)" : output) << "\n";

@@ -47,29 +47,48 @@ Vec3 tangent_at(const Arc& a, double t) {
 }
 
 double distance_to_arc(const Arc& a, const Vec3& p) {
-  Vec3 rs = radial(a, a.start), rp = radial(a, p);
+  const Vec3 rs = radial(a, a.start), rp = radial(a, p);
   double phi = ccw_angle(rs, rp, a.axis) * 180 / kPi;
   if (a.dir == ir::ArcDir::Cw && phi > 0) phi = 360 - phi;
   double best = std::min((p - a.start).norm(), (p - a.end).norm());
+  const double r0 = rs.norm(), r1 = radial(a, a.end).norm();
+  const double h0 = axial(a, a.start), h1 = axial(a, a.end), hp = axial(a, p), rpn = rp.norm();
   // On a helix the nearest point is not at p's own angle: a steep one rises so fast that a
   // point a hair round the turn is nearer. Searched for around that angle, within the
   // parameter span the distance found there allows.
-  const double rise = std::abs(axial(a, a.end) - axial(a, a.start));
-  const double length = std::hypot(radial(a, a.start).norm() * a.sweep * kPi / 180, rise);
+  const double rise = std::abs(h1 - h0);
+  const double length = std::hypot(r0 * a.sweep * kPi / 180, rise);
   auto at = [&](double t) { return (point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm(); };
   // The angle may be reached on any turn of a multi-turn arc.
   for (double turn = 0; turn * 360 <= a.sweep + 1e-9; ++turn) {
     double t = (phi + 360 * turn) / a.sweep;
     if (t < -1e-9 || t > 1 + 1e-9) continue;
-    double d = at(t);
+    // The arc's point at p's own angle lies in p's half-plane through the axis: no sine needed.
+    const double tc = std::clamp(t, 0.0, 1.0);
+    double d = std::hypot(rpn - (r0 + (r1 - r0) * tc), hp - (h0 + (h1 - h0) * tc));
     if (rise > 1e-12 && length > 0 && d > 0) {
+      // Golden-section search (the distance is unimodal this near the curve), until the span
+      // left is a thousandth of the distance: the minimum is then known to a millionth of it.
+      constexpr double g = 0.6180339887498949;
       double lo = std::max(0.0, t - 2 * d / length), hi = std::min(1.0, t + 2 * d / length);
-      for (int k = 0; k < 40; ++k) {  // the distance is unimodal this near the curve
-        const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-        if (at(m1) < at(m2)) hi = m2;
-        else lo = m1;
+      double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      double f1 = at(x1), f2 = at(x2);
+      for (int k = 0; k < 60 && (hi - lo) * length > 1e-3 * d; ++k) {
+        if (f1 < f2) {
+          hi = x2;
+          x2 = x1;
+          f2 = f1;
+          x1 = hi - g * (hi - lo);
+          f1 = at(x1);
+        } else {
+          lo = x1;
+          x1 = x2;
+          f1 = f2;
+          x2 = lo + g * (hi - lo);
+          f2 = at(x2);
+        }
       }
-      d = std::min(d, at(0.5 * (lo + hi)));
+      d = std::min({d, f1, f2});
     }
     best = std::min(best, d);
   }

@@ -76,6 +76,10 @@ bool ProgramReader::read_line(std::string& line) {
     buf_.clear();
     buf_pos_ = 0;
     if (eof_) return !line.empty();
+    if (channel_) {
+      if (!channel_->pop(buf_)) eof_ = true;
+      continue;
+    }
     buf_.resize(kChunk);
     size_t n = std::fread(buf_.data(), 1, kChunk, file_);
     buf_.resize(n);

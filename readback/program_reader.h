@@ -16,6 +16,7 @@
 #include "machine/kinematics.h"
 #include "machine/machine.h"
 #include "support/source.h"
+#include "support/text_channel.h"
 #include "ir/ir.h"
 
 namespace clpc {
@@ -54,6 +55,9 @@ class ProgramReader {
   ProgramReader(const Machine& m, const ir::ProgramInfo& info);
   ~ProgramReader();
   bool open(const std::string& path, std::string& error);
+  // Reads the program from `c` as its writer hands it over (a compile's output, read back
+  // beside the compile); the end of the program is the channel's close.
+  void open(TextChannel& c) { channel_ = &c; }
   // The next segment, false at the end of the program.
   bool next(TipSegment& s);
   // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
@@ -73,6 +77,7 @@ class ProgramReader {
   const ir::ProgramInfo& info_;
   gcode::Reader reader_;
   std::FILE* file_ = nullptr;
+  TextChannel* channel_ = nullptr;
   std::string buf_, line_;
   size_t buf_pos_ = 0;
   bool eof_ = false;

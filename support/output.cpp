@@ -148,6 +148,7 @@ bool OutputFile::open(const std::string& path, std::string& error) {
 }
 
 void OutputFile::flush() {
+  if (tee_) tee_->push(buf_);
   if (null_) buf_.clear();
   if (fd_ < 0 || buf_.empty()) return;
   if (!thread_.joinable()) {
@@ -161,6 +162,13 @@ void OutputFile::flush() {
   g.unlock();
   changed_.notify_all();
   buf_.clear();
+}
+
+void OutputFile::end_tee() {
+  if (!tee_) return;
+  tee_->push(buf_);
+  tee_->close();
+  tee_ = nullptr;
 }
 
 void OutputFile::writer() {

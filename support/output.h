@@ -11,6 +11,8 @@
 #include <string_view>
 #include <thread>
 
+#include "support/text_channel.h"
+
 namespace clpc {
 
 class OutputFile {
@@ -38,6 +40,10 @@ class OutputFile {
   // read_path() names the file: the temporary, or /proc/self/fd/N for an anonymous one.
   bool finish_writing(std::string& error);
   std::string read_path() const;
+  // Also hands what is written to `c` as it is written (the certificate reading the program
+  // beside the compile); end_tee() hands over the rest and closes `c`.
+  void tee(TextChannel* c) { tee_ = c; }
+  void end_tee();
   const std::string& temp_path() const { return temp_; }
 
   static constexpr size_t kBuffer = 1 << 20;
@@ -55,6 +61,7 @@ class OutputFile {
   bool null_ = false;
   bool failed_ = false;
   int errno_ = 0;
+  TextChannel* tee_ = nullptr;
   std::string buf_;
   std::string writing_;       // the buffer the writer has
   bool write_pending_ = false;
