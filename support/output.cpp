@@ -22,7 +22,10 @@ namespace {
 // touch async-signal-safe things.
 constexpr int kSlots = 64;
 char g_temp_paths[kSlots][4096];
+// A slot is claimed (used), then its path written, then published (ready): with -j N another
+// thread may look at the slots meanwhile, and reads a path only once it is whole.
 std::atomic<bool> g_temp_used[kSlots];
+std::atomic<bool> g_temp_ready[kSlots];
 
 int register_temp(const std::string& p) {
   if (p.size() >= sizeof g_temp_paths[0]) return -1;
@@ -30,6 +33,7 @@ int register_temp(const std::string& p) {
     bool expected = false;
     if (g_temp_used[i].compare_exchange_strong(expected, true)) {
       std::memcpy(g_temp_paths[i], p.c_str(), p.size() + 1);
+      g_temp_ready[i].store(true, std::memory_order_release);
       return i;
     }
   }
@@ -38,12 +42,15 @@ int register_temp(const std::string& p) {
 
 void unregister_temp(const std::string& p) {
   for (int i = 0; i < kSlots; ++i)
-    if (g_temp_used[i] && p == g_temp_paths[i]) g_temp_used[i] = false;
+    if (g_temp_ready[i].load(std::memory_order_acquire) && p == g_temp_paths[i]) {
+      g_temp_ready[i] = false;
+      g_temp_used[i] = false;
+    }
 }
 
 void on_signal(int sig) {
   for (int i = 0; i < kSlots; ++i)
-    if (g_temp_used[i]) unlink(g_temp_paths[i]);
+    if (g_temp_ready[i]) unlink(g_temp_paths[i]);
   signal(sig, SIG_DFL);
   raise(sig);
 }
