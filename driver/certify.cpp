@@ -27,7 +27,7 @@ VerifyReport new_report(SourceFile& src, const Machine& m, const CertifyOptions&
 // by verify's own rules, none of the compile's passes. The compile has reported the CL's own
 // problems: quiet here.
 void compare(SourceFile& src, ProgramReader& rd, const Machine& m, const ir::ProgramInfo& info, const CertifyOptions& opt,
-             Diagnostics& d, VerifyReport& rep) {
+             Diagnostics& d, VerifyReport& rep, Schedule schedule) {
   std::unique_ptr<ProgramSink> comparison = make_comparison(m, info, rd, d, rep);
   Diagnostics quiet(nullptr);
   quiet.set_source(&src);
@@ -35,6 +35,7 @@ void compare(SourceFile& src, ProgramReader& rd, const Machine& m, const ir::Pro
   PipelineOptions po;
   po.latin1 = opt.latin1;
   po.sink_after_errors = true;
+  po.schedule = schedule;
   Pipeline reference(m, {}, tables, quiet, po);
   try {
     reference.run(src, *comparison);
@@ -56,7 +57,7 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
     d.error({}, "cannot read the program back to verify it: " + why);
     return rep;
   }
-  compare(src, rd, m, info, opt, d, rep);
+  compare(src, rd, m, info, opt, d, rep, Schedule::Threaded);
   return rep;
 }
 
@@ -103,7 +104,8 @@ void CertifyBeside::start(const ir::ProgramInfo& info) {
     ProgramReader rd(m_, info_);
     rd.open(channel_);
     try {
-      compare(src_, rd, m_, info_, opt_, diags_, report_);
+      // One thread: the compile has the others (and the memory of its queues).
+      compare(src_, rd, m_, info_, opt_, diags_, report_, Schedule::Single);
     } catch (const FatalError&) {
     }
     // Whatever is still to come is not read: the compile must not wait for it.
