@@ -27,7 +27,8 @@ VerifyReport new_report(SourceFile& src, const Machine& m, const CertifyOptions&
 // by verify's own rules, none of the compile's passes. The compile has reported the CL's own
 // problems: quiet here.
 void compare(SourceFile& src, ProgramReader& rd, const Machine& m, const ir::ProgramInfo& info, const CertifyOptions& opt,
-             Diagnostics& d, VerifyReport& rep, Schedule schedule) {
+             Diagnostics& d, VerifyReport& rep, const LowerOptions& lower) {
+  rd.read_ahead();  // the reader on a thread of its own: the comparison is the longest stage
   std::unique_ptr<ProgramSink> comparison = make_comparison(m, info, rd, d, rep);
   Diagnostics quiet(nullptr);
   quiet.set_source(&src);
@@ -35,7 +36,7 @@ void compare(SourceFile& src, ProgramReader& rd, const Machine& m, const ir::Pro
   PipelineOptions po;
   po.latin1 = opt.latin1;
   po.sink_after_errors = true;
-  po.schedule = schedule;
+  po.lower = lower;
   Pipeline reference(m, {}, tables, quiet, po);
   try {
     reference.run(src, *comparison);
@@ -57,7 +58,7 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
     d.error({}, "cannot read the program back to verify it: " + why);
     return rep;
   }
-  compare(src, rd, m, info, opt, d, rep, Schedule::Threaded);
+  compare(src, rd, m, info, opt, d, rep, LowerOptions{});
   return rep;
 }
 
@@ -104,8 +105,12 @@ void CertifyBeside::start(const ir::ProgramInfo& info) {
     ProgramReader rd(m_, info_);
     rd.open(channel_);
     try {
-      // One thread: the compile has the others (and the memory of its queues).
-      compare(src_, rd, m_, info_, opt_, diags_, report_, Schedule::Single);
+      // The reference's lowering on a thread of its own, as in the compile, for the
+      // comparison is the longest stage of all; in chunks of a quarter of the compile's, so
+      // the two pipelines' queues together hold little more than the compile's alone.
+      LowerOptions lower;
+      lower.chunk_size = LowerOptions{}.chunk_size / 4;
+      compare(src_, rd, m_, info_, opt_, diags_, report_, lower);
     } catch (const FatalError&) {
     }
     // Whatever is still to come is not read: the compile must not wait for it.

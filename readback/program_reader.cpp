@@ -1,5 +1,7 @@
 #include "readback/program_reader.h"
 
+#include <pthread.h>
+
 #include <unistd.h>
 
 #include <cmath>
@@ -51,6 +53,7 @@ const ir::Mat3& ProgramReader::setup_turn(int reg) const {
 }
 
 ProgramReader::~ProgramReader() {
+  stop_ahead();
   if (file_) std::fclose(file_);
 }
 
@@ -97,7 +100,7 @@ kin::Angles ProgramReader::angles(const std::array<double, 3>& abc) const {
 // Control coordinates -> tool tip in the part frame. With tool-centre-point control X Y Z
 // are the tip in the part frame already; with a dynamic work offset they are turned with the
 // table about the part zero; otherwise they are machine axes, in the work offset's frame.
-Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin::Angles& a) const {
+Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin::Angles& a, const Vec3& shift) const {
   const KinematicsSettings& k = m_.kinematics;
   if (!k.has_rotaries() && !use_offsets_) return p;
   if (s.tcp) return p;
@@ -106,8 +109,7 @@ Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin
   Vec3 machine = setup_turn(s.work_offset) * p;
   double height = 0;
   if (use_offsets_) {
-    auto it = offsets_.find(s.work_offset);
-    if (it != offsets_.end()) machine += it->second;
+    machine += shift;
     height = reference_height_;
   }
   double pivot = k.pivot;
@@ -119,7 +121,7 @@ Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
   const gcode::Segment& r = s.raw;
   kin::Angles a0 = angles(r.rotary_start), a1 = angles(r.rotary), a{0, 0};
   for (size_t i = 0; i < a.size(); ++i) a[i] = a0[i] + t * (a1[i] - a0[i]);
-  return part_point(r, r.start + t * (r.end - r.start), a);
+  return part_point(r, r.start + t * (r.end - r.start), a, s.shift);
 }
 
 void ProgramReader::account(const gcode::Segment& s) {
@@ -188,7 +190,7 @@ void ProgramReader::take_events() {
   r.events.clear();
 }
 
-bool ProgramReader::next(TipSegment& out) {
+bool ProgramReader::read_next(TipSegment& out) {
   gcode::Result& r = reader_.result();
   while (next_segment_ >= r.segments.size()) {
     r.segments.clear();
@@ -216,14 +218,17 @@ bool ProgramReader::next(TipSegment& out) {
                                       "register's zero happens to be"});
   }
   out.raw = s;
+  out.shift = Vec3::Zero();
+  if (use_offsets_)
+    if (auto it = offsets_.find(s.work_offset); it != offsets_.end()) out.shift = it->second;
   const kin::Angles a0 = angles(s.rotary_start), a1 = angles(s.rotary);
-  out.start = part_point(s, s.start, a0);
-  out.end = part_point(s, s.end, a1);
+  out.start = part_point(s, s.start, a0, out.shift);
+  out.end = part_point(s, s.end, a1, out.shift);
   out.rotates = a0 != a1;
   out.axis = setup_turn(s.work_offset) *
              (m_.kinematics.has_rotaries() ? kin::tool_axis_in_part(m_.kinematics, a1) : Vec3::UnitZ());
   if (s.kind == gcode::Segment::Kind::Arc) {
-    out.center = part_point(s, s.center, a1);
+    out.center = part_point(s, s.center, a1, out.shift);
     out.normal = s.tcp ? s.normal
                  : !m_.kinematics.has_rotaries()
                      ? Vec3(setup_turn(s.work_offset) * s.normal)
@@ -233,10 +238,81 @@ bool ProgramReader::next(TipSegment& out) {
   return true;
 }
 
-std::vector<gcode::Problem> ProgramReader::take_problems() {
+std::vector<gcode::Problem> ProgramReader::take_reader_problems() {
   std::vector<gcode::Problem> p;
   p.swap(reader_.result().problems);
   return p;
+}
+
+std::vector<gcode::Problem> ProgramReader::take_problems() {
+  if (!ahead_) return take_reader_problems();
+  std::vector<gcode::Problem> p;
+  p.swap(problems_);
+  return p;
+}
+
+bool ProgramReader::next(TipSegment& out) {
+  if (!ahead_) return read_next(out);
+  if (ended_) return false;
+  if (current_at_ == current_.size()) {
+    std::unique_lock<std::mutex> g(lock_);
+    changed_.wait(g, [&] { return !batches_.empty(); });
+    current_ = std::move(batches_.front());
+    batches_.pop_front();
+    current_at_ = 0;
+    g.unlock();
+    changed_.notify_all();
+  }
+  Item& it = current_[current_at_++];
+  for (gcode::Problem& p : it.problems) problems_.push_back(std::move(p));
+  if (it.end) {
+    ended_ = true;
+    return false;
+  }
+  out = std::move(it.segment);
+  return true;
+}
+
+void ProgramReader::read_ahead() {
+  if (ahead_) return;
+  ahead_ = true;
+  thread_ = std::thread([this] { ahead(); });
+}
+
+void ProgramReader::ahead() {
+  pthread_setname_np(pthread_self(), "clpc-readback");
+  for (bool end = false; !end;) {
+    std::vector<Item> batch;
+    batch.reserve(kBatch);
+    while (batch.size() < kBatch && !end) {
+      Item it;
+      end = !read_next(it.segment);
+      it.end = end;
+      it.problems = take_reader_problems();
+      batch.push_back(std::move(it));
+    }
+    std::unique_lock<std::mutex> g(lock_);
+    changed_.wait(g, [&] { return stop_ || batches_.size() < kBatches; });
+    if (stop_) return;
+    batches_.push_back(std::move(batch));
+    g.unlock();
+    changed_.notify_all();
+  }
+}
+
+void ProgramReader::stop_ahead() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> g(lock_);
+    stop_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+const ProgramTotals& ProgramReader::totals() {
+  stop_ahead();
+  return totals_;
 }
 
 }  // namespace clpc

@@ -5,7 +5,12 @@
 // is bounded by the longest line, whatever the program's size.
 #pragma once
 
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <vector>
 #include <map>
 #include <set>
 #include <ostream>
@@ -27,6 +32,7 @@ struct TipSegment {
   ir::Vec3 axis;            // tool axis at the end, part frame
   ir::Vec3 center, normal;  // arcs, part frame
   bool rotates = false;     // the rotaries turn during it
+  ir::Vec3 shift = ir::Vec3::Zero();  // the work offset in force when it was read (the offset table)
   int index = 0;            // 0, 1, ... in program order
 };
 
@@ -58,19 +64,28 @@ class ProgramReader {
   // Reads the program from `c` as its writer hands it over (a compile's output, read back
   // beside the compile); the end of the program is the channel's close.
   void open(TextChannel& c) { channel_ = &c; }
+  // From now on the program is read ahead on a thread of its own, segments handed over in
+  // batches through a bounded queue (the comparison, the longest stage of a certificate,
+  // then does only its own work). next(), take_problems() and totals() give the same as
+  // without; totals() waits for the thread.
+  void read_ahead();
   // The next segment, false at the end of the program.
   bool next(TipSegment& s);
   // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
   ir::Vec3 tip_at(const TipSegment& s, double t) const;
-  const ProgramTotals& totals() const { return totals_; }
+  const ProgramTotals& totals();
   // Problems the reader found (a control would alarm, or the reader cannot follow), drained.
   std::vector<gcode::Problem> take_problems();
 
  private:
+  bool read_next(TipSegment& s);
+  std::vector<gcode::Problem> take_reader_problems();
+  void ahead();
+  void stop_ahead();
   bool read_line(std::string& line);
   void take_events();
   void account(const gcode::Segment& s);
-  ir::Vec3 part_point(const gcode::Segment& s, const ir::Vec3& p, const kin::Angles& a) const;
+  ir::Vec3 part_point(const gcode::Segment& s, const ir::Vec3& p, const kin::Angles& a, const ir::Vec3& shift) const;
   kin::Angles angles(const std::array<double, 3>& abc) const;
 
   const Machine& m_;
@@ -95,6 +110,23 @@ class ProgramReader {
   std::set<int> known_registers_, reported_registers_;
   ProgramTotals totals_;
   MotionTimer timer_;
+
+  // Reading ahead: batches of segments, each with the problems found up to it.
+  struct Item {
+    TipSegment segment;
+    std::vector<gcode::Problem> problems;
+    bool end = false;
+  };
+  static constexpr size_t kBatch = 256, kBatches = 8;
+  bool ahead_ = false, stop_ = false;
+  std::thread thread_;
+  std::mutex lock_;
+  std::condition_variable changed_;
+  std::deque<std::vector<Item>> batches_;
+  std::vector<Item> current_;
+  size_t current_at_ = 0;
+  bool ended_ = false;
+  std::vector<gcode::Problem> problems_;  // of the segments handed over so far
 };
 
 }  // namespace clpc
