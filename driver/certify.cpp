@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <pthread.h>
+
 #include "driver/pipeline.h"
 #include "readback/program_reader.h"
 
@@ -102,6 +104,7 @@ std::unique_ptr<ProgramSink> CertifyBeside::wrap(std::unique_ptr<ProgramSink> si
 void CertifyBeside::start(const ir::ProgramInfo& info) {
   info_ = info;
   thread_ = std::thread([this] {
+    pthread_setname_np(pthread_self(), "clpc-certify");
     ProgramReader rd(m_, info_);
     rd.open(channel_);
     try {

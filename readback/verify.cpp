@@ -415,14 +415,14 @@ class Comparison : public ProgramSink {
   // another tool's length says). Reported once per tool change.
   void tool_ok(const TipSegment& s) {
     if (want_tool_ <= 0 || tool_reported_ || s.raw.tool <= 0) return;
-    const std::string cl = " (the CL loads tool " + std::to_string(want_tool_) + " at line " + std::to_string(want_tool_loc_.line) + ")";
+    auto cl = [&] { return " (the CL loads tool " + std::to_string(want_tool_) + " at line " + std::to_string(want_tool_loc_.line) + ")"; };
     if (s.raw.tool != want_tool_) {
-      fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl, 0);
+      fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl(), 0);
       tool_reported_ = true;
     } else if (s.raw.length_register > 0 && s.raw.length_register != want_h_) {
       fail(loc_, s.raw.line,
            "the tool length offset in force is register " + std::to_string(s.raw.length_register) + ", tool " +
-               std::to_string(want_tool_) + "'s is " + std::to_string(want_h_) + cl,
+               std::to_string(want_tool_) + "'s is " + std::to_string(want_h_) + cl(),
            0);
       tool_reported_ = true;
     }
