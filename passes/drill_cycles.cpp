@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "passes/cycle_expand.h"
+#include "support/text.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -121,7 +122,9 @@ class DrillCycles : public Pass {
         first.push_back({in.loc, up});
         out.insert(out.begin() + std::ptrdiff_t(std::min(cycle_on_at_, out.size())), first.begin(), first.end());
         initial = active_->retract;
+        pos_ = up.point;  // where the cycle now moves across from
       }
+      check_crossing_level(h, in.loc, out, ctx);
       first_hole_ = false;
       h.initial = active_->retract >= 0 ? active_->retract : std::max(initial, active_->clearance);
       if (expand_) {
@@ -152,6 +155,38 @@ class DrillCycles : public Pass {
   bool groove_open_ = false;  // a GrooveOn whose CYCLE/OFF has not come yet
   bool returned_ = false;     // the tool is where the last hole's cycle returned it
 
+  // A canned cycle moves across to each hole at the level the tool is at, then down to the R
+  // plane: a tool below that plane, and not already over the hole, would cross below the
+  // level the CAM system chose as clear of this hole (perhaps through the part; fuzzing found
+  // a cycle starting 10 mm below its hole's top). The CL must retract first: refused here.
+  // A tool already over the first hole, below its R plane (some CAM systems go to the hole's
+  // top before the CYCLE), first rises to the R plane on the spot, as the control would: the
+  // level G98 returns to is then the R plane, not one below it.
+  void check_crossing_level(const ir::Hole& h, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
+    if (!have_pos_) return;
+    ir::Vec3 d = pos_ - h.point;
+    double level = d.dot(h.axis);
+    double across = (d - h.axis * level).norm();
+    double tiny = 1e-6 / ir::mm_per_unit(ctx.info.units);
+    if (level >= active_->clearance - tiny) return;
+    if (across <= tiny) {
+      if (!first_hole_) return;
+      ir::Move up;
+      up.kind = ir::MoveKind::Rapid;
+      up.axis = h.axis;
+      up.point = pos_ + h.axis * (active_->clearance - level);
+      out.insert(out.begin() + std::ptrdiff_t(std::min(cycle_on_at_, out.size())), ir::Instr{loc, up});
+      pos_ = up.point;
+      return;
+    }
+    const char* unit = ctx.info.units == ir::Units::Inch ? " in" : " mm";
+    auto len = [&](double v) { return num_text(std::round(v * 1e4) / 1e4) + unit; };
+    ctx.diags.error(loc, "the tool is " + len(active_->clearance - level) + " below this hole's R plane (CLEAR " +
+                             len(active_->clearance) +
+                             " above the hole) when the cycle moves across to it: the canned cycle would cross "
+                             "at that level; retract above the R plane first (a GOTO, or RTRCTO)");
+  }
+
   void close(std::vector<ir::Instr>& out, SourceLoc loc, bool implicit, PassContext& ctx) {
     if (!expand_) out.push_back({loc, ir::CycleOff{}});
     active_.reset();
@@ -179,10 +214,12 @@ const PassInfo& drill_cycles_pass() {
       .summary = "turn the GOTOs of a CYCLE into canned-cycle holes, or moves where the machine lacks the cycle",
       .expects = "CYCLE records lowered to cycle-on / moves / cycle-off",
       .guarantees = "every move inside a cycle becomes a hole, with the level the tool started the cycle at (for "
-                    "G98 returns; with RTRCTO the tool first goes to that level), or, where the machine has no "
+                    "G98 returns; with RTRCTO the tool first goes to that level; a tool over the first hole below its R "
+                    "plane first rises to it), or, where the machine has no "
                     "code for the cycle or the pecks vary (2NDPECK), the plain moves the cycle makes; every cycle "
                     "ends (a warning and an implicit cancel at the end of an operation without CYCLE/OFF); "
-                    "tapping and oriented boring cannot be written as moves: an error",
+                    "tapping and oriented boring cannot be written as moves: an error; so is a tool below a hole's R plane "
+                    "and beside the hole, where the cycle would cross at that level",
       .settings = "cycles.return, cycles.tap_feed, cycles.peck_clearance, codes.cycle_*, codes.rigid_tap",
       .needs = 0,
       .provides = ir::CyclesFormed,

@@ -205,3 +205,33 @@ TEST(Cycles, AnArcAfterACycleStartsAtTheLastHole) {
                                  "no longer is (the cycle returned it): a feed move to the arc's start is added [-Wcycle]"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified "));
 }
+
+// A canned cycle crosses to each hole at the level the tool is at: a tool below the hole's R
+// plane and beside it would cross there. Found by differential fuzzing (the certificate refused
+// the program: the second cycle reached its hole's bottom at rapid): both cycles started below
+// their R planes, the first 10 mm below its hole's top. Now drill-cycles refuses each, located.
+TEST(CycleErrors, ACycleThatWouldCrossBelowTheRPlaneIsRefused) {
+  const std::string cl = "UNITS/MM\nLOADTL/4\nSPINDL/RPM,1500,CLW\nRAPID\nGOTO/0,0,-10\nFEDRAT/MMPM,20\n"
+                         "CIRCLE/-3.1739,0.0000,-4.1575,0,1,0,6.6489\nGOTO/2.7812,2.7345,-7.1147\n"
+                         "CYCLE/DRILL,DEPTH,20.5028,MMPM,98,CLEAR,1.7584\nGOTO/3.8468,73.8231,3.2646\nCYCLE/OFF\n"
+                         "CYCLE/BORE,DEPTH,1.2319,MMPM,170,CLEAR,4.0377\nGOTO/21.3642,87.3228,6.2564\nCYCLE/OFF\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":10:1: error: the tool is 12.1377 mm below this hole's R plane (CLEAR 1.7584 mm "
+                                 "above the hole) when the cycle moves across to it: the canned cycle would cross at "
+                                 "that level; retract above the R plane first (a GOTO, or RTRCTO)"));
+  EXPECT_THAT(c.diags, HasSubstr(":13:1: error: the tool is 5.2711 mm below this hole's R plane (CLEAR 4.0377 mm"));
+}
+
+// A tool already over the first hole, below its R plane (the CAM system went to the hole's top
+// before the CYCLE), rises to the R plane on the spot first: G98 then returns there, so the
+// cycle crosses to the next hole at the R plane, not at the first hole's top.
+TEST(Cycles, AToolOverTheFirstHoleBelowItsRPlaneRisesToItFirst) {
+  const std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,10,0\n"
+                         "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n";
+  CompileOptions o;
+  o.certify = true;
+  Compiled c = compile_text(cl, machine("fanuc-mill"), o);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z0.\nN70 Z2.\nN80 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN90 X30.\nN100 G80\n"));
+}
