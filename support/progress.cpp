@@ -19,12 +19,17 @@ Progress::~Progress() {
 void Progress::phase(const char* what) {
   std::lock_guard<std::mutex> g(lock_);
   phase_ = what;
+  done_ = 0;
   start_ = std::chrono::steady_clock::now();
   draw(0, true);
 }
 
 void Progress::update(uint64_t done) {
   std::lock_guard<std::mutex> g(lock_);
+  // Two readers may report in one phase (the compile and the certificate beside it, each at
+  // its own place in the input): the bar shows the one ahead, and never steps back.
+  if (done <= done_) return;
+  done_ = done;
   draw(done, false);
 }
 

@@ -20,7 +20,7 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void phase(const char* what);  // "pre-scan", "compile", "verify": each runs over the input
-  void update(uint64_t done);    // bytes of the input read in this phase
+  void update(uint64_t done);    // bytes of the input read in this phase (the most reported counts)
   void clear();                  // before other text goes to standard error
   bool active() const { return active_; }
 
@@ -30,6 +30,7 @@ class Progress {
   uint64_t total_;
   bool active_;
   const char* phase_ = "";
+  uint64_t done_ = 0;  // the furthest point reported in this phase
   std::chrono::steady_clock::time_point start_, last_;
   std::mutex lock_;  // the front end's thread updates, the other clears for diagnostics
 };
