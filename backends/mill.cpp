@@ -281,6 +281,38 @@ void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
       after_template(t);
       break;
     }
+    case ir::ModeKind::PlaneOn: {
+      // The plane about the part zero, then (where the control turns the rotaries to it) the
+      // orientation block.
+      // The plane is set in the work offset in force: that first, in a block of its own (a
+      // control may take G68.2 only alone).
+      e_.begin(loc);
+      work_offset_code();
+      e_.end();
+      e_.begin(loc);
+      e_.code(k.plane_on, TemplateVars()
+                              .with(Var::X, 0)
+                              .with(Var::Y, 0)
+                              .with(Var::Z, 0)
+                              .with(Var::I, m.angles.x())
+                              .with(Var::J, m.angles.y())
+                              .with(Var::K, m.angles.z()));
+      e_.end();
+      after_template(k.plane_on);
+      if (!k.plane_orient.empty()) {
+        e_.begin(loc);
+        e_.code(k.plane_orient);
+        e_.end();
+        after_template(k.plane_orient);
+      }
+      break;
+    }
+    case ir::ModeKind::PlaneOff:
+      e_.begin(loc);
+      e_.code(k.plane_off);
+      e_.end();
+      after_template(k.plane_off);
+      break;
   }
 }
 

@@ -271,9 +271,12 @@ struct RotaryPosition {
 };
 
 // Switches of the control's modes around the moves that need them.
-enum class ModeKind : uint8_t { TcpOn, TcpOff, DwoOn, DwoOff };
+// PlaneOn sets a tilted working plane about the part zero: `angles` are its Euler angles
+// (degrees, in the machine's kinematics.plane_euler order); X Y Z after it are in that plane.
+enum class ModeKind : uint8_t { TcpOn, TcpOff, DwoOn, DwoOff, PlaneOn, PlaneOff };
 struct MachineMode {
   ModeKind kind = ModeKind::TcpOn;
+  Vec3 angles = Vec3::Zero();
 };
 
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,

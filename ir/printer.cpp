@@ -44,8 +44,9 @@ struct Printer {
     o << "rotary-position (" << num_text(r.rotary[0]) << ", " << num_text(r.rotary[1]) << ")" << (r.clamp ? " clamp" : "");
   }
   void operator()(const MachineMode& m) {
-    static const char* names[] = {"tcp-on", "tcp-off", "dwo-on", "dwo-off"};
+    static const char* names[] = {"tcp-on", "tcp-off", "dwo-on", "dwo-off", "plane-on", "plane-off"};
     o << names[int(m.kind)];
+    if (m.kind == ModeKind::PlaneOn) o << " angles " << vec(m.angles);
   }
   void operator()(const Arc& a) {
     o << "arc " << dir_name(a.dir) << " to " << vec(a.end) << " center " << vec(a.center) << " axis " << vec(a.axis)

@@ -14,6 +14,12 @@ std::string_view var_name(Var v) {
     case Var::Number: return "number";
     case Var::Level: return "level";
     case Var::Tolerance: return "tolerance";
+    case Var::X: return "x";
+    case Var::Y: return "y";
+    case Var::Z: return "z";
+    case Var::I: return "i";
+    case Var::J: return "j";
+    case Var::K: return "k";
     case Var::Count: break;
   }
   return "?";

@@ -12,7 +12,11 @@
 namespace clpc {
 
 // The values a template may use. Which ones each code may use is checked by the loader.
-enum class Var : uint8_t { Tool, Offset, Register, Seconds, Milliseconds, Speed, Max, Number, Level, Tolerance, Count };
+enum class Var : uint8_t {
+  Tool, Offset, Register, Seconds, Milliseconds, Speed, Max, Number, Level, Tolerance,
+  X, Y, Z, I, J, K,  // a tilted plane: origin and Euler angles
+  Count
+};
 std::string_view var_name(Var v);
 
 struct TemplateVars {

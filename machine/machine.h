@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "machine/code_template.h"
+#include "machine/tilted_plane.h"
 #include "ir/ir.h"
 
 namespace clpc {
@@ -98,7 +99,7 @@ struct LinearLimits {
 };
 
 enum class Simultaneous : uint8_t { Tcp, Transform };  // 5-axis moves: TCPC, or clpc transforms
-enum class Indexed : uint8_t { Transform, Dwo, Tcp };    // 3+2: transform, Haas G254, or TCPC
+enum class Indexed : uint8_t { Transform, Dwo, Tcp, Plane };  // 3+2: transform, Haas G254, TCPC, tilted plane (G68.2)
 
 // How fast the axes may go and speed up, for cycle times a shop can trust (verify's dynamic
 // estimate, readback/motion_time.h). Zero: unknown (no dynamic estimate).
@@ -114,6 +115,7 @@ struct KinematicsSettings {
   std::vector<RotaryAxis> rotaries;   // from the machine base outwards (table and head axes)
   Simultaneous simultaneous = Simultaneous::Transform;
   Indexed indexed = Indexed::Transform;
+  EulerOrder plane_euler = EulerOrder::Zxz;  // indexed = "plane": the order of codes.plane_on's angles
   bool inverse_time = false;          // G93 for moves that turn a rotary axis
   double max_inverse_time = 0;        // cap on F in G93 (1/min); 0: none
   bool retract_on_limit = false;      // retract, rotate and re-engage where limits force a jump
@@ -166,6 +168,10 @@ struct Codes {
   CodeTemplate groove_face, groove_radial;  // lathe: G74, G75 (two-block form)
   CodeTemplate tcp_on, tcp_off;              // tool centre point control: G00 G234 H{offset} / G49
   CodeTemplate dwo_on, dwo_off;              // dynamic work offset (Haas G254 / G255)
+  // Tilted working plane (indexed = "plane"): "G68.2 X{x} Y{y} Z{z} I{i} J{j} K{k}" (origin,
+  // Euler angles), then plane_orient where the control turns the rotaries to it ("G53.1"),
+  // cancelled by plane_off ("G69").
+  CodeTemplate plane_on, plane_orient, plane_off;
   CodeTemplate smoothing_on, smoothing_off;  // Haas "G187 P{level} E{tolerance}" / "G187"; Fanuc "G05.1 Q1" / "G05.1 Q0"
 };
 

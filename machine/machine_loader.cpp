@@ -446,6 +446,12 @@ void check_job_options(Reader& p, const Machine& m) {
 
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
+  if (auto k = r.sub("kinematics"); k && m.kinematics.indexed == Indexed::Plane) {
+    if (const toml::node* n = k->find("indexed"); n && (m.codes.plane_on.empty() || m.codes.plane_off.empty()))
+      k->error(*n, "indexed",
+               "\"plane\" needs codes.plane_on and codes.plane_off (say, \"G68.2 X{x} Y{y} Z{z} I{i} J{j} K{k}\" and "
+               "\"G69\")");
+  }
   auto p = r.sub("program");
   if (!p) return;
   if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())
@@ -676,6 +682,8 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     if (sim >= 0) k.simultaneous = Simultaneous(sim);
     int ind = s->choice("indexed");
     if (ind >= 0) k.indexed = Indexed(ind);
+    int euler = s->choice("plane_euler");
+    if (euler >= 0) k.plane_euler = EulerOrder(euler);
     s->boolean("inverse_time", k.inverse_time);
     s->number("max_inverse_time", k.max_inverse_time);
     int lim = s->choice("on_limit");

@@ -233,8 +233,10 @@ std::vector<KeySpec> build() {
   const std::string_view k = "kinematics";
   choice(k, "simultaneous", "tcp|transform", "moves whose tool axis changes: TCPC or transformed",
          [](const Machine& m, size_t) { return pick("tcp|transform", int(m.kinematics.simultaneous)); });
-  choice(k, "indexed", "transform|dwo|tcp", "3+2 operations: transformed, dynamic work offset or TCPC",
-         [](const Machine& m, size_t) { return pick("transform|dwo|tcp", int(m.kinematics.indexed)); });
+  choice(k, "indexed", "transform|dwo|tcp|plane", "3+2 operations: transformed, dynamic work offset, TCPC or tilted plane",
+         [](const Machine& m, size_t) { return pick("transform|dwo|tcp|plane", int(m.kinematics.indexed)); });
+  choice(k, "plane_euler", "zxz|xyz", "indexed = \"plane\": the order of codes.plane_on's angles",
+         [](const Machine& m, size_t) { return pick("zxz|xyz", int(m.kinematics.plane_euler)); });
   key(k, "inverse_time", K::Bool, "G93 for feed moves that turn a rotary", [](const Machine& m, size_t) { return b(m.kinematics.inverse_time); });
   ranged(k, "max_inverse_time", K::Number, 0, 1e9, "cap on F in G93 (0: none)", [](const Machine& m, size_t) { return n(m.kinematics.max_inverse_time); });
   choice(k, "on_limit", "error|retract", "where only a jump can follow the path",
@@ -327,6 +329,8 @@ std::vector<KeySpec> build() {
       {"groove_face", &Codes::groove_face, none}, {"groove_radial", &Codes::groove_radial, none},
       {"tcp_on", &Codes::tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &Codes::tcp_off, none},
       {"dwo_on", &Codes::dwo_on, none}, {"dwo_off", &Codes::dwo_off, none},
+      {"plane_on", &Codes::plane_on, bit(Var::X) | bit(Var::Y) | bit(Var::Z) | bit(Var::I) | bit(Var::J) | bit(Var::K)},
+      {"plane_orient", &Codes::plane_orient, none}, {"plane_off", &Codes::plane_off, none},
       {"smoothing_on", &Codes::smoothing_on, bit(Var::Level) | bit(Var::Tolerance)},
       {"smoothing_off", &Codes::smoothing_off, none},
   };

@@ -12,7 +12,8 @@
 // Operations with one tool axis are indexed (3+2): the rotaries are positioned once and
 // clamped, and the points are cut 3-axis in the tilted frame: transformed through the chain
 // (indexed = "transform"), turned about the part origin for Haas dynamic work offsets
-// (indexed = "dwo", G254), or left to TCPC. Other operations are simultaneous: with TCPC the
+// (indexed = "dwo", G254), written in the control's tilted working plane (indexed = "plane",
+// G68.2 / G268), or left to TCPC. Other operations are simultaneous: with TCPC the
 // points stay in the part frame with the rotaries beside them; without, each point goes
 // through the chain, and moves are split where the rotation would take the tip off the CL
 // segment by more than the tolerance. Inverse-time feeds (G93) where the machine asks.
@@ -20,10 +21,12 @@
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
 // is kinematics_pass() at the end of this file.
+#include <cctype>
 #include <cmath>
 #include <optional>
 
 #include "machine/kinematics.h"
+#include "machine/tilted_plane.h"
 #include "passes/arc_edit.h"
 #include "passes/cycle_expand.h"
 #include "support/text.h"
@@ -48,6 +51,15 @@ class Kinematics : public Pass {
   void begin(PassContext& ctx) override {
     k_ = ctx.kinematics();
     singular_ = find_singular_direction();
+    // The address each angle of codes.plane_on is written with (I J K in "I{i} J{j} K{k}").
+    for (const CodeTemplate::Word& w : ctx.machine.codes.plane_on.words) {
+      if (w.size() < 2 || w[0].var >= 0 || w[0].literal.empty()) continue;
+      const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+      if (letter < 'A' || letter > 'Z') continue;
+      for (const CodeTemplate::Piece& piece : w)
+        if (piece.var >= int(Var::I) && piece.var <= int(Var::K))
+          plane_angle_step_[size_t(piece.var - int(Var::I))] = std::pow(10.0, -ctx.machine.format(letter).decimals);
+    }
   }
 
   void run(ir::Operation& op, PassContext& ctx) override {
@@ -256,10 +268,12 @@ class Kinematics : public Pass {
   Vec3 output_point(const kin::Angles& a, const Vec3& p, bool simultaneous) const {
     if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return p;
     if (!simultaneous && k_.indexed == Indexed::Dwo) return table(a) * p;  // identity at no rotation
+    if (!simultaneous && k_.indexed == Indexed::Plane) return plane_on_ ? Vec3(plane_.transpose() * p) : p;
     return kin::machine_point(k_, a, p, pivot());
   }
   Vec3 output_axis(const kin::Angles& a, const Vec3& axis, bool simultaneous) const {
     if (simultaneous ? k_.simultaneous == Simultaneous::Tcp : k_.indexed == Indexed::Tcp) return axis;
+    if (!simultaneous && k_.indexed == Indexed::Plane) return plane_on_ ? Vec3(plane_.transpose() * axis) : axis;
     return table(a) * axis;
   }
   bool tcp(bool simultaneous) const {
@@ -271,8 +285,23 @@ class Kinematics : public Pass {
   void modes_off(std::vector<ir::Instr>& out, SourceLoc loc) {
     if (tcp_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
     if (dwo_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
-    tcp_on_ = dwo_on_ = false;
+    if (plane_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::PlaneOff}});
+    tcp_on_ = dwo_on_ = plane_on_ = false;
     indexed_at_.reset();
+  }
+
+  // A tilted working plane for indexed work at tool axis n, as the control will rebuild it from
+  // the angles written (rounded to their address's resolution: the points are written in that
+  // plane, so the tip lands where the CL says; the tool axis is off by the angles' rounding).
+  ir::MachineMode plane_for(const Vec3& n) {
+    ir::MachineMode m{ir::ModeKind::PlaneOn};
+    m.angles = plane::angles(plane::least_tilt(n), k_.plane_euler);
+    for (int i = 0; i < 3; ++i) {
+      double step = plane_angle_step_[size_t(i)];
+      m.angles[i] = std::round(m.angles[i] / step) * step;
+    }
+    plane_ = plane::rotation(m.angles, k_.plane_euler);
+    return m;
   }
 
   // Before a move in the given mode: the right control modes, and for indexed work the
@@ -289,18 +318,29 @@ class Kinematics : public Pass {
         // retracted first (the backend's safe retract before a clamped RotaryPosition).
         // Rotaries move only with the modes that forbid it off.
         if (dwo_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
+        if (plane_on_) out.push_back({loc, ir::MachineMode{ir::ModeKind::PlaneOff}});
         if (tcp_on_ && !want_tcp) out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
-        dwo_on_ = false;
+        dwo_on_ = plane_on_ = false;
         tcp_on_ = tcp_on_ && want_tcp;
         set_current(c.a, &axis);
         out.push_back({loc, ir::RotaryPosition{c.a, true}});
         indexed_at_ = axis;
+        // The plane wherever the rotaries are turned (at +Z with a table turned about it too:
+        // the plane is the part's, and the control follows the table).
+        if (k_.indexed == Indexed::Plane && (c.a[0] != 0 || c.a[1] != 0)) {
+          out.push_back({loc, plane_for(axis)});
+          plane_on_ = true;
+        }
       }
     } else {
       indexed_at_.reset();
       if (dwo_on_) {
         out.push_back({loc, ir::MachineMode{ir::ModeKind::DwoOff}});
         dwo_on_ = false;
+      }
+      if (plane_on_) {
+        out.push_back({loc, ir::MachineMode{ir::ModeKind::PlaneOff}});
+        plane_on_ = false;
       }
     }
     if (want_tcp && !tcp_on_) {
@@ -607,7 +647,9 @@ class Kinematics : public Pass {
   bool op_mode_known_ = false, op_indexed_ = false;
   Vec3 op_axis_ = Vec3::UnitZ();
   std::optional<Vec3> indexed_at_;
-  bool tcp_on_ = false, dwo_on_ = false;
+  bool tcp_on_ = false, dwo_on_ = false, plane_on_ = false;
+  ir::Mat3 plane_ = ir::Mat3::Identity();  // the tilted plane in force (plane -> part)
+  std::array<double, 3> plane_angle_step_{1e-3, 1e-3, 1e-3};  // the resolution of its angles' addresses
   bool positioned_ = false;  // this operation was positioned by the offset table
   std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
   mutable ir::Mat3 table_ = ir::Mat3::Identity();
@@ -636,13 +678,15 @@ const PassInfo& kinematics_pass() {
       .guarantees = "on machines with rotary axes, every move and arc carries its rotary positions, within "
                     "limits, chosen for the least travel and continuity (the preferred sign first at the start "
                     "and at the singularity); operations with one tool axis are indexed: positioned once, "
-                    "clamped, cut 3-axis in the tilted frame; holes stay canned cycles only along the machine's "
-                    "Z; the TCPC / dynamic work offset modes are switched around the moves that need them and off "
+                    "clamped, cut 3-axis in the tilted frame (with indexed = \"plane\" in the control's tilted working "
+                    "plane, its angles rounded as the control will read them); holes stay canned cycles only along the machine's "
+                    "Z; the TCPC / dynamic work offset / tilted plane modes are switched around the moves that need them and off "
                     "at tool changes and the end of each operation; no solution within limits, or a jump the "
                     "limits force, is an error naming the CL record (or, with on_limit = \"retract\", a retract, "
                     "rotate and re-engage); arcs may leave the machine's planes, so arc-legalise must follow. On "
                     "three-axis machines it changes nothing",
-      .settings = "kinematics.* (axes, pivot, simultaneous, indexed, inverse_time, on_limit), arcs.tolerance",
+      .settings = "kinematics.* (axes, pivot, simultaneous, indexed, plane_euler, inverse_time, on_limit), "
+                  "codes.plane_on, arcs.tolerance",
       .needs = ir::ArcsDecided | ir::CyclesFormed | ir::OffsetsAssigned,
       .provides = ir::Kinematic,
       .breaks = ir::ArcsLegal,

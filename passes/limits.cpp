@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "machine/kinematics.h"
+#include "machine/tilted_plane.h"
 #include "support/text.h"
 #include "passes/passes.h"
 
@@ -33,6 +34,11 @@ class Limits : public Pass {
         if (m->kind == ir::ModeKind::TcpOff) tcp_ = false;
         if (m->kind == ir::ModeKind::DwoOn) dwo_ = true;
         if (m->kind == ir::ModeKind::DwoOff) dwo_ = false;
+        if (m->kind == ir::ModeKind::PlaneOn) {
+          plane_on_ = true;
+          plane_ = plane::rotation(m->angles, ctx.machine.kinematics.plane_euler);
+        }
+        if (m->kind == ir::ModeKind::PlaneOff) plane_on_ = false;
       } else if (auto* t = std::get_if<ir::ToolChange>(&in.op)) {
         const ir::ToolInfo* tool = ctx.info.tool(t->tool);
         tool_length_ = tool ? tool->length : 0;
@@ -95,7 +101,9 @@ class Limits : public Pass {
   // table (T p); the chain's table_point is affine with that same rotation as its linear part,
   // so the machine position is the given point plus the chain's offset at this position.
   ir::Vec3 machine_position(const ir::Vec3& given, double to_out) {
-    if (!k_.has_rotaries() || !(tcp_ || dwo_)) return given * to_out;
+    if (!k_.has_rotaries() || !(tcp_ || dwo_ || plane_on_)) return given * to_out;
+    // In a tilted plane the given point is the part point written in the plane.
+    if (plane_on_ && !tcp_) return kin::machine_point(k_, rot_, plane_ * given, k_.pivot + tool_length_) * to_out;
     if (dwo_) {
       // Memoised per position: indexed work keeps one for many moves.
       if (!dwo_known_ || dwo_for_ != rot_ || dwo_length_ != tool_length_) {
@@ -141,7 +149,8 @@ class Limits : public Pass {
 
   KinematicsSettings k_;
   kin::Angles rot_{0, 0};
-  bool tcp_ = false, dwo_ = false;
+  bool tcp_ = false, dwo_ = false, plane_on_ = false;
+  ir::Mat3 plane_ = ir::Mat3::Identity();  // the tilted plane in force (plane -> part)
   ir::Vec3 dwo_offset_ = ir::Vec3::Zero();
   kin::Angles dwo_for_{0, 0};
   double dwo_length_ = 0;

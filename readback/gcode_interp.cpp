@@ -7,6 +7,7 @@
 #include <map>
 
 #include "machine/format.h"
+#include "machine/tilted_plane.h"
 #include "support/decimal.h"
 #include "ir/groove_model.h"
 
@@ -162,7 +163,7 @@ class Interp {
     auto has = [&](char c) { return a.count(c) != 0; };
 
     bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
-    bool motion_word = false;
+    bool motion_word = false, plane_set = false, plane_cancel = false;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
@@ -186,6 +187,9 @@ class Interp {
       else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5))
         tcp_ = true, length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
       else if (is_g(g, 187) || is_g(g, 5.1)) {}  // smoothing (Haas), AI contour control (Fanuc): the path is the same
+      else if (is_g(g, 68.2) || is_g(g, 268)) plane_set = true;
+      else if (is_g(g, 69) || is_g(g, 269)) plane_cancel = true;
+      else if (is_g(g, 53.1)) {}  // turns the rotaries to the plane: the program positioned them already
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
       else if (is_g(g, 50) && lathe) g50 = true;  // spindle clamp (with S)
@@ -264,6 +268,10 @@ class Interp {
       offset_set(a, line);
       return;
     }
+    if (plane_set || plane_cancel) {
+      tilt(a, plane_set);
+      return;
+    }
     if (g65) {
       macro_call(a, line);
       return;
@@ -297,6 +305,12 @@ class Interp {
       }
     }
 
+    bool turns = false;
+    for (int i = 0; i < 3; ++i)
+      if (has(char('A' + i)) && !(rot_target[size_t(i)] == rotary_[size_t(i)])) turns = true;
+    if (tilted_ && turns)
+      problem(line, "a rotary axis moves in a tilted working plane (G68.2 / G268): the control refuses it; cancel the "
+                    "plane (G69 / G269) first");
     if (groove_ != 0) {
       lathe_groove(a, target, line);
       groove_ = 0;
@@ -491,6 +505,24 @@ class Interp {
     res_.events.push_back(e);
   }
 
+  // G68.2 X Y Z I J K (G268 alike): a tilted plane, its angles in the machine's order
+  // (kinematics.plane_euler); G69 / G269: none. The position the reader keeps is re-expressed
+  // in the new frame, so the next move starts where the tool is.
+  void tilt(const Words& a, bool set) {
+    Vec3 part = tilted_ ? Vec3(tilted_->origin + tilted_->rotation * pos_) : pos_;
+    if (!set) {
+      tilted_ = nullptr;
+      pos_ = part;
+      return;
+    }
+    PlaneFrame f;
+    for (int i = 0; i < 3; ++i) f.origin[i] = a.count("XYZ"[i]) ? a["XYZ"[i]] : 0.0;
+    Vec3 angles(a.count('I') ? a['I'] : 0.0, a.count('J') ? a['J'] : 0.0, a.count('K') ? a['K'] : 0.0);
+    f.rotation = plane::rotation(angles, m_.kinematics.plane_euler);
+    tilted_ = std::make_shared<const PlaneFrame>(f);
+    pos_ = tilted_->rotation.transpose() * (part - tilted_->origin);
+  }
+
   // A segment from where the tool is, with the modal state it runs in.
   Segment segment(Segment::Kind k, const Vec3& to, const std::array<double, 3>& rot, int line) const {
     Segment s;
@@ -506,6 +538,7 @@ class Interp {
     s.inverse_time = inverse_time_;
     s.tcp = tcp_;
     s.dwo = dwo_;
+    s.plane = tilted_;
     s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
     spindle_info(s);
     return s;
@@ -639,6 +672,7 @@ class Interp {
   int length_register_ = 0;
   bool rotary_unknown_reported_ = false;  // H of the G43 in force (lathe: the T word's offset)
   bool tcp_ = false, dwo_ = false;
+  std::shared_ptr<const PlaneFrame> tilted_;  // the plane in force
   int comp_ = 0;
   int cycle_ = 0;
   int groove_ = 0;

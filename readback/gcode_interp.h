@@ -19,6 +19,13 @@ namespace clpc::gcode {
 
 using ir::Vec3;
 
+// A tilted working plane (G68.2, G268): X Y Z written in it are origin + rotation * (X Y Z) in
+// the work offset's frame.
+struct PlaneFrame {
+  Vec3 origin = Vec3::Zero();
+  ir::Mat3 rotation = ir::Mat3::Identity();
+};
+
 struct Segment {
   enum class Kind : uint8_t { Rapid, Feed, Arc };
   Kind kind = Kind::Feed;
@@ -41,6 +48,9 @@ struct Segment {
   bool from_cycle = false;    // expanded from a canned cycle
   bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame
   bool dwo = false;           // dynamic work offset on: X Y Z turned with the table about the part zero
+  // A tilted working plane in force (G68.2 / G268): X Y Z are in it. Shared: segments outlive
+  // the reader that read them (a null one costs nothing to copy).
+  std::shared_ptr<const PlaneFrame> plane;
 };
 
 struct Event {

@@ -102,6 +102,8 @@ kin::Angles ProgramReader::angles(const std::array<double, 3>& abc) const {
 // table about the part zero; otherwise they are machine axes, in the work offset's frame.
 Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin::Angles& a, const Vec3& shift) const {
   const KinematicsSettings& k = m_.kinematics;
+  // In a tilted plane the control puts the tip at the plane's point, as with TCPC.
+  if (s.plane) return s.plane->origin + s.plane->rotation * p;
   if (!k.has_rotaries() && !use_offsets_) return p;
   if (s.tcp) return p;
   if (s.dwo) return kin::table_rotation(k, a).transpose() * p;
@@ -229,7 +231,8 @@ bool ProgramReader::read_next(TipSegment& out) {
              (m_.kinematics.has_rotaries() ? kin::tool_axis_in_part(m_.kinematics, a1) : Vec3::UnitZ());
   if (s.kind == gcode::Segment::Kind::Arc) {
     out.center = part_point(s, s.center, a1, out.shift);
-    out.normal = s.tcp ? s.normal
+    out.normal = s.plane ? Vec3(s.plane->rotation * s.normal)
+                 : s.tcp ? s.normal
                  : !m_.kinematics.has_rotaries()
                      ? Vec3(setup_turn(s.work_offset) * s.normal)
                      : Vec3(setup_turn(s.work_offset) * kin::table_rotation(m_.kinematics, a1).transpose() * s.normal);
