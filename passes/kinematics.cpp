@@ -30,6 +30,7 @@
 #include "passes/arc_edit.h"
 #include "passes/cycle_expand.h"
 #include "support/text.h"
+#include "support/worst_point.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -503,15 +504,14 @@ class Kinematics : public Pass {
                  const kin::Angles& t1, SourceLoc loc, std::vector<ir::Instr>& out, int depth) {
     if (depth > 12) return;
     Vec3 m0 = kin::machine_point(k_, t0, p0, pivot()), m1 = kin::machine_point(k_, t1, p1, pivot());
-    double worst = 0;
-    for (double t : {0.25, 0.5, 0.75}) {
+    const Vec3 seg = p1 - p0;
+    const double len2 = seg.squaredNorm();
+    double worst = worst_point([&](double t) {
       kin::Angles ta{t0[0] + t * (t1[0] - t0[0]), t0[1] + t * (t1[1] - t0[1])};
       Vec3 tip = kin::part_tip(k_, ta, m0 + t * (m1 - m0), pivot());
-      Vec3 seg = p1 - p0;
-      double len2 = seg.squaredNorm();
       double s = len2 > 0 ? std::clamp((tip - p0).dot(seg) / len2, 0.0, 1.0) : 0;
-      worst = std::max(worst, (p0 + s * seg - tip).norm());
-    }
+      return (p0 + s * seg - tip).norm();
+    });
     if (worst <= ctx_->tolerance()) return;
     Vec3 pm = (p0 + p1) / 2;
     Vec3 am = (ax0 + ax1).normalized();

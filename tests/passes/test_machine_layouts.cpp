@@ -1,0 +1,116 @@
+// The example five-axis machines (examples/): a head-head gantry (A/C fork head, G43.4), a
+// head-table machine (B head over a C table, no TCP: points through the chain) and an A/C
+// trunnion (G43.4, G68.2). Each compiles and certifies a generated five-axis finish and a 3+2
+// file; the exact blocks of a short program; and, where the control has no TCP, verify proves
+// each move at its worst point.
+#include <cmath>
+
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
+
+struct Example {
+  const char* name;
+  const char* file;
+};
+const Example kExamples[] = {{"fanuc-ac-plane", "examples/fanuc_ac_plane.toml"},
+                             {"gantry-ac-head", "examples/gantry_ac_head.toml"},
+                             {"head-table-bc", "examples/head_table_bc.toml"}};
+
+Machine example(const Example& e) { return machine(e.name, read_file(src(e.file))); }
+
+// A five-axis finish: 41 points along a wave, the tool tilting from 5 to 30 degrees while its
+// azimuth turns a quarter turn.
+std::string five_axis_finish() {
+  std::string cl = "TOOL PATH/SWARF,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,6000,CLW\nRAPID\nGOTO/0,0,60,0,0,1\n"
+                   "FEDRAT/MMPM,800\nMULTAX/ON\n";
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i <= 40; ++i) {
+    double t = i / 40.0, tilt = (5 + 25 * t) * pi / 180, az = 90 * t * pi / 180;
+    char b[200];
+    std::snprintf(b, sizeof b, "GOTO/%.4f,%.4f,%.4f,%.7f,%.7f,%.7f\n", 40 * t, 10 * std::sin(pi * t), 5 - 3 * t,
+                  std::sin(tilt) * std::cos(az), std::sin(tilt) * std::sin(az), std::cos(tilt));
+    cl += b;
+  }
+  return cl + "RAPID\nGOTO/40,30,60,0,0,1\nEND-OF-PATH\n";
+}
+
+// Two 3+2 operations: 30 degrees towards +X, then 45 degrees towards +Y.
+const char* kThreePlusTwo =
+    "TOOL PATH/SIDE_A,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,50,0.5,0,0.8660254\n"
+    "FEDRAT/MMPM,500\nGOTO/10,10,45,0.5,0,0.8660254\nGOTO/20,10,40,0.5,0,0.8660254\nRAPID\n"
+    "GOTO/20,10,80,0.5,0,0.8660254\nEND-OF-PATH\nTOOL PATH/SIDE_B,TOOL,T1\nRAPID\nGOTO/0,30,80,0,0.7071068,0.7071068\n"
+    "FEDRAT/MMPM,400\nGOTO/0,40,50,0,0.7071068,0.7071068\nGOTO/10,40,50,0,0.7071068,0.7071068\nRAPID\n"
+    "GOTO/10,40,90,0,0.7071068,0.7071068\nEND-OF-PATH\n";
+
+// Down vertical, then along X tilting to 30 degrees towards +X, then along Y turning the tilt
+// towards +Y.
+const char* kShortFive =
+    "TOOL PATH/SWARF,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,6000,CLW\nRAPID\nGOTO/0,0,60,0,0,1\nFEDRAT/MMPM,800\n"
+    "GOTO/0,0,5,0,0,1\nGOTO/20,0,5,0.5,0,0.8660254\nGOTO/20,20,5,0,0.5,0.8660254\nRAPID\nGOTO/20,20,60,0,0,1\n"
+    "END-OF-PATH\n";
+
+CompileOptions certified() {
+  CompileOptions o;
+  o.certify = true;
+  return o;
+}
+
+}  // namespace
+
+TEST(MachineLayouts, EveryExampleCertifiesAFiveAxisFinishAndA3Plus2File) {
+  const std::string finish = five_axis_finish();
+  for (const Example& e : kExamples) {
+    Machine m = example(e);
+    Compiled five = compile_text(finish, m, certified());
+    EXPECT_TRUE(five.ok) << e.name << "\n" << five.diags;
+    EXPECT_THAT(five.diags, HasSubstr("out.nc: 43 points, 0 arcs, 0 holes checked")) << e.name;
+    Compiled indexed = compile_text(kThreePlusTwo, m, certified());
+    EXPECT_TRUE(indexed.ok) << e.name << "\n" << indexed.diags;
+    EXPECT_THAT(indexed.diags, HasSubstr("out.nc: 8 points, 0 arcs, 0 holes checked")) << e.name;
+  }
+}
+
+// The fork head under G43.4: the tip in the part frame with the head's angles. By hand: the
+// tool along Rz(C) Rx(A) Z; (0.5, 0, 0.866) is C90 A30 (Rx(30) Z = (0, -0.5, 0.866), a
+// quarter turn about Z takes it to (0.5, 0, 0.866)); (0, 0.5, 0.866) is C180 A30.
+TEST(MachineLayouts, HeadHeadGantryUnderTcpExactBlocks) {
+  Compiled c = compile_text(kShortFive, example(kExamples[1]), certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G54 G43.4 H01\nN60 G00 X0. Y0. C0. A0.\nN70 Z60.\nN80 G94 G01 Z5. F800.\n"
+                                  "N90 X20. C90. A30.\nN100 Y20. C180.\nN110 G00 Z60. A0.\nN120 G49\n"));
+}
+
+// Without TCP the B head swings the tool about its pivot (250 mm above the gauge line): the
+// pivot's path is written, and the control, interpolating X Z B linearly, would bow the tip off
+// the CL line; the move is split until each block's worst point is within 0.006 mm. By hand:
+// tip (20, 0, 5) at B30 puts the pivot at (20 + 250 sin 30, 0, 5 + 250 cos 30 - 250) = (145,
+// 0, -28.494). Dropping the split blocks makes verify name the bow at its worst point.
+TEST(MachineLayouts, HeadTableWithoutTcpSplitsMovesAndVerifyProvesTheWorstPoint) {
+  Compiled c = compile_text(kShortFive, example(kExamples[2]), certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z60.\nN70 G94 G01 Z5. F800.\nN80 X2.358 Z4.992 B0.469\n"));
+  EXPECT_THAT(c.output, HasSubstr("N700 X142.912 Z-27.478 B29.531\nN710 X145. Z-28.494 B30.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N1030 X145. Y-20. Z-28.494 C90. B30.\nN1040 G00 X20. Z60. B0.\n"));
+
+  // The same program with the tilting move in one block.
+  std::string one = c.output;
+  size_t from = one.find("N80 "), to = one.find("N710 ");
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  one.erase(from, to - from);
+  TempDir t;
+  write_file(t.path("p.cls"), kShortFive);
+  write_file(t.path("one.nc"), one);
+  RunResult r = run_clpc("verify " + t.path("p.cls") + " --program " + t.path("one.nc") + " -t head-table-bc --machines " +
+                         src("examples/head_table_bc.toml"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.out + r.err, HasSubstr("while the rotaries turn the tool tip leaves the CL line by "));
+  EXPECT_THAT(r.out + r.err, HasSubstr(" at its worst point [G-code line "));
+}
