@@ -85,6 +85,7 @@ struct RotaryAxis {
   double direction = 1;               // +1: a positive angle turns right-handed about `axis`
   double min = -360, max = 360;       // limits (limited axes)
   Cyclic cyclic = Cyclic::No;
+  bool wind_range = false;            // a winding axis with min / max given: unwound before it passes them
   ir::Vec3 center = ir::Vec3::Zero(); // a point on the axis; program frame, output units
   double prefer = 0;                  // +1 / -1: the sign preferred when solutions tie
   double rate = 0;                    // degrees per minute (inverse-time caps; 0: unknown)

@@ -665,6 +665,10 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         if (cyc >= 0) ax.cyclic = Cyclic(cyc);
         a.number("min", ax.min);
         a.number("max", ax.max);
+        ax.wind_range = ax.cyclic == Cyclic::Wind && (a.has("min") || a.has("max"));
+        if (ax.wind_range && ax.max - ax.min < 720)
+          a.error(*(a.find("max") ? a.find("max") : a.find("min")), "max",
+                  "a winding axis needs a range of at least two turns (max - min >= 720), found " + num_text(ax.max - ax.min));
         if (ax.max <= ax.min && ax.cyclic == Cyclic::No)
           a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
         a.length3("center", ax.center);

@@ -421,6 +421,8 @@ class Kinematics : public Pass {
         emit(turn, t, true, loc, out);
       }
       a = c.a;
+      const kin::Angles turns = unwind_turns(a);
+      if ((turns[0] != 0 || turns[1] != 0) && !unwind(a, turns, loc, out)) return;
     }
     // Transform mode: split the move where the rotation takes the tip off the CL segment.
     if (simultaneous && !tcp(true) && have_prev_ && m.kind == ir::MoveKind::Feed)
@@ -534,10 +536,81 @@ class Kinematics : public Pass {
     subdivide(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
   }
 
-  // Retract along the current tool axis, turn to `a` there, come back along the new axis.
+  // Whole turns (degrees) that bring each winding axis of `a` with a range (kinematics axes'
+  // min / max) back to the middle of it, for those `a` would take past it; zeros otherwise.
+  kin::Angles unwind_turns(const kin::Angles& a) const {
+    kin::Angles turns{0, 0};
+    for (size_t i = 0; i < k_.rotaries.size() && i < turns.size(); ++i) {
+      const RotaryAxis& r = k_.rotaries[i];
+      if (!r.wind_range || (a[i] >= r.min - 1e-9 && a[i] <= r.max + 1e-9)) continue;
+      turns[i] = -360 * std::round((a[i] - (r.min + r.max) / 2) / 360);
+    }
+    return turns;
+  }
+
+  // A winding axis about to pass its range: where the tool is (the last CL point), retract
+  // along the tool axis, turn the axis back by whole turns (the tool's orientation is the same,
+  // so nothing moves but the axis), come back down to the point at feed, and go on from there
+  // with `a` unwound too. Never a turn with the tool on the part.
+  bool unwind(kin::Angles& a, const kin::Angles& turns, SourceLoc loc, std::vector<ir::Instr>& out) {
+    std::string what;
+    auto deg = [](double v) { return num_text(std::round(v * 1000) / 1000); };
+    for (size_t i = 0; i < k_.rotaries.size() && i < turns.size(); ++i)
+      if (turns[i] != 0) {
+        const RotaryAxis& r = k_.rotaries[i];
+        what += (what.empty() ? "" : "; ") + r.name + " would wind to " + r.name + deg(a[i]) + ", past its range (" +
+                deg(r.min) + " to " + deg(r.max) + ")";
+      }
+    if (!have_prev_ || !(k_.retract_distance > 0)) {
+      d_->error(loc, what + ": set kinematics.retract_distance so that clpc can retract, unwind and re-engage");
+      return false;
+    }
+    d_->warning(loc, what + ": retracting along the tool axis, unwinding and re-engaging", "unwind");
+    retract_turn_reengage({cur_[0] + turns[0], cur_[1] + turns[1]}, loc, out);
+    a = {a[0] + turns[0], a[1] + turns[1]};
+    return true;
+  }
+
+  // At the last CL point: retract along the tool axis, turn the rotaries to `turn` (the same
+  // tool axis), come back to the point (rapid to the retract point, then down at feed). The cut
+  // goes on from that point, so no piece of the CL path is left out.
+  void retract_turn_reengage(const kin::Angles& turn, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const Vec3 at = prev_tip_, axis = prev_axis_;
+    ir::Move up;
+    up.point = at + axis * k_.retract_distance;
+    up.axis = axis;
+    up.kind = ir::MoveKind::Rapid;
+    emit(up, cur_, true, loc, out);
+    if (tcp_on_) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
+      tcp_on_ = false;
+    }
+    set_current(turn, &axis);
+    out.push_back({loc, ir::RotaryPosition{turn, false}});
+    if (tcp(true)) {
+      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOn}});
+      tcp_on_ = true;
+    }
+    emit(up, turn, true, loc, out);  // the retract point again, in the turned rotaries
+    ir::Move down;
+    down.point = at;
+    down.axis = axis;
+    down.kind = ir::MoveKind::Feed;
+    emit(down, turn, true, loc, out);
+  }
+
+  // Only a jump to another solution goes on to `to` (the continuing one leaves the limits):
+  // retract at the last CL point, turn to the other branch there, re-engage, and cut on.
+  // Where the last point has no solution on that branch within the limits, the tool re-engages
+  // at `to` instead, along its axis.
   void retract_rotate(const kin::Angles& a, const ir::Move& to, SourceLoc loc, std::vector<ir::Instr>& out) {
     if (!have_prev_) return;
     d_->warning(loc, "the rotary axes must jump here: retracting, rotating and re-engaging", "retract-rotate");
+    Choice here = kin::choose(k_, prev_axis_, &a, false);
+    if (here.found && !here.jump) {
+      retract_turn_reengage(here.a, loc, out);
+      return;
+    }
     ir::Move up;
     up.point = prev_tip_ + prev_axis_ * k_.retract_distance;
     up.axis = prev_axis_;
@@ -683,7 +756,8 @@ const PassInfo& kinematics_pass() {
                     "Z; the TCPC / dynamic work offset / tilted plane modes are switched around the moves that need them and off "
                     "at tool changes and the end of each operation; no solution within limits, or a jump the "
                     "limits force, is an error naming the CL record (or, with on_limit = \"retract\", a retract, "
-                    "rotate and re-engage); arcs may leave the machine's planes, so arc-legalise must follow. On "
+                    "rotate and re-engage at the last CL point); a winding axis with a range is unwound before it "
+                    "passes it (retract, unwind, re-engage; an error without retract_distance); arcs may leave the machine's planes, so arc-legalise must follow. On "
                     "three-axis machines it changes nothing",
       .settings = "kinematics.* (axes, pivot, simultaneous, indexed, plane_euler, inverse_time, on_limit), "
                   "codes.plane_on, arcs.tolerance",

@@ -88,7 +88,7 @@ class Limits : public Pass {
   void rotary(SourceLoc loc, PassContext& ctx) {
     for (size_t i = 0; i < k_.rotaries.size(); ++i) {
       const RotaryAxis& r = k_.rotaries[i];
-      if (r.cyclic != Cyclic::No) continue;
+      if (r.cyclic == Cyclic::Modulo || (r.cyclic == Cyclic::Wind && !r.wind_range)) continue;
       double v = rot_[i];
       if (v < r.min - 1e-6 || v > r.max + 1e-6)
         ctx.diags.error(loc, r.name + num_text(std::round(v * 1000) / 1000) + " is beyond machine '" + ctx.machine.name +

@@ -43,6 +43,7 @@ const std::vector<WarningName>& warning_names() {
       {"not-supported", "a record none of clpc's machines can act on"},
       {"rapid-arc", "RAPID before an arc, which is cut at the feed rate"},
       {"retract-rotate", "the rotaries jump: the tool retracts, they turn, it re-engages"},
+      {"unwind", "a winding rotary would pass its range: the tool retracts, it unwinds, the tool re-engages"},
       {"rotary-index", "a rotary table sent to 0 on a machine without one"},
       {"seed-macro", "the seed paper's G65 macro computing an offset for other angles than the rotaries go to"},
       {"setup", "an operation cut in a setup of its own, after an operator stop"},
