@@ -170,8 +170,15 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   e_.modal_word('Z', z);
   if (mv.has_rotary) rotary_words();
   if (!rapid) {
-    if (mv.inverse_time > 0) write_feed(mv.inverse_time, ir::FeedMode::InverseTime, loc);
-    else feed_word(loc);
+    if (mv.inverse_time > 0) {
+      write_feed(mv.inverse_time, ir::FeedMode::InverseTime, loc);
+    } else if (mv.combined_feed > 0) {
+      // This block's own F (degrees per minute); the next ordinary block writes its feed again.
+      write_feed(mv.combined_feed, ir::FeedMode::PerMinute, loc);
+      feed_written_ = false;
+    } else {
+      feed_word(loc);
+    }
   }
   e_.end();
   pos_ = mv.point;

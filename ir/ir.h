@@ -60,6 +60,8 @@ struct Move {
   bool has_rotary = false;    // set by the kinematics pass: the rotary positions to write
   std::array<double, 2> rotary{0, 0};
   double inverse_time = 0;    // set by the kinematics pass: F in G93 (1/min); 0 = the feed rate
+  double combined_feed = 0;   // set by the kinematics pass: F in degrees-per-minute mode (output units
+                              // and degrees along the move, per minute; docs/kinematics.md); 0 = the feed rate
 };
 
 // Sense of rotation about Arc::axis: Ccw is the right-hand rule (counter-clockwise seen from

@@ -118,6 +118,7 @@ struct KinematicsSettings {
   Indexed indexed = Indexed::Transform;
   EulerOrder plane_euler = EulerOrder::Zxz;  // indexed = "plane": the order of codes.plane_on's angles
   bool inverse_time = false;          // G93 for moves that turn a rotary axis
+  bool degrees_per_minute = false;    // F for such moves over X Y Z A B C together (no G93, no TCPC)
   double max_inverse_time = 0;        // cap on F in G93 (1/min); 0: none
   bool retract_on_limit = false;      // retract, rotate and re-engage where limits force a jump
   double retract_distance = 0;        // output units, along the tool axis

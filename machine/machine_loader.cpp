@@ -689,6 +689,9 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     int euler = s->choice("plane_euler");
     if (euler >= 0) k.plane_euler = EulerOrder(euler);
     s->boolean("inverse_time", k.inverse_time);
+    s->boolean("degrees_per_minute", k.degrees_per_minute);
+    if (k.inverse_time && k.degrees_per_minute)
+      s->error(*s->find("degrees_per_minute"), "degrees_per_minute", "a control feeds rotary moves one way: inverse_time or degrees_per_minute, not both");
     s->number("max_inverse_time", k.max_inverse_time);
     int lim = s->choice("on_limit");
     if (lim >= 0) k.retract_on_limit = lim == 1;

@@ -238,6 +238,8 @@ std::vector<KeySpec> build() {
   choice(k, "plane_euler", "zxz|xyz", "indexed = \"plane\": the order of codes.plane_on's angles",
          [](const Machine& m, size_t) { return pick("zxz|xyz", int(m.kinematics.plane_euler)); });
   key(k, "inverse_time", K::Bool, "G93 for feed moves that turn a rotary", [](const Machine& m, size_t) { return b(m.kinematics.inverse_time); });
+  key(k, "degrees_per_minute", K::Bool, "F of feed moves that turn a rotary over the linear and rotary axes together",
+      [](const Machine& m, size_t) { return b(m.kinematics.degrees_per_minute); });
   ranged(k, "max_inverse_time", K::Number, 0, 1e9, "cap on F in G93 (0: none)", [](const Machine& m, size_t) { return n(m.kinematics.max_inverse_time); });
   choice(k, "on_limit", "error|retract", "where only a jump can follow the path",
          [](const Machine& m, size_t) { return pick("error|retract", m.kinematics.retract_on_limit); });

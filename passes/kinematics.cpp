@@ -476,6 +476,9 @@ class Kinematics : public Pass {
     if (k_.inverse_time && simultaneous && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
         feed_.mode == ir::FeedMode::PerMinute && have_prev_)
       m.inverse_time = inverse_time(prev_tip_, tip, a);
+    if (k_.degrees_per_minute && simultaneous && !tcp(true) && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
+        feed_.mode == ir::FeedMode::PerMinute && have_prev_)
+      m.combined_feed = combined_feed(prev_tip_, tip, a);
     set_current(a, &axis);
     prev_tip_ = tip;
     prev_axis_ = axis;
@@ -497,6 +500,19 @@ class Kinematics : public Pass {
     double f = minutes > 0 ? 1 / minutes : 1e9;
     if (k_.max_inverse_time > 0) f = std::min(f, k_.max_inverse_time);
     return f;
+  }
+
+  // F in degrees-per-minute mode: the control takes F along the move's length over all its
+  // axes at once, sqrt(dX^2 + dY^2 + dZ^2 + dA^2 + dB^2 + dC^2) (output units and degrees), so
+  // that the move takes as long as the CL feed along the tip's path says: F = that length /
+  // (tip length / CL feed).
+  double combined_feed(const Vec3& from, const Vec3& to, const kin::Angles& a) const {
+    const double out_per_prog = 1 / ctx_->from_output();
+    const double minutes = (to - from).norm() / feed_.value;
+    const Vec3 m0 = output_point(cur_, from, true) * out_per_prog, m1 = output_point(a, to, true) * out_per_prog;
+    double sq = (m1 - m0).squaredNorm();
+    for (size_t i = 0; i < k_.rotaries.size(); ++i) sq += (a[i] - cur_[i]) * (a[i] - cur_[i]);
+    return minutes > 0 ? std::sqrt(sq) / minutes : 0;
   }
 
   // Between CL points (p0, a0) and (p1, a1), without TCPC, the control interpolates machine

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -52,6 +53,26 @@ struct Segment {
   // the reader that read them (a null one costs nothing to copy).
   std::shared_ptr<const PlaneFrame> plane;
 };
+
+// A block's length over all its axes at once (output units and degrees): what a control in
+// degrees-per-minute mode takes F along (kinematics.degrees_per_minute).
+inline double combined_length(const Segment& s) {
+  double sq = (s.end - s.start).squaredNorm();
+  for (size_t i = 0; i < 3; ++i) {
+    const double d = s.rotary[i] - s.rotary_start[i];
+    if (d == d) sq += d * d;  // an axis never written (NaN) did not move
+  }
+  return std::sqrt(sq);
+}
+
+// Whether F of this block is over all its axes on a degrees-per-minute machine: a feed move,
+// without TCPC or G93, that turns a rotary.
+inline bool feeds_combined(const Segment& s) {
+  if (s.kind != Segment::Kind::Feed || s.tcp || s.inverse_time) return false;
+  for (size_t i = 0; i < 3; ++i)
+    if (s.rotary[i] != s.rotary_start[i] && s.rotary[i] == s.rotary[i] && s.rotary_start[i] == s.rotary_start[i]) return true;
+  return false;
+}
 
 struct Event {
   enum class Kind : uint8_t { ToolChange, Spindle, Coolant, Dwell, Stop, OffsetSet, CycleStart };

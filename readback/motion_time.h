@@ -21,7 +21,9 @@ namespace clpc {
 
 class MotionTimer {
  public:
-  explicit MotionTimer(const MotionSettings& m) : m_(m) {}
+  // `degrees_per_minute`: F of a feed that turns a rotary is over all the axes at once
+  // (kinematics.degrees_per_minute).
+  explicit MotionTimer(const MotionSettings& m, bool degrees_per_minute = false) : m_(m), dpm_(degrees_per_minute) {}
   bool known() const { return m_.known(); }
   // The next segment of the program, in order (machine axes, output units).
   void add(const gcode::Segment& s);
@@ -43,6 +45,7 @@ class MotionTimer {
   static double trapezoid(double length, double v0, double v1, double v_max, double a);
 
   MotionSettings m_;
+  bool dpm_ = false;
   std::deque<Block> window_;
   double entry_ = 0;  // the speed the first block of the window starts with (fixed)
   double seconds_ = 0;

@@ -346,6 +346,18 @@ class Comparison : public ProgramSink {
     if (s.raw.kind == gcode::Segment::Kind::Rapid || s.raw.inverse_time || !cl || cl->mode == ir::FeedMode::InverseTime) return;
     const bool per_rev = cl->mode == ir::FeedMode::PerRev;
     double want = cl->value * k_;
+    if (m_.kinematics.degrees_per_minute && gcode::feeds_combined(s.raw)) {
+      // Degrees per minute: F over all the axes, for the tip's own length at the CL feed.
+      const double tip = (s.end - s.start).norm();
+      if (!(tip > 0)) return;
+      want *= gcode::combined_length(s.raw) / tip;
+      if (std::abs(s.raw.feed - want) > m_.feeds.max_rounding * want + 1e-12)
+        fail(loc_, s.raw.line,
+             "the block's F is " + fixed(s.raw.feed, 4) + " (degrees per minute: over X Y Z and the rotaries); the CL's feed " +
+                 "along the tip's path makes it " + fixed(want, 4),
+             0);
+      return;
+    }
     if (!per_rev && m_.max_feed > 0 && want > m_.max_feed) want = m_.max_feed;
     const std::string unit = std::string(m_.units == ir::Units::Inch ? "in" : "mm") + (per_rev ? "/rev" : "/min");
     if (s.raw.per_rev != per_rev) {
@@ -466,7 +478,10 @@ class Comparison : public ProgramSink {
     // hole to where the cycle returned it is made by the cycle, at rapid, away from the part.)
     if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !s.raw.from_cycle)
       fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
-    if (!rapid) feed_ok(s, have_cl_feed_ ? &cl_feed_ : nullptr);
+    if (!rapid)  // every feed block on the way here: a split move's pieces each carry their own F
+      for (size_t i = 0; i <= j && i < win_.size(); ++i)
+        if (win_[i].raw.kind != gcode::Segment::Kind::Rapid && !win_[i].raw.from_cycle)
+          feed_ok(win_[i], have_cl_feed_ ? &cl_feed_ : nullptr);
     if (s.rotates && have_prev_ && finite(s.start) && !rapid) {
       // Five-axis without TCPC: the tip between the block's ends must stay on the CL line.
       const Vec3 from = prev_;

@@ -114,3 +114,34 @@ TEST(MachineLayouts, HeadTableWithoutTcpSplitsMovesAndVerifyProvesTheWorstPoint)
   EXPECT_THAT(r.out + r.err, HasSubstr("while the rotaries turn the tool tip leaves the CL line by "));
   EXPECT_THAT(r.out + r.err, HasSubstr(" at its worst point [G-code line "));
 }
+
+// Degrees per minute (no G93, no TCPC): F over all the block's axes at once, so the block
+// takes the tip's time at the CL feed. By hand for N80: the tip goes 20/64 mm (the tilting move
+// split in 64) in 0.3125 / 800 min; the block moves X 2.358, Z -0.008, B 0.469: sqrt(5.5602 +
+// 0.0001 + 0.2200) = 2.4042 in 3.906e-4 min, F6154.1. A block that turns no rotary keeps the
+// CL's F. verify checks F this way (every block of a split move, not only the last), and refuses
+// the CL feed written instead (its 6172.0 is measured from the written, rounded coordinates).
+TEST(MachineLayouts, DegreesPerMinuteFeedIsTheCombinedLengthOverTheTipsTime) {
+  const std::string toml = read_file(src("examples/head_table_bc.toml")) +
+                           "\n[bc-dpm]\ninherits = \"head-table-bc\"\n[bc-dpm.kinematics]\ndegrees_per_minute = true\n";
+  Compiled c = compile_text(kShortFive, machine("bc-dpm", toml), certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G01 Z5. F800.\nN80 X2.358 Z4.992 B0.469 F6154.1\nN90 X4.715 Z4.967 B0.938 F6154.1\n"));
+  EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
+
+  std::string slow = c.output;
+  size_t at = slow.find("B0.469 F6154.1");
+  ASSERT_NE(at, std::string::npos);
+  slow.replace(at, 14, "B0.469 F800.");
+  TempDir t;
+  write_file(t.path("p.cls"), kShortFive);
+  write_file(t.path("bc.toml"), toml);
+  write_file(t.path("slow.nc"), slow);
+  RunResult r = run_clpc("verify " + t.path("p.cls") + " --program " + t.path("slow.nc") + " -t bc-dpm --machines " + t.path("bc.toml"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.out + r.err, HasSubstr(":9:1: error: the block's F is 800.0000 (degrees per minute: over X Y Z and the rotaries); the CL's feed along the tip's path makes it 6172.0490 [G-code line 15]"));
+
+  EXPECT_THAT(machine_errors(toml + "inverse_time = true\n", "bc-dpm"),
+              HasSubstr("error: bc-dpm.kinematics.degrees_per_minute: a control feeds rotary moves one way: inverse_time or "
+                        "degrees_per_minute, not both"));
+}
