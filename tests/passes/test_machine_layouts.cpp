@@ -145,3 +145,19 @@ TEST(MachineLayouts, DegreesPerMinuteFeedIsTheCombinedLengthOverTheTipsTime) {
               HasSubstr("error: bc-dpm.kinematics.degrees_per_minute: a control feeds rotary moves one way: inverse_time or "
                         "degrees_per_minute, not both"));
 }
+
+// With kinematics.work_zero the limits pass checks each position of the chain in machine
+// coordinates, the head's pivot included: the fork head's gauge line is 150 mm from A, so with
+// the tool horizontal at tip Z -60 over a part zero at machine Z -700 the head sits at
+// -700 - 60 - 150 = -910, past Z's -900; vertical it is at -760, at 45 degrees -803.9.
+TEST(MachineLayouts, TravelInMachineCoordinatesCountsTheHeadsPivot) {
+  const std::string toml = read_file(src("examples/gantry_ac_head.toml")) +
+                           "\n[gz]\ninherits = \"gantry-ac-head\"\n[gz.kinematics]\nwork_zero = [500.0, 500.0, -700.0]\n";
+  const std::string cl = "TOOL PATH/SIDE,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,500\nRAPID\n"
+                         "GOTO/100,100,-60,0,0,1\nMULTAX/ON\nGOTO/100,120,-60,0,-0.7071068,0.7071068\n"
+                         "GOTO/100,140,-60,0,-1,0\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("gz", toml));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":10:1: error: Z reaches -910 mm in machine coordinates, beyond the travel (-900 to 0)"));
+  EXPECT_THAT(c.diags, ::testing::Not(HasSubstr(":9:1: error")));
+}
