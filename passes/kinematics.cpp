@@ -587,26 +587,36 @@ class Kinematics : public Pass {
     return true;
   }
 
-  // At the last CL point: retract along the tool axis, turn the rotaries to `turn` (the same
-  // tool axis), come back to the point (rapid to the retract point, then down at feed). The cut
-  // goes on from that point, so no piece of the CL path is left out.
-  void retract_turn_reengage(const kin::Angles& turn, SourceLoc loc, std::vector<ir::Instr>& out) {
-    const Vec3 at = prev_tip_, axis = prev_axis_;
+  // Retract from the last CL point along its tool axis and turn the rotaries to `turn` up
+  // there, TCPC off while they turn: the tool is where the rotaries' turn cannot touch the part.
+  void retract_and_turn(const kin::Angles& turn, const Vec3* axis, SourceLoc loc, std::vector<ir::Instr>& out) {
     ir::Move up;
-    up.point = at + axis * k_.retract_distance;
-    up.axis = axis;
+    up.point = prev_tip_ + prev_axis_ * k_.retract_distance;
+    up.axis = prev_axis_;
     up.kind = ir::MoveKind::Rapid;
     emit(up, cur_, true, loc, out);
     if (tcp_on_) {
       out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
       tcp_on_ = false;
     }
-    set_current(turn, &axis);
+    set_current(turn, axis);
     out.push_back({loc, ir::RotaryPosition{turn, false}});
     if (tcp(true)) {
       out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOn}});
       tcp_on_ = true;
     }
+  }
+
+  // At the last CL point: retract along the tool axis, turn the rotaries to `turn` (the same
+  // tool axis), come back to the point (rapid to the retract point, then down at feed). The cut
+  // goes on from that point, so no piece of the CL path is left out.
+  void retract_turn_reengage(const kin::Angles& turn, SourceLoc loc, std::vector<ir::Instr>& out) {
+    const Vec3 at = prev_tip_, axis = prev_axis_;
+    retract_and_turn(turn, &axis, loc, out);
+    ir::Move up;
+    up.point = at + axis * k_.retract_distance;
+    up.axis = axis;
+    up.kind = ir::MoveKind::Rapid;
     emit(up, turn, true, loc, out);  // the retract point again, in the turned rotaries
     ir::Move down;
     down.point = at;
@@ -627,21 +637,7 @@ class Kinematics : public Pass {
       retract_turn_reengage(here.a, loc, out);
       return;
     }
-    ir::Move up;
-    up.point = prev_tip_ + prev_axis_ * k_.retract_distance;
-    up.axis = prev_axis_;
-    up.kind = ir::MoveKind::Rapid;
-    emit(up, cur_, true, loc, out);
-    if (tcp_on_) {
-      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOff}});
-      tcp_on_ = false;
-    }
-    set_current(a);
-    out.push_back({loc, ir::RotaryPosition{a, false}});
-    if (tcp(true)) {
-      out.push_back({loc, ir::MachineMode{ir::ModeKind::TcpOn}});
-      tcp_on_ = true;
-    }
+    retract_and_turn(a, nullptr, loc, out);
     ir::Move over;
     over.point = to.point + to.axis * k_.retract_distance;
     over.axis = to.axis;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "helpers.h"
+#include "three_plus_two.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -41,13 +42,6 @@ std::string five_axis_finish() {
   return cl + "RAPID\nGOTO/40,30,60,0,0,1\nEND-OF-PATH\n";
 }
 
-// Two 3+2 operations: 30 degrees towards +X, then 45 degrees towards +Y.
-const char* kThreePlusTwo =
-    "TOOL PATH/SIDE_A,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,50,0.5,0,0.8660254\n"
-    "FEDRAT/MMPM,500\nGOTO/10,10,45,0.5,0,0.8660254\nGOTO/20,10,40,0.5,0,0.8660254\nRAPID\n"
-    "GOTO/20,10,80,0.5,0,0.8660254\nEND-OF-PATH\nTOOL PATH/SIDE_B,TOOL,T1\nRAPID\nGOTO/0,30,80,0,0.7071068,0.7071068\n"
-    "FEDRAT/MMPM,400\nGOTO/0,40,50,0,0.7071068,0.7071068\nGOTO/10,40,50,0,0.7071068,0.7071068\nRAPID\n"
-    "GOTO/10,40,90,0,0.7071068,0.7071068\nEND-OF-PATH\n";
 
 // Down vertical, then along X tilting to 30 degrees towards +X, then along Y turning the tilt
 // towards +Y.

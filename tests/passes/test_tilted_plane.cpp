@@ -7,6 +7,7 @@
 #include "machine/tilted_plane.h"
 #include "readback/gcode_interp.h"
 #include "helpers.h"
+#include "three_plus_two.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -26,13 +27,6 @@ void expect_angles(const Vec3& axis, EulerOrder order, const Vec3& want) {
   EXPECT_LT((r * Vec3::UnitZ() - axis.normalized()).norm(), 1e-12);
 }
 
-// Two operations, one tool axis each: 30 degrees towards +X, then 45 degrees towards +Y.
-const char* kThreePlusTwo =
-    "TOOL PATH/SIDE_A,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,50,0.5,0,0.8660254\n"
-    "FEDRAT/MMPM,500\nGOTO/10,10,45,0.5,0,0.8660254\nGOTO/20,10,40,0.5,0,0.8660254\nRAPID\n"
-    "GOTO/20,10,80,0.5,0,0.8660254\nEND-OF-PATH\nTOOL PATH/SIDE_B,TOOL,T1\nRAPID\nGOTO/0,30,80,0,0.7071068,0.7071068\n"
-    "FEDRAT/MMPM,400\nGOTO/0,40,50,0,0.7071068,0.7071068\nGOTO/10,40,50,0,0.7071068,0.7071068\nRAPID\n"
-    "GOTO/10,40,90,0,0.7071068,0.7071068\nEND-OF-PATH\n";
 
 Machine fanuc_plane() {
   return machine("fanuc-ac-plane", read_file(src("examples/fanuc_ac_plane.toml")));
