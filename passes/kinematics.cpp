@@ -121,6 +121,9 @@ class Kinematics : public Pass {
         const ir::ToolInfo* t = ctx.info.tool(tc->tool);
         tool_length_ = t ? t->length : 0;
         modes_off(out, in.loc);  // a tool change needs the modes off
+        // The change took the tool away from the last CL point: no move starts there (a turn of
+        // the free axis on the spot would bring the new tool back down to it at the old feed).
+        have_prev_ = false;
         out.push_back(std::move(in));
         continue;
       }
