@@ -5,6 +5,7 @@
 // each move at its worst point.
 #include <cmath>
 
+#include "readback/gcode_interp.h"
 #include "helpers.h"
 #include "three_plus_two.h"
 
@@ -154,4 +155,31 @@ TEST(MachineLayouts, TravelInMachineCoordinatesCountsTheHeadsPivot) {
   EXPECT_FALSE(c.ok);
   EXPECT_THAT(c.diags, HasSubstr(":10:1: error: Z reaches -910 mm in machine coordinates, beyond the travel (-900 to 0)"));
   EXPECT_THAT(c.diags, ::testing::Not(HasSubstr(":9:1: error")));
+}
+
+// Under TCPC a CL arc in a five-axis operation is written as lines (the control is given
+// part-frame points): every chord's worst point, its middle, lies within arcs.tolerance
+// (0.006 mm) of the circle, and the chords are not needlessly short (the worst is over half
+// of it). Read back from the program: the quarter circle of radius 30 about the origin.
+TEST(MachineLayouts, AnArcUnderTcpIsLinearisedWithinTheToleranceAtEachChordsWorstPoint) {
+  const std::string cl = "TOOL PATH/ARC5,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\nMULTAX/ON\n"
+                         "GOTO/30,0,0,0,0,1\nGOTO/30,0,0,0.1,0,0.99498744\nCIRCLE/0,0,0,0,0,1,30\n"
+                         "GOTO/0,30,0,0.1,0,0.99498744\nGOTO/0,40,0,0,0,1\nEND-OF-PATH\n";
+  const Machine m = example(kExamples[0]);
+  Compiled c = compile_text(cl, m, certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  gcode::Result r = gcode::interpret(c.output, m);
+  ASSERT_TRUE(r.problems.empty());
+  double worst = 0;
+  int chords = 0;
+  for (const gcode::Segment& s : r.segments) {
+    if (s.kind != gcode::Segment::Kind::Feed || !s.tcp) continue;
+    const double r0 = s.start.head<2>().norm(), r1 = s.end.head<2>().norm();
+    if (std::abs(r0 - 30) > 0.001 || std::abs(r1 - 30) > 0.001 || (s.end - s.start).norm() < 1e-9) continue;
+    worst = std::max(worst, 30 - ((s.start + s.end) / 2).head<2>().norm());
+    ++chords;
+  }
+  EXPECT_GT(chords, 40);
+  EXPECT_LE(worst, 0.006 + 0.0005);  // the ends are rounded to 0.001 mm
+  EXPECT_GE(worst, 0.003);
 }
