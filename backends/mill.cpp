@@ -230,6 +230,19 @@ void MillBackend::clamp(SourceLoc loc) {
 
 // 3+2: the rotaries go to their angles in a rapid of their own, then clamp.
 void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc) {
+  if (r.rename) {
+    // codes.unwind: the axis's position renamed by whole turns, without motion.
+    for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
+      char l = m_.kinematics.rotaries[i].name[0];
+      if (!e_.differs(l, r.rotary[i])) continue;
+      e_.begin(loc);
+      e_.code(m_.codes.unwind, TemplateVars().with(Var::Angle, r.rotary[i]));
+      e_.end();
+      after_template(m_.codes.unwind);
+      e_.forget(l);
+    }
+    return;
+  }
   bool moves = false;
   for (size_t i = 0; i < m_.kinematics.rotaries.size(); ++i) {
     char l = m_.kinematics.rotaries[i].name[0];

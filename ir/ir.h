@@ -270,6 +270,7 @@ struct GrooveMark {
 struct RotaryPosition {
   std::array<double, 2> rotary{0, 0};
   bool clamp = true;
+  bool rename = false;  // no motion: the control renames a winding axis's position by whole turns (codes.unwind)
 };
 
 // Switches of the control's modes around the moves that need them.

@@ -41,7 +41,7 @@ struct Printer {
     if (m.inverse_time > 0) o << " inverse-time " << num_text(m.inverse_time);
   }
   void operator()(const RotaryPosition& r) {
-    o << "rotary-position (" << num_text(r.rotary[0]) << ", " << num_text(r.rotary[1]) << ")" << (r.clamp ? " clamp" : "");
+    o << "rotary-position (" << num_text(r.rotary[0]) << ", " << num_text(r.rotary[1]) << ")" << (r.clamp ? " clamp" : "") << (r.rename ? " rename" : "");
   }
   void operator()(const MachineMode& m) {
     static const char* names[] = {"tcp-on", "tcp-off", "dwo-on", "dwo-off", "plane-on", "plane-off"};

@@ -20,6 +20,7 @@ std::string_view var_name(Var v) {
     case Var::I: return "i";
     case Var::J: return "j";
     case Var::K: return "k";
+    case Var::Angle: return "angle";
     case Var::Count: break;
   }
   return "?";

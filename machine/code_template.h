@@ -15,6 +15,7 @@ namespace clpc {
 enum class Var : uint8_t {
   Tool, Offset, Register, Seconds, Milliseconds, Speed, Max, Number, Level, Tolerance,
   X, Y, Z, I, J, K,  // a tilted plane: origin and Euler angles
+  Angle,             // codes.unwind: the position a winding axis is renamed to
   Count
 };
 std::string_view var_name(Var v);

@@ -174,6 +174,9 @@ struct Codes {
   // Euler angles), then plane_orient where the control turns the rotaries to it ("G53.1"),
   // cancelled by plane_off ("G69").
   CodeTemplate plane_on, plane_orient, plane_off;
+  // Unwinding a winding axis without motion: the control renames its position by whole turns,
+  // e.g. "G92 C{angle}"; empty: the axis turns back, with the tool retracted.
+  CodeTemplate unwind;
   CodeTemplate smoothing_on, smoothing_off;  // Haas "G187 P{level} E{tolerance}" / "G187"; Fanuc "G05.1 Q1" / "G05.1 Q0"
 };
 

@@ -333,6 +333,7 @@ std::vector<KeySpec> build() {
       {"dwo_on", &Codes::dwo_on, none}, {"dwo_off", &Codes::dwo_off, none},
       {"plane_on", &Codes::plane_on, bit(Var::X) | bit(Var::Y) | bit(Var::Z) | bit(Var::I) | bit(Var::J) | bit(Var::K)},
       {"plane_orient", &Codes::plane_orient, none}, {"plane_off", &Codes::plane_off, none},
+      {"unwind", &Codes::unwind, bit(Var::Angle)},
       {"smoothing_on", &Codes::smoothing_on, bit(Var::Level) | bit(Var::Tolerance)},
       {"smoothing_off", &Codes::smoothing_off, none},
   };

@@ -580,6 +580,18 @@ class Kinematics : public Pass {
         what += (what.empty() ? "" : "; ") + r.name + " would wind to " + r.name + deg(a[i]) + ", past its range (" +
                 deg(r.min) + " to " + deg(r.max) + ")";
       }
+    const bool one_axis = (turns[0] != 0) != (turns[1] != 0);
+    if (!ctx_->machine.codes.unwind.empty() && one_axis) {
+      // The control renames the axis's position: nothing moves, the tool may stay on the part.
+      d_->warning(loc, what + ": renamed by whole turns (codes.unwind)", "unwind");
+      kin::Angles back{cur_[0] + turns[0], cur_[1] + turns[1]};
+      ir::RotaryPosition rename{back, false};
+      rename.rename = true;
+      out.push_back({loc, rename});
+      set_current(back, have_prev_ ? &prev_axis_ : nullptr);
+      a = {a[0] + turns[0], a[1] + turns[1]};
+      return true;
+    }
     if (!have_prev_ || !(k_.retract_distance > 0)) {
       d_->error(loc, what + ": set kinematics.retract_distance so that clpc can retract, unwind and re-engage");
       return false;
@@ -772,10 +784,10 @@ const PassInfo& kinematics_pass() {
                     "at tool changes and the end of each operation; no solution within limits, or a jump the "
                     "limits force, is an error naming the CL record (or, with on_limit = \"retract\", a retract, "
                     "rotate and re-engage at the last CL point); a winding axis with a range is unwound before it "
-                    "passes it (retract, unwind, re-engage; an error without retract_distance); arcs may leave the machine's planes, so arc-legalise must follow. On "
+                    "passes it (renamed by codes.unwind, or retract, unwind, re-engage; an error without either); arcs may leave the machine's planes, so arc-legalise must follow. On "
                     "three-axis machines it changes nothing",
       .settings = "kinematics.* (axes, pivot, simultaneous, indexed, plane_euler, inverse_time, on_limit), "
-                  "codes.plane_on, arcs.tolerance",
+                  "codes.plane_on, codes.unwind, arcs.tolerance",
       .needs = ir::ArcsDecided | ir::CyclesFormed | ir::OffsetsAssigned,
       .provides = ir::Kinematic,
       .breaks = ir::ArcsLegal,

@@ -163,7 +163,7 @@ class Interp {
     auto has = [&](char c) { return a.count(c) != 0; };
 
     bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
-    bool motion_word = false, plane_set = false, plane_cancel = false;
+    bool motion_word = false, plane_set = false, plane_cancel = false, g92 = false;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
@@ -189,7 +189,8 @@ class Interp {
       else if (is_g(g, 187) || is_g(g, 5.1)) {}  // smoothing (Haas), AI contour control (Fanuc): the path is the same
       else if (is_g(g, 68.2) || is_g(g, 268)) plane_set = true;
       else if (is_g(g, 69) || is_g(g, 269)) plane_cancel = true;
-      else if (is_g(g, 53.1)) {}  // turns the rotaries to the plane: the program positioned them already
+      else if (is_g(g, 53.1)) {}
+      else if (is_g(g, 92) && !lathe) g92 = true;  // renames positions (a winding rotary's, by whole turns)  // turns the rotaries to the plane: the program positioned them already
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
       else if (is_g(g, 50) && lathe) g50 = true;  // spindle clamp (with S)
@@ -270,6 +271,10 @@ class Interp {
     }
     if (plane_set || plane_cancel) {
       tilt(a, plane_set);
+      return;
+    }
+    if (g92) {
+      rename_axes(a, line);
       return;
     }
     if (g65) {
@@ -521,6 +526,23 @@ class Interp {
     f.rotation = plane::rotation(angles, m_.kinematics.plane_euler);
     tilted_ = std::make_shared<const PlaneFrame>(f);
     pos_ = tilted_->rotation.transpose() * (part - tilted_->origin);
+  }
+
+  // G92 with rotary words: the control calls the axis's position by another name, no motion.
+  // Only whole turns keep the part where it was; linear words (a work shift) are not followed.
+  void rename_axes(const Words& a, int line) {
+    for (char c : {'X', 'Y', 'Z'})
+      if (a.count(c)) problem(line, std::string("G92 with ") + c + " (a work coordinate shift) is not followed by clpc's reader");
+    for (int i = 0; i < 3; ++i) {
+      const char l = char('A' + i);
+      if (!a.count(l)) continue;
+      const double was = rotary_[size_t(i)], now = a[l];
+      const double turns = (was - now) / 360;
+      if (was == was && std::abs(turns - std::round(turns)) > 1e-6)
+        problem(line, "G92 renames " + std::string(1, l) + fmt(was) + " as " + std::string(1, l) + fmt(now) +
+                          ": not whole turns, so the part's angle would change");
+      rotary_[size_t(i)] = now;
+    }
   }
 
   // A segment from where the tool is, with the modal state it runs in.

@@ -4,6 +4,7 @@
 // blocks, and each program certified.
 #include <cmath>
 
+#include "readback/gcode_interp.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -97,4 +98,23 @@ TEST(RotaryContinuity, ABranchFlipMidCutIsARetractAndReEngageAtThePoint) {
                                   "N65 G00 G234 H01\nN70 G00 X-1.0396 Y0. Z2.0518\nN75 G94 G01 X0.0787 Z0.3937 F19.69\n"
                                   "N80 X0.1181 B40.\nN85 G49\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
+}
+
+// With codes.unwind the control renames the axis's position by whole turns (here Fanuc-style
+// G92 C): no motion, so no retract; the reader follows it, and refuses a rename by other than
+// whole turns (the part's angle would change).
+TEST(RotaryContinuity, AnUnwindCodeRenamesTheAxisWithoutMotion) {
+  const std::string toml = std::string(kWindUmc) + "[umc-wind.codes]\nunwind = \"G92 C{angle}\"\n";
+  Compiled c = compile_text(spiral(), machine("umc-wind", toml), certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr(":16:1: warning: C would wind to C405, past its range (-400 to 400): renamed by whole "
+                                 "turns (codes.unwind) [-Wunwind]"));
+  EXPECT_THAT(c.output, HasSubstr("N75 X20. Y0. Z-4. C360.\nN80 G92 C0.\nN85 G94 G01 X14.142 Y14.142 Z-4.5 C45. F800.\n"));
+  EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
+
+  std::string off = c.output;
+  off.replace(off.find("N80 G92 C0."), 11, "N80 G92 C10.");
+  gcode::Result r = gcode::interpret(off, machine("umc-wind", toml));
+  ASSERT_FALSE(r.problems.empty());
+  EXPECT_THAT(r.problems[0].message, HasSubstr("G92 renames C360 as C10: not whole turns, so the part's angle would change"));
 }
