@@ -152,7 +152,9 @@ class Kinematics : public Pass {
         continue;
       }
       if (std::holds_alternative<ir::CycleOn>(in.op) || std::holds_alternative<ir::CycleOff>(in.op)) {
-        out.push_back(std::move(in));
+        // Where the holes become moves (five-axis, or 3+2 under TCPC), the cycle goes with them.
+        if (std::holds_alternative<ir::CycleOn>(in.op)) cycle_kept_ = cycles_kept();
+        if (cycle_kept_) out.push_back(std::move(in));
         continue;
       }
       out.push_back(std::move(in));
@@ -703,22 +705,32 @@ class Kinematics : public Pass {
     out.push_back({loc, a});
   }
 
+  // A canned cycle drills along the machine's Z: only indexed work whose tool the rotaries turn
+  // onto it (table axes, or a tilted plane, whose Z the tool is), not under TCPC. Otherwise the
+  // holes become moves, and their cycle records go.
+  bool cycles_kept() const {
+    if (!mode_indexed_ || tcp(false)) return false;
+    if (k_.indexed == Indexed::Plane) return true;
+    Choice c = choose(op_axis_);
+    return c.found && kin::angle_between(table(c.a) * op_axis_, Vec3::UnitZ()) < 1e-7;
+  }
+
   void hole(const ir::Operation& op, ir::Hole h, SourceLoc loc, std::vector<ir::Instr>& out) {
-    const bool simultaneous = !mode_indexed_;
     const ir::CycleSpec& c = op.cycles.at(h.spec);
-    // A canned cycle drills along the machine's Z: only where the tilted frame puts it there.
-    bool keep = !simultaneous && !tcp(false);
-    if (keep) {
+    if (cycle_kept_) {
       if (!prepare(false, h.axis, loc, out)) return;
       Vec3 axis = output_axis(cur_, h.axis, false);
-      if ((axis - Vec3::UnitZ()).norm() > 1e-9) keep = false;
-      else {
-        h.point = output_point(cur_, h.point, false);
-        h.axis = axis;
-        out.push_back({loc, h});
-        have_prev_ = false;
+      // A tilted plane's angles are rounded to their addresses (0.001 degree): its Z is that
+      // near the tool axis, and the control drills along it.
+      if (kin::angle_between(axis, Vec3::UnitZ()) > 0.002) {
+        d_->error(loc, "internal: an indexed hole's axis is not the machine's Z after the kinematics (" + vec_text(axis) + ")");
         return;
       }
+      h.point = output_point(cur_, h.point, false);
+      h.axis = Vec3::UnitZ();
+      out.push_back({loc, h});
+      have_prev_ = false;
+      return;
     }
     std::vector<ir::Instr> moves;
     ExpandContext x{ctx_->machine.cycles.peck_clearance * ctx_->from_output(), feed_.value, feed_.mode, feed_known_,
@@ -748,6 +760,7 @@ class Kinematics : public Pass {
   Vec3 op_axis_ = Vec3::UnitZ();
   std::optional<Vec3> indexed_at_;
   bool tcp_on_ = false, dwo_on_ = false, plane_on_ = false;
+  bool cycle_kept_ = false;  // the cycle in force stays a canned cycle (cycles_kept() at its CycleOn)
   ir::Mat3 plane_ = ir::Mat3::Identity();  // the tilted plane in force (plane -> part)
   std::array<double, 3> plane_angle_step_{1e-3, 1e-3, 1e-3};  // the resolution of its angles' addresses
   bool positioned_ = false;  // this operation was positioned by the offset table

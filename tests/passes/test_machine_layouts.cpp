@@ -183,3 +183,30 @@ TEST(MachineLayouts, AnArcUnderTcpIsLinearisedWithinTheToleranceAtEachChordsWors
   EXPECT_LE(worst, 0.006 + 0.0005);  // the ends are rounded to 0.001 mm
   EXPECT_GE(worst, 0.003);
 }
+
+// Drilling in a 3+2 operation: a canned cycle where the tool is the machine's Z (table axes, or
+// the tilted plane's Z), its holes written in the plane; moves without the cycle records where
+// it is not (a head tilts the tool off Z without TCPC; under TCPC) — before, the cycle records
+// stayed around the moves and the program was refused ("a canned cycle's hole reached the
+// program as a plain move").
+TEST(MachineLayouts, ThreePlusTwoDrillingIsCannedWhereTheToolIsZAndMovesElsewhere) {
+  const std::string cl = "TOOL PATH/HOLES,TOOL,T2\nUNITS/MM\nLOADTL/2\nSPINDL/RPM,2000,CLW\nRAPID\n"
+                         "GOTO/10,0,60,0.5,0,0.8660254\nCYCLE/DRILL,DEPTH,8,MMPM,120,CLEAR,3\n"
+                         "GOTO/10,0,20,0.5,0,0.8660254\nGOTO/15,10,20,0.5,0,0.8660254\nCYCLE/OFF\nRAPID\n"
+                         "GOTO/15,10,60,0.5,0,0.8660254\nEND-OF-PATH\n";
+  for (const Example& e : kExamples) {
+    Compiled c = compile_text(cl, example(e), certified());
+    EXPECT_TRUE(c.ok) << e.name << "\n" << c.diags;
+    EXPECT_THAT(c.diags, HasSubstr("out.nc: 2 points, 0 arcs, 2 holes checked")) << e.name;
+    const bool canned = c.output.find("G81") != std::string::npos;
+    EXPECT_EQ(canned, std::string(e.name) != "head-table-bc") << e.name;
+  }
+  // In the plane: (10, 0, 20) turned by Ry(30)^T is (-1.340, 0, 21.321): bottom 8 below, R 3 above.
+  Compiled p = compile_text(cl, example(kExamples[0]), certified());
+  EXPECT_THAT(p.output, HasSubstr("N80 G68.2 X0. Y0. Z0. I90. J30. K-90.\nN90 G53.1\nN100 G00 X-21.34 Y0.\n"
+                                  "N110 G43 H02 Z56.962\nN120 G94 G98 G81 X-1.34 Y0. Z14.321 R25.321 F120.\n"));
+  Compiled tcp = compile_text(
+      cl, machine("umc-tcp", "[umc-tcp]\ninherits = \"haas-umc750\"\n[umc-tcp.kinematics]\nindexed = \"tcp\"\n"), certified());
+  EXPECT_TRUE(tcp.ok) << tcp.diags;
+  EXPECT_EQ(tcp.output.find("G81"), std::string::npos);
+}
