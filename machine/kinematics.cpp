@@ -296,6 +296,22 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
   return best;
 }
 
+double travel(const RotaryAxis& r, double from, double to) {
+  double d = to - from;
+  if (r.cyclic == Cyclic::Modulo) {
+    d = std::fmod(d, 360.0);
+    if (d > 180) d -= 360;
+    if (d <= -180) d += 360;
+  }
+  return d;
+}
+
+Angles between(const KinematicsSettings& k, const Angles& a0, const Angles& a1, double t) {
+  Angles a = a0;
+  for (size_t i = 0; i < k.rotaries.size() && i < a.size(); ++i) a[i] = a0[i] + t * travel(k.rotaries[i], a0[i], a1[i]);
+  return a;
+}
+
 double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / kPi;
 }

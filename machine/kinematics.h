@@ -64,6 +64,13 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
 // Angular distance between two unit vectors, in degrees.
 double angle_between(const Vec3& a, const Vec3& b);
 
+// How far axis r turns from `from` to `to` (degrees, signed), as the control moves it: a
+// modulo axis (positions in [0, 360)) the short way, any other by the difference.
+double travel(const RotaryAxis& r, double from, double to);
+
+// The angles a fraction t of the way from a0 to a1, as the control interpolates them.
+Angles between(const KinematicsSettings& k, const Angles& a0, const Angles& a1, double t);
+
 // ROTATE/AAXIS,INCR,a and ROTABL turn the table between pieces of motion the CL writes the same
 // way each time (Creo dwnhole.ncl.3: a subroutine called at ten A positions). The motion after
 // them is the CL's as the machine sees it with that table axis turned by the angles so far: in

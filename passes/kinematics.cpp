@@ -25,6 +25,7 @@
 #include <cmath>
 #include <optional>
 
+#include "ir/arc_geometry.h"
 #include "machine/kinematics.h"
 #include "machine/tilted_plane.h"
 #include "passes/arc_edit.h"
@@ -203,17 +204,54 @@ class Kinematics : public Pass {
 
   using Choice = kin::Choice;
 
-  // The tool direction at which the inner rotary axis is free (vertical, for a B/C trunnion),
-  // if the machine has one.
+  // The tool direction at which one rotary axis is free (vertical: the C of a B/C trunnion, or
+  // of a B head over a C table), if the machine has one; free_ is that axis.
   std::optional<Vec3> singular_direction() const { return singular_; }
 
-  std::optional<Vec3> find_singular_direction() const {
+  std::optional<Vec3> find_singular_direction() {
     if (k_.rotaries.size() != 2) return std::nullopt;
     Vec3 s = kin::tool_axis_in_part(k_, {0, 0});
     const RotaryAxis& inner = k_.rotaries[1];
     Vec3 u = inner.table ? inner.effective() : kin::rotation(k_.rotaries[0].effective(), 0) * inner.effective();
-    if (std::abs(std::abs(s.dot(u.normalized())) - 1) > 1e-9) return std::nullopt;
-    return s;
+    if (std::abs(std::abs(s.dot(u.normalized())) - 1) <= 1e-9) {
+      free_ = 1;
+      return s;
+    }
+    // The outer axis along the tool at zero: turning it turns the tool about itself.
+    if (std::abs(std::abs(s.dot(k_.rotaries[0].effective().normalized())) - 1) <= 1e-9) {
+      free_ = 0;
+      return s;
+    }
+    return std::nullopt;
+  }
+
+  // Turns the free axis to `to` with the tool at the last CL point (at the singularity the tool
+  // keeps its direction). Without TCPC a table axis carries the tip round a circle while the
+  // control moves X Y Z straight: in steps whose chord stays within the tolerance.
+  void turn_free_axis(double to, SourceLoc loc, std::vector<ir::Instr>& out) {
+    ir::Move turn;
+    turn.point = prev_tip_;
+    turn.axis = prev_axis_;
+    turn.kind = ir::MoveKind::Feed;
+    const kin::Angles from = cur_;
+    kin::Angles end = cur_;
+    end[free_] = to;
+    int steps = 1;
+    if (!tcp(true)) {
+      const double delta = std::abs(kin::travel(k_.rotaries[free_], from[free_], to)) * arcgeo::kPi / 180;
+      const Vec3 m0 = kin::machine_point(k_, from, prev_tip_, pivot()), m1 = kin::machine_point(k_, end, prev_tip_, pivot());
+      const double half = std::sin(std::min(delta, arcgeo::kPi) / 2);
+      const double r = half > 1e-12 ? (m1 - m0).norm() / (2 * half) : 0;
+      if (r > 0)
+        steps = std::max(1, int(std::ceil(std::abs(kin::travel(k_.rotaries[free_], from[free_], to)) /
+                                          arcgeo::sweep_for_chord_error(r, 0.5 * ctx_->tolerance()))));
+    }
+    for (int i = 1; i <= steps; ++i) {
+      kin::Angles t = kin::between(k_, from, end, double(i) / steps);
+      if (k_.rotaries[free_].cyclic == Cyclic::Modulo) t[free_] = std::fmod(t[free_] + 360.0, 360.0);
+      if (i == steps) t = end;
+      emit(turn, t, true, loc, out);
+    }
   }
 
   // The table's rotation at `a`, memoised: indexed work asks for the same one every move.
@@ -415,15 +453,9 @@ class Kinematics : public Pass {
           return;
         }
         retract_rotate(c.a, m, loc, out);
-      } else if (at_singularity() && have_prev_ && std::abs(c.a[1] - cur_[1]) > 1e-9) {
+      } else if (at_singularity() && have_prev_ && std::abs(c.a[free_] - cur_[free_]) > 1e-9) {
         // Leaving the singularity on another branch: turn the free axis first, on the spot.
-        ir::Move turn;
-        turn.point = prev_tip_;
-        turn.axis = prev_axis_;
-        turn.kind = ir::MoveKind::Feed;
-        kin::Angles t = cur_;
-        t[1] = c.a[1];
-        emit(turn, t, true, loc, out);
+        turn_free_axis(c.a[free_], loc, out);
       }
       a = c.a;
       const kin::Angles turns = unwind_turns(a);
@@ -464,11 +496,7 @@ class Kinematics : public Pass {
     emit(mid, here.a, true, loc, out);
     // Turn the free axis to the branch the rest of the move takes, on the spot.
     Choice next = choose(m.axis);
-    if (next.found && std::abs(next.a[1] - cur_[1]) > 1e-9) {
-      kin::Angles turn = cur_;
-      turn[1] = next.a[1];
-      emit(mid, turn, true, loc, out);
-    }
+    if (next.found && std::abs(next.a[free_] - cur_[free_]) > 1e-9) turn_free_axis(next.a[free_], loc, out);
   }
 
   void emit(ir::Move m, const kin::Angles& a, bool simultaneous, SourceLoc loc, std::vector<ir::Instr>& out) {
@@ -501,7 +529,7 @@ class Kinematics : public Pass {
       minutes = std::max(minutes, (m1 - m0).norm() * out_per_prog / ctx_->machine.max_feed);
     }
     for (size_t i = 0; i < k_.rotaries.size(); ++i)
-      if (k_.rotaries[i].rate > 0) minutes = std::max(minutes, std::abs(a[i] - cur_[i]) / k_.rotaries[i].rate);
+      if (k_.rotaries[i].rate > 0) minutes = std::max(minutes, std::abs(kin::travel(k_.rotaries[i], cur_[i], a[i])) / k_.rotaries[i].rate);
     double f = minutes > 0 ? 1 / minutes : 1e9;
     if (k_.max_inverse_time > 0) f = std::min(f, k_.max_inverse_time);
     return f;
@@ -516,7 +544,7 @@ class Kinematics : public Pass {
     const double minutes = (to - from).norm() / feed_.value;
     const Vec3 m0 = output_point(cur_, from, true) * out_per_prog, m1 = output_point(a, to, true) * out_per_prog;
     double sq = (m1 - m0).squaredNorm();
-    for (size_t i = 0; i < k_.rotaries.size(); ++i) sq += (a[i] - cur_[i]) * (a[i] - cur_[i]);
+    for (size_t i = 0; i < k_.rotaries.size(); ++i) sq += std::pow(kin::travel(k_.rotaries[i], cur_[i], a[i]), 2);
     return minutes > 0 ? std::sqrt(sq) / minutes : 0;
   }
 
@@ -525,17 +553,27 @@ class Kinematics : public Pass {
   // more than the tolerance, a point (on the segment, with the tool axis halfway) goes between.
   void subdivide(const Vec3& p0, const Vec3& ax0, const kin::Angles& t0, const Vec3& p1, const Vec3& ax1,
                  const kin::Angles& t1, SourceLoc loc, std::vector<ir::Instr>& out, int depth) {
-    if (depth > 12) return;
     Vec3 m0 = kin::machine_point(k_, t0, p0, pivot()), m1 = kin::machine_point(k_, t1, p1, pivot());
     const Vec3 seg = p1 - p0;
     const double len2 = seg.squaredNorm();
     double worst = worst_point([&](double t) {
-      kin::Angles ta{t0[0] + t * (t1[0] - t0[0]), t0[1] + t * (t1[1] - t0[1])};
+      const kin::Angles ta = kin::between(k_, t0, t1, t);
       Vec3 tip = kin::part_tip(k_, ta, m0 + t * (m1 - m0), pivot());
       double s = len2 > 0 ? std::clamp((tip - p0).dot(seg) / len2, 0.0, 1.0) : 0;
       return (p0 + s * seg - tip).norm();
     });
-    if (worst <= ctx_->tolerance()) return;
+    if (worst <= 0.5 * ctx_->tolerance()) return;
+    if (depth >= 12) {
+      // Halving 4096 times did not do it: the angles halfway do not lie between the ends'.
+      // Never a move off the path left unsaid.
+      if (!(bow_reported_ == loc)) {
+        d_->error(loc, "without tool centre point control the machine's straight interpolation of its axes takes the tip " +
+                           num_text(std::round(worst * 1e4) / 1e4) +
+                           " off the CL line here, and splitting the move does not bring it within arcs.tolerance");
+        bow_reported_ = loc;
+      }
+      return;
+    }
     Vec3 pm = (p0 + p1) / 2;
     Vec3 am = (ax0 + ax1).normalized();
     if (!std::isfinite(am.x())) am = ax0;
@@ -764,7 +802,9 @@ class Kinematics : public Pass {
   ir::Mat3 plane_ = ir::Mat3::Identity();  // the tilted plane in force (plane -> part)
   std::array<double, 3> plane_angle_step_{1e-3, 1e-3, 1e-3};  // the resolution of its angles' addresses
   bool positioned_ = false;  // this operation was positioned by the offset table
-  std::optional<Vec3> singular_;  // the tool direction where the inner axis is free
+  std::optional<Vec3> singular_;  // the tool direction where an axis is free
+  size_t free_ = 1;               // that axis
+  SourceLoc bow_reported_;        // the record a bow beyond the tolerance was reported at
   mutable ir::Mat3 table_ = ir::Mat3::Identity();
   mutable kin::Angles table_for_{0, 0};
   mutable bool table_known_ = false;

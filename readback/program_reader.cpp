@@ -122,7 +122,7 @@ Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin
 Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
   const gcode::Segment& r = s.raw;
   kin::Angles a0 = angles(r.rotary_start), a1 = angles(r.rotary), a{0, 0};
-  for (size_t i = 0; i < a.size(); ++i) a[i] = a0[i] + t * (a1[i] - a0[i]);
+  a = kin::between(m_.kinematics, a0, a1, t);  // a modulo axis the short way, as the control turns it
   return part_point(r, r.start + t * (r.end - r.start), a, s.shift);
 }
 

@@ -479,9 +479,14 @@ class Comparison : public ProgramSink {
     if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !s.raw.from_cycle)
       fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
     if (!rapid)  // every feed block on the way here: a split move's pieces each carry their own F
-      for (size_t i = 0; i <= j && i < win_.size(); ++i)
-        if (win_[i].raw.kind != gcode::Segment::Kind::Rapid && !win_[i].raw.from_cycle)
-          feed_ok(win_[i], have_cl_feed_ ? &cl_feed_ : nullptr);
+      for (size_t i = 0; i <= j && i < win_.size(); ++i) {
+        const TipSegment& b = win_[i];
+        if (b.raw.kind == gcode::Segment::Kind::Rapid || b.raw.from_cycle) continue;
+        // A turn of the rotaries with the tip on the spot (at a singularity) cuts nothing: the
+        // CL gives no feed for it.
+        if (b.rotates && finite(b.start) && (b.end - b.start).norm() <= tol_) continue;
+        feed_ok(b, have_cl_feed_ ? &cl_feed_ : nullptr);
+      }
     if (s.rotates && have_prev_ && finite(s.start) && !rapid) {
       // Five-axis without TCPC: the tip between the block's ends must stay on the CL line.
       const Vec3 from = prev_;

@@ -19,18 +19,27 @@ namespace {
 struct Case {
   fuzz::Family family;
   const char* machine;
+  const char* toml = nullptr;  // an example machine's description (examples/), or a built-in
 };
+
+std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 }  // namespace
 
 TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
-  const Case cases[] = {{fuzz::Family::Mill, "fanuc-mill"}, {fuzz::Family::Mill, "haas-umc750"},
-                        {fuzz::Family::FiveAxis, "haas-umc750"}, {fuzz::Family::Lathe, "fanuc-lathe"}};
+  const Case cases[] = {{fuzz::Family::Mill, "fanuc-mill"},
+                        {fuzz::Family::Mill, "haas-umc750"},
+                        {fuzz::Family::FiveAxis, "haas-umc750"},
+                        {fuzz::Family::Lathe, "fanuc-lathe"},
+                        {fuzz::Family::FiveAxis, "fanuc-ac-plane", "examples/fanuc_ac_plane.toml"},
+                        {fuzz::Family::FiveAxis, "gantry-ac-head", "examples/gantry_ac_head.toml"}};
+  // head-table-bc (no TCPC) is not here yet: 1 of its 60 programs keeps a CL arc as a G02 that
+  // its certificate finds 0.00611 mm off (tolerance 0.006), a finding still open.
   const std::regex located(":[0-9]+:[0-9]+: error: ");
   TempDir t;
   int certified = 0, refused = 0;
   for (const Case& k : cases) {
-    const Machine m = machine(k.machine);
+    const Machine m = k.toml ? machine(k.machine, read_file(src(k.toml))) : machine(k.machine);
     for (unsigned seed = 1; seed <= 60; ++seed) {
       std::mt19937 rng(seed * 7919 + unsigned(k.family));
       std::vector<uint8_t> bytes(600);
