@@ -42,6 +42,8 @@ class ProgramWriter : public Backend {
   virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
   virtual void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc);
   virtual void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc);
+  virtual void write_thread_mark(const ir::ThreadMark& t, SourceLoc loc);
+  virtual void write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc);
   virtual void write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc);
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);

@@ -43,6 +43,8 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.code(m_.codes.spindle_off);
     e_.end();
     spindle_ = ir::SpindleDir::Off;
+    surface_.reset();
+    rpm_fixed_ = false;
     return;
   }
   const CodeTemplate& dir = s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw;
@@ -65,7 +67,12 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.word('S', speed);
     e_.code(dir);
     e_.end();
+    surface_ = s;
+    surface_clamp_ = clamp;
+    rpm_fixed_ = false;
   } else {
+    surface_.reset();
+    rpm_fixed_ = false;
     if (!spindle_within_limit(s.speed, loc)) {
       spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
       return;
@@ -102,6 +109,10 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!in_plane(mv.point, loc)) return;
+  if (thread_ && mv.kind == ir::MoveKind::Feed && is_thread_cut(pos_, mv.point)) {
+    write_thread_move(mv, loc);
+    return;
+  }
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
   if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_) {
@@ -123,6 +134,10 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
 void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
+    return;
+  }
+  if (thread_) {
+    d_.error(loc, "an arc inside THREAD: a thread is cut by straight synchronised moves (G32), not arcs");
     return;
   }
   if (std::abs(a.axis.y()) < 1 - 1e-9) {

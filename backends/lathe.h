@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "backends/backend.h"
 
 namespace clpc {
@@ -17,10 +19,27 @@ class LatheBackend : public ProgramWriter {
   void write_spindle(const ir::Spindle& s, SourceLoc loc) override;
   void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc) override;
   void retract_for_stop(SourceLoc loc) override;
+  void write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) override;
+  void write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc) override;
 
   void motion_code(Motion mo);
   bool in_plane(const ir::Vec3& p, SourceLoc loc);
   bool changed(char letter, double value) const;
+
+  // Threading (backends/lathe_thread.cpp).
+  bool is_thread_cut(const ir::Vec3& from, const ir::Vec3& to) const;
+  void write_thread_move(const ir::Move& mv, SourceLoc loc);
+  double thread_lead(SourceLoc loc) const;  // program units per revolution; 0 (an error) if none
+  bool write_lead(double lead, double length, SourceLoc loc);
+  void fix_spindle_speed(double radius, SourceLoc loc);
+  void restore_surface_speed(SourceLoc loc);
+
+  std::optional<ir::ThreadMark> thread_;  // the THREAD in force
+  std::optional<ir::Spindle> surface_;    // the constant surface speed in force
+  double surface_clamp_ = 0;              // its G50 clamp (rpm)
+  bool rpm_fixed_ = false;                // G97 written for a thread under surface_
+  SourceLoc thread_loc_;                  // its THREAD record
+  bool lead_refused_ = false;             // its lead's rounding reported (once)
 };
 
 }  // namespace clpc

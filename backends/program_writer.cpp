@@ -128,10 +128,12 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
                       !std::is_same_v<T, ir::SelectOffset> && !std::is_same_v<T, ir::Passthrough> &&
                       !std::is_same_v<T, ir::ToolChange> && !std::is_same_v<T, ir::ToolPreselect> &&
                       !std::is_same_v<T, ir::CutterComp> && !std::is_same_v<T, ir::GrooveMark> &&
+                      !std::is_same_v<T, ir::ThreadMark> &&
                       !std::is_same_v<T, ir::CycleOn> && !std::is_same_v<T, ir::CycleOff>)
           if (stop_pending_) optional_stop_between_operations(loc);
         // Something that moves the tool: the coolant a tool change turned off comes back first.
-        if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::Arc> || std::is_same_v<T, ir::Groove>) {
+        if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::Arc> || std::is_same_v<T, ir::Groove> ||
+                      std::is_same_v<T, ir::ThreadCycle>) {
           restore_coolant(loc);
           cut_since_stop_ = true;
         } else if constexpr (std::is_same_v<T, ir::Move>) {
@@ -164,6 +166,14 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         if constexpr (std::is_same_v<T, ir::Groove>) {
           cancel_cycle(loc);
           write_groove(op, x, loc);
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::ThreadMark>) {
+          write_thread_mark(x, loc);
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::ThreadCycle>) {
+          write_thread_cycle(x, loc);
           return;
         }
         if constexpr (std::is_same_v<T, ir::CycleOn> || std::is_same_v<T, ir::CycleOff>) {
@@ -252,6 +262,14 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         }
       },
       in.op);
+}
+
+void ProgramWriter::write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) {
+  if (t.begin) d_.error(loc, "machine '" + m_.name + "' is a mill: THREAD (a thread cut synchronised with the spindle) needs a lathe");
+}
+
+void ProgramWriter::write_thread_cycle(const ir::ThreadCycle&, SourceLoc loc) {
+  d_.error(loc, "internal: a threading cycle reached the mill backend");
 }
 
 void ProgramWriter::write_hole(const ir::Operation&, const ir::Hole&, SourceLoc loc) {

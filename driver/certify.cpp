@@ -153,6 +153,7 @@ std::string certificate_line(const VerifyReport& r, const std::string& program_n
                   std::to_string(r.cl_points) + " points, " + std::to_string(r.cl_arcs) + " arcs, " +
                   std::to_string(r.cl_holes) + " holes";
   if (r.cl_groove_points) s += ", " + std::to_string(r.cl_groove_points) + " groove cuts";
+  if (r.cl_thread_cuts) s += ", " + std::to_string(r.cl_thread_cuts) + " thread cuts";
   s += " checked; max deviation ";
   s += std::isinf(r.max_deviation) ? std::string("unbounded") : fixed(r.max_deviation, dec) + " " + u;
   s += where(r, r.max_loc, r.max_gcode_line);

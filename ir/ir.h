@@ -264,6 +264,30 @@ struct GrooveMark {
   bool begin = true;
 };
 
+// --- lathe threading (docs/lathe.md) ------------------------------------------------------
+
+// THREAD/TURN|FACE|TAPER,lead ... THREAD/OFF: inside, a feed move along the thread is cut
+// synchronised with the spindle (G32), advancing `lead` per revolution.
+enum class ThreadKind : uint8_t { Turn, Face, Taper };
+struct ThreadMark {
+  bool begin = true;
+  ThreadKind kind = ThreadKind::Turn;
+  double lead = 0;  // program units per revolution
+};
+
+// Made by the thread-cycles pass from threading passes it proved equal: one G92 box pass, or
+// a whole G76 multiple-pass cycle. Lathe coordinates (x radius, z axial).
+struct ThreadCycle {
+  Vec3 start;          // where the tool is; every pass returns here
+  Vec3 end;            // G92: the pass's far corner; G76: the root at the thread's end
+  double lead = 0;
+  bool multi = false;  // G76, else one G92 pass
+  // G76 (radius values, program units): thread height k, first depth, smallest step,
+  // finishing allowance d, finishing passes m; thread_model::depths gives the passes.
+  double height = 0, first_depth = 0, min_step = 0, allowance = 0;
+  int finish_passes = 1;
+};
+
 // --- five-axis (made by the kinematics pass) ------------------------------------------------
 
 // Position the rotary axes (3+2, or a rotation with the tool retracted), clamped after.
@@ -284,7 +308,8 @@ struct MachineMode {
 
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
                         Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex,
-                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark, RotaryPosition, MachineMode>;
+                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark, ThreadMark, ThreadCycle, RotaryPosition,
+                        MachineMode>;
 
 struct Instr {
   SourceLoc loc;

@@ -124,6 +124,21 @@ struct Printer {
     if (s.feed > 0) o << " feed " << num_text(s.feed);
   }
   void operator()(const GrooveMark& m) { o << (m.begin ? "groove-section" : "groove-section-end"); }
+  void operator()(const ThreadMark& m) {
+    if (!m.begin) {
+      o << "thread-off";
+      return;
+    }
+    o << "thread " << (m.kind == ThreadKind::Turn ? "turn" : m.kind == ThreadKind::Face ? "face" : "taper") << " lead "
+      << num_text(m.lead);
+  }
+  void operator()(const ThreadCycle& t) {
+    o << (t.multi ? "thread G76" : "thread G92") << " from " << vec(t.start) << " to " << vec(t.end) << " lead "
+      << num_text(t.lead);
+    if (t.multi)
+      o << " height " << num_text(t.height) << " first " << num_text(t.first_depth) << " min " << num_text(t.min_step)
+        << " allowance " << num_text(t.allowance) << " finish " << t.finish_passes;
+  }
   void operator()(const RotaryIndex& r) {
     o << "rotary-index " << r.axis << " " << num_text(r.angle) << (r.incremental ? " incremental" : " absolute");
     if (r.dir != ArcDir::Unknown) o << " " << dir_name(r.dir);

@@ -167,10 +167,7 @@ void Lowerer::record(const Record& r) {
     case MajorId::Nurbs: case MajorId::Knot: case MajorId::Cntrl: lower_nurbs(r); return;
     case MajorId::Cycle: lower_cycle(r); return;
     case MajorId::Tracut: case MajorId::Copy: case MajorId::Index: lower_transform(r); return;
-    case MajorId::Thread:
-      motion_not_read(r, "a thread cut needs the spindle synchronised with the feed (G32/G76/G92), which clpc does "
-                         "not write yet; post the threading operation separately or have the CAM system write a cycle");
-      return;
+    case MajorId::Thread: lower_thread(r); return;
     case MajorId::Indirp: case MajorId::Psis: case MajorId::Rothed:
       motion_not_read(r, motion_hint(r.major));
       return;
@@ -366,6 +363,13 @@ void Lowerer::close_operation() {
   }
   arc_open_ = false;
   if (!op_open_) return;
+  if (thread_open_) {
+    // A thread's cuts never run on into the next operation.
+    SourceLoc at = op_.body.empty() ? op_.loc : op_.body.back().loc;
+    d_.warning(at, "THREAD without THREAD/OFF at the end of the operation: ended here", "cycle");
+    push(at, ir::ThreadMark{false, ir::ThreadKind::Turn, 0});
+    thread_open_ = false;
+  }
   op_.last_chunk = true;
   sink_.operation(op_);
   op_.clear();

@@ -113,6 +113,7 @@ class Lowerer : public RecordSink {
   // lower_cycle.cpp, lower_groove.cpp
   void lower_cycle(const Record& r);
   void lower_groove_cycle(const Record& r);
+  void lower_thread(const Record& r);  // lower_thread.cpp
   void start_cycle(const ir::CycleSpec& c, SourceLoc loc, const std::string& name);
 
   // lower_subs.cpp
@@ -154,6 +155,7 @@ class Lowerer : public RecordSink {
   bool arc_open_ = false;  // the last instruction is an arc that may take more points
 
   bool cycle_open_ = false;  // a CYCLE without its CYCLE/OFF yet
+  bool thread_open_ = false;  // a THREAD without its THREAD/OFF yet
   size_t cycle_holes_ = 0;   // GOTOs since it
   SourceLoc cycle_loc_;
   std::string cycle_name_;

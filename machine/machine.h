@@ -168,6 +168,9 @@ struct Codes {
   CodeTemplate cycle_dwell_word;  // the dwell word in a cycle block, e.g. "P{milliseconds}"
   CodeTemplate rigid_tap;         // a block before G84, e.g. "M29 S{speed}"
   CodeTemplate groove_face, groove_radial;  // lathe: G74, G75 (two-block form)
+  // Lathe threading (docs/lathe.md): a synchronised move (G32), the one-pass box cycle (G92),
+  // the multiple-pass cycle (G76, two-block form); empty: the machine lacks it.
+  CodeTemplate thread, thread_box, thread_multi;
   CodeTemplate tcp_on, tcp_off;              // tool centre point control: G00 G234 H{offset} / G49
   CodeTemplate dwo_on, dwo_off;              // dynamic work offset (Haas G254 / G255)
   // Tilted working plane (indexed = "plane"): "G68.2 X{x} Y{y} Z{z} I{i} J{j} K{k}" (origin,
@@ -185,6 +188,7 @@ struct Codes {
 // rounded feed that is zero or off by more than max_rounding is an error naming the CL record.
 struct FeedSettings {
   AddressFormat per_minute, per_rev, inverse_time, tap;
+  AddressFormat lead;  // the F of a thread (G32, G92, G76): the lead per revolution
   double max_rounding = 0.05;  // fraction (feed overrides step by 10%); a tap keeps its pitch (no setting)
 };
 

@@ -750,11 +750,13 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     m.feeds.per_rev = at_least(inch ? 4 : 3);
     m.feeds.inverse_time = f;
     m.feeds.tap = m.cycles.tap_per_rev ? at_least(inch ? 6 : 4) : at_least(inch ? 4 : 3);
+    m.feeds.lead = at_least(inch ? 6 : 4);  // Fanuc takes a lead to 6 decimals in inches, 4 in mm
     if (auto s = r.sub("feeds")) {
-      for (const char* k : {"per_minute", "per_rev", "inverse_time", "tap"}) {
+      for (const char* k : {"per_minute", "per_rev", "inverse_time", "tap", "lead"}) {
         AddressFormat& g = std::string(k) == "per_minute" ? m.feeds.per_minute
                            : std::string(k) == "per_rev"  ? m.feeds.per_rev
                            : std::string(k) == "tap"      ? m.feeds.tap
+                           : std::string(k) == "lead"     ? m.feeds.lead
                                                           : m.feeds.inverse_time;
         if (auto t = s->sub(k)) read_format(*t, g, std::string(k) != "inverse_time");
       }

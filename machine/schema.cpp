@@ -180,6 +180,7 @@ std::vector<KeySpec> build() {
   key(f, "per_rev", K::Format, "G95 feeds", [](const Machine& m, size_t) { return format_table(m.feeds.per_rev); });
   key(f, "inverse_time", K::Format, "G93 feeds", [](const Machine& m, size_t) { return format_table(m.feeds.inverse_time); });
   key(f, "tap", K::Format, "the F of G84/G74", [](const Machine& m, size_t) { return format_table(m.feeds.tap); });
+  key(f, "lead", K::Format, "the F of a thread (G32/G92/G76): its lead", [](const Machine& m, size_t) { return format_table(m.feeds.lead); });
   ranged(f, "max_rounding", K::Number, 0, 0.5, "the largest fraction a feed may change by in rounding",
          [](const Machine& m, size_t) { return n(m.feeds.max_rounding); });
 
@@ -329,6 +330,7 @@ std::vector<KeySpec> build() {
       {"cycle_dwell_word", &Codes::cycle_dwell_word, bit(Var::Seconds) | bit(Var::Milliseconds)},
       {"rigid_tap", &Codes::rigid_tap, bit(Var::Speed)},
       {"groove_face", &Codes::groove_face, none}, {"groove_radial", &Codes::groove_radial, none},
+      {"thread", &Codes::thread, none}, {"thread_box", &Codes::thread_box, none}, {"thread_multi", &Codes::thread_multi, none},
       {"tcp_on", &Codes::tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &Codes::tcp_off, none},
       {"dwo_on", &Codes::dwo_on, none}, {"dwo_off", &Codes::dwo_off, none},
       {"plane_on", &Codes::plane_on, bit(Var::X) | bit(Var::Y) | bit(Var::Z) | bit(Var::I) | bit(Var::J) | bit(Var::K)},

@@ -87,6 +87,16 @@ class GrooveCycles : public Pass {
         ++i;
         continue;
       }
+      // A thread's passes are never a groove (thread-cycles reads them).
+      if (auto* t = std::get_if<ir::ThreadMark>(&in.op); t && t->begin) {
+        size_t j = i + 1;
+        while (j < body.size() && !std::holds_alternative<ir::ThreadMark>(body[j].op)) ++j;
+        for (; i < j; ++i) {
+          track(body[i]);
+          out.push_back(std::move(body[i]));
+        }
+        continue;
+      }
       // A run of plain motion: collapse only clear groove patterns (three stations or more).
       if (std::holds_alternative<ir::Move>(in.op) || std::holds_alternative<ir::Feed>(in.op)) {
         size_t j = i;
@@ -118,6 +128,8 @@ class GrooveCycles : public Pass {
       feed_known_ = true;
     } else if (auto* g = std::get_if<ir::Groove>(&in.op)) {
       pos_ = g->start;
+    } else if (auto* t = std::get_if<ir::ThreadCycle>(&in.op)) {
+      pos_ = t->start;
     }
   }
 

@@ -11,6 +11,7 @@ const PassInfo& helix_pass();
 const PassInfo& arc_legalise_pass();
 const PassInfo& drill_cycles_pass();
 const PassInfo& groove_cycles_pass();
+const PassInfo& thread_cycles_pass();
 const PassInfo& offset_table_pass();
 const PassInfo& kinematics_pass();
 const PassInfo& limits_pass();

@@ -10,6 +10,7 @@
 #include "machine/tilted_plane.h"
 #include "support/decimal.h"
 #include "ir/groove_model.h"
+#include "ir/thread_model.h"
 
 namespace clpc::gcode {
 
@@ -25,20 +26,22 @@ struct Word {
   bool has_point;
 };
 
-enum class Motion { Rapid, Linear, Cw, Ccw, None };
+enum class Motion { Rapid, Linear, Cw, Ccw, Thread, ThreadBox, None };
 
 // The address words of one block, by letter (the last one of a letter counts). A fixed table
 // rather than a map: the reader runs over every block of gigabyte programs.
 struct Words {
   std::array<double, 26> value{};
+  std::array<double, 26> raw{};  // as written (G76's P(m)(r)(a) is digits, not a length)
   std::array<bool, 26> has{};
   std::array<bool, 26> point{};
   void clear() {
     has.fill(false);
     point.fill(false);
   }
-  void set(char c, double v, bool p) {
+  void set(char c, double v, double r, bool p) {
     value[size_t(c - 'A')] = v;
+    raw[size_t(c - 'A')] = r;
     has[size_t(c - 'A')] = true;
     point[size_t(c - 'A')] = p;
   }
@@ -158,12 +161,12 @@ class Interp {
     for (const Word& w : words) {
       if (w.letter == 'G') gs.push_back(w.raw);
       else if (w.letter == 'M') ms.push_back(w.raw);
-      else if (w.letter != 'N') a.set(w.letter, w.value, w.has_point);
+      else if (w.letter != 'N') a.set(w.letter, w.value, w.raw, w.has_point);
     }
     auto has = [&](char c) { return a.count(c) != 0; };
 
     bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
-    bool motion_word = false, plane_set = false, plane_cancel = false, g92 = false;
+    bool motion_word = false, plane_set = false, plane_cancel = false, g92 = false, g76 = false;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
@@ -190,7 +193,10 @@ class Interp {
       else if (is_g(g, 68.2) || is_g(g, 268)) plane_set = true;
       else if (is_g(g, 69) || is_g(g, 269)) plane_cancel = true;
       else if (is_g(g, 53.1)) {}
-      else if (is_g(g, 92) && !lathe) g92 = true;  // renames positions (a winding rotary's, by whole turns)  // turns the rotaries to the plane: the program positioned them already
+      else if (is_g(g, 92) && !lathe) g92 = true;
+      else if (is_g(g, 32) && lathe) motion_ = Motion::Thread, motion_word = true;
+      else if (is_g(g, 92) && lathe) motion_ = Motion::ThreadBox, motion_word = true;
+      else if (is_g(g, 76) && lathe) g76 = true;  // renames positions (a winding rotary's, by whole turns)  // turns the rotaries to the plane: the program positioned them already
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
       else if (is_g(g, 50) && lathe) g50 = true;  // spindle clamp (with S)
@@ -319,6 +325,14 @@ class Interp {
     if (groove_ != 0) {
       lathe_groove(a, target, line);
       groove_ = 0;
+      return;
+    }
+    if (g76) {
+      thread_multi(a, target, any_axis, line);
+      return;
+    }
+    if (motion_ == Motion::ThreadBox && any_axis && !g53 && !g28) {
+      thread_box(a, target, line);
       return;
     }
     if (cycle_ != 0 && !g53 && !g28) {
@@ -452,6 +466,85 @@ class Interp {
     }
   }
 
+  // --- lathe threading (thread_model: the control's rules) ------------------------------------
+
+  // F of a thread block is its lead per revolution, whatever G98/G99 say; the spindle must
+  // turn at one speed (G97), or the passes would not meet.
+  bool thread_ready(int line) {
+    if (std::isnan(pos_.x()) || std::isnan(pos_.z())) {
+      problem(line, "thread cut from an unknown position");
+      return false;
+    }
+    if (!(feed_ > 0)) problem(line, "thread cut with no lead (F)");
+    if (css_) problem(line, "thread cut under constant surface speed (G96): the passes would not meet; G97 first");
+    if (!spindle_on_) problem(line, "thread cut with the spindle stopped");
+    return true;
+  }
+
+  void thread_segments(const std::vector<thread_model::Step>& steps, int line) {
+    for (const thread_model::Step& st : steps) {
+      Segment s = segment(st.cut ? Segment::Kind::Feed : Segment::Kind::Rapid, st.to, rotary_, line);
+      s.from_cycle = true;
+      if (st.cut) {
+        s.thread = true;
+        s.per_rev = true;
+        s.feed = feed_;
+      } else {
+        s.feed = 0;
+      }
+      res_.segments.push_back(s);
+      pos_ = st.to;
+    }
+  }
+
+  // G92 X(U) Z(W) [R] F: one box from where the tool is; modal, a following X repeats it.
+  void thread_box(const Words& a, const Vec3& target, int line) {
+    if (!thread_ready(line)) return;
+    if (a.count('R') && a['R'] != 0) {
+      problem(line, "G92 with R (a tapered thread): clpc's reader does not run it");
+      return;
+    }
+    Vec3 end(std::isnan(target.x()) ? pos_.x() : target.x(), 0, std::isnan(target.z()) ? pos_.z() : target.z());
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, 92});
+    std::vector<thread_model::Step> steps;
+    thread_model::box(pos_, end, steps);
+    thread_segments(steps, line);
+  }
+
+  // G76, two blocks: "G76 P(m)(r)(a) Q(Δdmin) R(d)" sets the cycle; "G76 X Z [R] P(k) Q(Δd) F"
+  // runs it from where the tool is.
+  void thread_multi(const Words& a, const Vec3& target, bool any_axis, int line) {
+    if (!any_axis) {
+      if (a.count('P')) {
+        const long p = std::lround(a.raw['P' - 'A']);
+        multi_.finish_passes = int(p / 10000);
+        if ((p / 100) % 100 != 0) problem(line, "G76 with a thread chamfer (P..rr..): clpc's reader does not run it");
+        if (p % 100 != 0) problem(line, "G76 with a tool angle (P....aa, flank infeed): clpc's reader runs radial infeed only");
+      }
+      if (a.count('Q')) multi_.min_step = a['Q'];
+      if (a.count('R')) multi_.allowance = a['R'];
+      return;
+    }
+    if (!thread_ready(line)) return;
+    if (a.count('R') && a['R'] != 0) {
+      problem(line, "G76 with R (a tapered thread): clpc's reader does not run it");
+      return;
+    }
+    thread_model::Multi p = multi_;
+    p.height = a.count('P') ? a['P'] : 0;
+    p.first = a.count('Q') ? a['Q'] : 0;
+    Vec3 end(std::isnan(target.x()) ? pos_.x() : target.x(), 0, std::isnan(target.z()) ? pos_.z() : target.z());
+    const std::vector<thread_model::Step> steps = thread_model::multi(pos_, end, p);
+    if (steps.empty()) {
+      problem(line, "G76 makes no passes (P, Q, R, or m out of range, or more than 10000 passes)");
+      return;
+    }
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, 76});
+    thread_segments(steps, line);
+  }
+
   void set_units(ir::Units u, int line) {
     if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
     res_.units = u;
@@ -574,6 +667,14 @@ class Interp {
     if (motion_ == Motion::Rapid) {
       s.kind = Segment::Kind::Rapid;
       s.feed = 0;
+    } else if (motion_ == Motion::Thread) {
+      if (!thread_ready(line)) {
+        pos_ = target;
+        return;
+      }
+      s.kind = Segment::Kind::Feed;
+      s.thread = true;
+      s.per_rev = true;
     } else {
       if (!(feed_ > 0)) problem(line, "cutting move with no feed rate (F)");
       if (!rotary_unknown_reported_)
@@ -699,6 +800,7 @@ class Interp {
   int cycle_ = 0;
   int groove_ = 0;
   double groove_retract_ = 0;
+  thread_model::Multi multi_;  // G76's first block
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
   double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;

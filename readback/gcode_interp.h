@@ -47,6 +47,7 @@ struct Segment {
   int length_register = 0;    // the tool length offset in force (G43 H; lathe T's offset), 0: none
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
+  bool thread = false;        // a thread cut (G32, G92, G76): synchronised with the spindle, feed = the lead per revolution
   bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame
   bool dwo = false;           // dynamic work offset on: X Y Z turned with the table about the part zero
   // A tilted working plane in force (G68.2 / G268): X Y Z are in it. Shared: segments outlive

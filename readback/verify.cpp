@@ -106,6 +106,8 @@ class Comparison : public ProgramSink {
               if (x.kind == ir::MoveKind::From) {
                 prev_ = p;
                 have_prev_ = true;
+              } else if (thread_on_) {
+                thread_point(p, x.kind == ir::MoveKind::Rapid);
               } else if (cycle_on_ && !groove_) {
                 hole(x.point, x.axis);
               } else if (groove_) {
@@ -120,6 +122,9 @@ class Comparison : public ProgramSink {
             } else if constexpr (std::is_same_v<T, ir::CycleOn>) {
               cycle_ = op.cycles.at(x.spec);  // by value: the cycle's GOTOs may come in later chunks
               cycle_on_ = true;
+            } else if constexpr (std::is_same_v<T, ir::ThreadMark>) {
+              if (x.begin) begin_thread(x);
+              else if (thread_on_) end_thread();
             } else if constexpr (std::is_same_v<T, ir::GrooveOn>) {
               begin_groove();
             } else if constexpr (std::is_same_v<T, ir::GrooveMark>) {
@@ -138,6 +143,7 @@ class Comparison : public ProgramSink {
   void end() override {
     end_operation();
     if (groove_) end_groove();
+    if (thread_on_) end_thread();
     bool reported = false;
     while (const TipSegment* s = peek(0)) {
       if (!reported && s->raw.kind != gcode::Segment::Kind::Rapid && !s->raw.from_cycle && finite(s->start)) {
@@ -478,6 +484,11 @@ class Comparison : public ProgramSink {
     // hole to where the cycle returned it is made by the cycle, at rapid, away from the part.)
     if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !s.raw.from_cycle)
       fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
+    for (size_t i = 0; i <= j && i < win_.size(); ++i)
+      if (win_[i].raw.thread) {
+        fail(loc_, win_[i].raw.line, "the program cuts a thread here (synchronised, F the lead) where the CL has no THREAD", 0);
+        break;
+      }
     if (!rapid)  // every feed block on the way here: a split move's pieces each carry their own F
       for (size_t i = 0; i <= j && i < win_.size(); ++i) {
         const TipSegment& b = win_[i];
@@ -753,6 +764,123 @@ class Comparison : public ProgramSink {
     groove_reach_ = 0;
   }
 
+  // --- lathe threads: each CL thread cut is a synchronised cut of the program at the lead,
+  // and each synchronised cut of the program is one of the CL's (a pass too deep scraps the
+  // thread). Cycles (G92, G76) run their passes in their own order, as grooves do. -----------
+
+  void begin_thread(const ir::ThreadMark& t) {
+    thread_ = t;
+    thread_on_ = true;
+    groove_reach_ = 0;
+    thread_cuts_.clear();
+    thread_used_.clear();
+  }
+
+  bool along_thread(const Vec3& from, const Vec3& to) const {
+    const double dx = std::abs(to.x() - from.x()), dz = std::abs(to.z() - from.z());
+    if (thread_.kind == ir::ThreadKind::Face) return dx > 1e-9 && dz < dx;
+    return dz > 1e-9 && dx < dz;
+  }
+
+  void thread_point(const Vec3& p, bool rapid) {
+    const Vec3 from = prev_;
+    const bool have_from = have_prev_;
+    prev_ = p;
+    have_prev_ = true;
+    if (rapid) return;
+    if (!have_from || !along_thread(from, p)) {
+      ++rep_.cl_groove_points;  // an infeed or pull-out at feed: on the path, like a groove's
+      groove_cut(p, p);
+      return;
+    }
+    ++rep_.cl_thread_cuts;
+    double lead = thread_.lead * k_;
+    if (!(lead > 0) && have_cl_feed_ && cl_feed_.mode == ir::FeedMode::PerRev) lead = cl_feed_.value * k_;
+    thread_cuts_.push_back({from, p});
+    thread_cut(from, p, lead);
+  }
+
+  // The CL cut from `from` to `p` must be one synchronised cut of the program: its end and its
+  // middle on it (finishing passes at one depth each take a cut of their own), at the lead.
+  void thread_cut(const Vec3& from, const Vec3& p, double lead) {
+    const Vec3 mid = (from + p) / 2;
+    double best = kInf;
+    size_t best_at = 0;
+    bool best_used = true;
+    int plain_line = 0;  // a block through the cut that is not synchronised
+    for (size_t j = 0; j < kMaxLookahead; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s) break;
+      if (!finite(s->start) || !finite(s->end)) continue;
+      const double d = std::max(point_segment(p, s->start, s->end), point_segment(mid, s->start, s->end));
+      if (!s->raw.thread) {
+        if (d <= tol_ && !plain_line && (s->end - s->start).norm() > tol_) plain_line = s->raw.line;
+        if (!s->raw.from_cycle && j > groove_reach_ + 64) break;
+        continue;
+      }
+      const bool used = j < thread_used_.size() && thread_used_[j];
+      // The nearest; among those within the tolerance, the first not taken by another CL cut.
+      if ((d <= tol_ && best <= tol_) ? (best_used && !used) : d < best) {
+        best = d;
+        best_at = j;
+        best_used = used;
+      }
+      if (best <= tol_ && !best_used) break;
+    }
+    if (best <= tol_) {
+      const TipSegment& s = win_[best_at];
+      deviate(best, loc_, s.raw.line);
+      groove_reach_ = std::max(groove_reach_, best_at + 1);
+      if (thread_used_.size() <= best_at) thread_used_.resize(best_at + 1, false);
+      thread_used_[best_at] = true;
+      const double length = (p - from).norm();
+      const double drift = lead > 0 ? std::abs(s.raw.feed - lead) * length / lead : kInf;
+      if (drift > tol_)
+        fail(loc_, s.raw.line, "thread cut to " + xyz(p) + " at a lead of F" + fixed(s.raw.feed, 6) + " where the CL's is " +
+                                   fixed(lead, 6) + ": the thread ends " + fixed(drift, 5) + " off", drift);
+      return;
+    }
+    if (plain_line) {
+      fail(loc_, plain_line, "thread cut to " + xyz(p) + " is made by a block not synchronised with the spindle (not G32/G92/G76)", 0);
+    } else {
+      fail(loc_, std::isfinite(best) ? win_[best_at].raw.line : 0,
+           "thread cut to " + xyz(p) + " is not made: the program's nearest thread cut passes " + fixed(best, 5) + " from it",
+           best);
+    }
+  }
+
+  void end_thread() {
+    thread_on_ = false;
+    // A cycle block's passes go together: finishing passes at one depth all match the CL's
+    // first, and the rest of the block is the cycle's too.
+    int last_line = 0;
+    for (size_t j = 0; j < groove_reach_; ++j)
+      if (const TipSegment* s = peek(j); s && s->raw.from_cycle) last_line = std::max(last_line, s->raw.line);
+    while (const TipSegment* s = peek(groove_reach_)) {
+      if (!s->raw.from_cycle || s->raw.line > last_line) break;
+      ++groove_reach_;
+    }
+    auto on_cl = [&](const Vec3& q) {
+      double best = kInf;
+      for (const auto& [a, b] : thread_cuts_) best = std::min(best, point_segment(q, a, b));
+      return best;
+    };
+    for (size_t j = 0; j < groove_reach_; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s || !s->raw.thread || !finite(s->start) || !finite(s->end)) continue;
+      const double d = std::max(on_cl(s->end), on_cl((s->start + s->end) / 2));
+      if (d > tol_) {
+        fail(loc_, s->raw.line, "the program cuts a thread pass to " + xyz(s->end) + " that the CL does not: " + fixed(d, 5) +
+                                    " from the CL's thread cuts", d);
+        break;
+      }
+    }
+    consume(groove_reach_);
+    groove_reach_ = 0;
+    thread_cuts_.clear();
+    thread_used_.clear();
+  }
+
   // --- limits --------------------------------------------------------------------------
 
   void check_limits(const TipSegment& s) {
@@ -839,6 +967,10 @@ class Comparison : public ProgramSink {
   Vec3 incoming_ = Vec3::Zero();  // the last CL feed move (zero after a rapid or a hole)
   bool groove_ = false;
   size_t groove_reach_ = 0;
+  bool thread_on_ = false;
+  ir::ThreadMark thread_;
+  std::vector<std::pair<Vec3, Vec3>> thread_cuts_;  // the CL's thread cuts of the section
+  std::vector<bool> thread_used_;  // the program's segments (window index) a CL thread cut took
   int limit_reported_[26] = {};
   double lo_[3] = {kInf, kInf, kInf}, hi_[3] = {-kInf, -kInf, -kInf};
   int lo_line_[3] = {}, hi_line_[3] = {};
@@ -906,6 +1038,7 @@ void print_report(std::ostream& o, const VerifyReport& r) {
   const ProgramTotals& p = r.program;
   o << "  CL path:    " << r.cl_points << " points, " << r.cl_arcs << " arcs, " << r.cl_holes << " holes";
   if (r.cl_groove_points) o << ", " << r.cl_groove_points << " groove cuts";
+  if (r.cl_thread_cuts) o << ", " << r.cl_thread_cuts << " thread cuts";
   o << "\n";
   o << "  program:    " << p.lines << " lines (" << p.bytes << " bytes), " << p.blocks << " blocks; " << p.rapids << " rapids, "
     << p.feeds << " feeds, " << p.arcs << " arcs, " << p.cycle_holes << " cycles, " << p.tool_changes << " tool changes\n";
@@ -955,7 +1088,7 @@ void print_report_json(std::ostream& o, const VerifyReport& r) {
     << ", \"column\": " << r.max_axis_loc.col << ", \"gcode_line\": " << r.max_axis_gcode_line << "},\n";
   o << "  \"ambiguous_arcs\": {\"count\": " << r.ambiguous_arcs << ", \"first_line\": " << r.ambiguous_loc.line << "},\n";
   o << "  \"cl\": {\"points\": " << r.cl_points << ", \"arcs\": " << r.cl_arcs << ", \"holes\": " << r.cl_holes
-    << ", \"groove_cuts\": " << r.cl_groove_points << "},\n";
+    << ", \"groove_cuts\": " << r.cl_groove_points << ", \"thread_cuts\": " << r.cl_thread_cuts << "},\n";
   o << "  \"program\": {\"lines\": " << p.lines << ", \"bytes\": " << p.bytes << ", \"blocks\": " << p.blocks
     << ", \"rapids\": " << p.rapids << ", \"feeds\": " << p.feeds << ", \"arcs\": " << p.arcs << ", \"cycles\": " << p.cycle_holes
     << ", \"tool_changes\": " << p.tool_changes << ", \"feed_length\": " << json_number(p.feed_length)

@@ -59,7 +59,7 @@ struct VerifyReport {
   // the arc runs against it): the convention is followed, the report says so.
   long ambiguous_arcs = 0;
   SourceLoc ambiguous_loc;
-  long cl_points = 0, cl_arcs = 0, cl_holes = 0, cl_groove_points = 0;
+  long cl_points = 0, cl_arcs = 0, cl_holes = 0, cl_groove_points = 0, cl_thread_cuts = 0;
   ProgramTotals program;
   long problem_count = 0;
   std::vector<VerifyProblem> problems;  // the first ones

@@ -82,14 +82,13 @@ TEST(ShopFloor, VerifyChecksTheTapsPitch) {
   EXPECT_THAT(r.out, HasSubstr("result: PASS"));
 }
 
-TEST(ShopFloor, ThreadOnTheLatheIsALocatedError) {
-  RunResult r = post("UNITS/MM\nMACHIN/TURN\nTURRET/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,0,5\nTHREAD/TURN,1.5\nGOTO/20,0,-20\nFINI\n",
-                     "-t fanuc-lathe");
+TEST(ShopFloor, ThreadOnAMillIsALocatedError) {
+  RunResult r = post("UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,0,5\nTHREAD/TURN,1.5\nFEDRAT/MMPM,100\nGOTO/20,0,-20\nTHREAD/OFF\nFINI\n",
+                     "-t fanuc-mill");
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err,
-            "<stdin>:7:1: error: 'THREAD' moves the tool and clpc does not read it: a thread cut needs the spindle synchronised with "
-            "the feed (G32/G76/G92), which clpc does not write yet; post the threading operation separately or have the CAM "
-            "system write a cycle\n 7 | THREAD/TURN,1.5\n   | ^\nclpc: 1 error, 0 warnings\n");
+            "<stdin>:6:1: error: machine 'fanuc-mill' is a mill: THREAD (a thread cut synchronised with the spindle) needs a "
+            "lathe\n 6 | THREAD/TURN,1.5\n   | ^\nclpc: 1 error, 0 warnings\n");
   EXPECT_EQ(r.out, "");
 }
 

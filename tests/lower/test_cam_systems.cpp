@@ -205,10 +205,10 @@ TEST(CamSystems, RecordsThatMoveAreReadOrRefused) {
   EXPECT_EQ(err("DNTCUT\n"),
             "1:1: 'DNTCUT' moves the tool and clpc does not read it: the motion after it is not to be cut; have the CAM "
             "system leave that motion out");
-  EXPECT_EQ(err("THREAD/TURN,1.5\n"),
-            "1:1: 'THREAD' moves the tool and clpc does not read it: a thread cut needs the spindle synchronised with the "
-            "feed (G32/G76/G92), which clpc does not write yet; post the threading operation separately or have the CAM "
-            "system write a cycle");
+  EXPECT_EQ(err("THREAD/TURN,1.5\n"), "");
+  EXPECT_EQ(err("THREAD/SPIRAL,1.5\n"), "1:8: THREAD: a thread is TURN, FACE or TAPER (or THREAD/OFF), found 'SPIRAL'");
+  EXPECT_EQ(err("THREAD/TURN,LEAD,1.5,STARTS,2\n"),
+            "1:22: THREAD: unknown word 'STARTS' (read: TURN, FACE, TAPER, LEAD, PITCH, MMPR, IPR, the lead, OFF)");
   EXPECT_EQ(err("TLAXIS/NORMPS\n"),
             "1:1: 'TLAXIS' moves the tool and clpc does not read it: only TLAXIS/i,j,k (a fixed tool axis) is read; an axis "
             "tied to surfaces needs the part model: have the CAM system write the tool axis on every GOTO (MULTAX)");

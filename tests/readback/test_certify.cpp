@@ -137,7 +137,7 @@ TEST(Certify, CommandLine) {
   RunResult json = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o " + t.path("a.nc") + " --json");
   EXPECT_EQ(json.status, 0) << json.err;
   EXPECT_THAT(json.err, HasSubstr("\"ok\": true,"));
-  EXPECT_THAT(json.err, HasSubstr("\"cl\": {\"points\": 8, \"arcs\": 1, \"holes\": 0, \"groove_cuts\": 0},"));
+  EXPECT_THAT(json.err, HasSubstr("\"cl\": {\"points\": 8, \"arcs\": 1, \"holes\": 0, \"groove_cuts\": 0, \"thread_cuts\": 0},"));
   RunResult none = run_clpc("compile " + t.path("plate.cls") + " -t fanuc-mill -o " + t.path("b.nc") + " --no-verify");
   EXPECT_EQ(none.status, 0) << none.err;
   EXPECT_EQ(none.err, "");

@@ -16,6 +16,7 @@
 #include "driver/certify.h"
 #include "driver/driver.h"
 #include "helpers.h"
+#include "thread_cl.h"
 #include "ir/arc_geometry.h"
 #include "machine/format.h"
 #include "readback/program_reader.h"
@@ -255,6 +256,13 @@ std::vector<Subject> subjects(const std::string& scratch) {
   five += "RAPID\nGOTO/40,0,60,0,0,1\nFINI\n";
   write_file(scratch + "/five.cls", five);
   s.push_back({scratch + "/five.cls", "five-axis sweep", machine("haas-umc750"), {}});
+  // A thread, as one G76, as G92 per pass, and as G32 moves.
+  write_file(scratch + "/thread.cls", thread_cl(g76_depths()));
+  const std::string lathes = "[g92-lathe]\ninherits = \"fanuc-lathe\"\n[g92-lathe.codes]\nthread_multi = \"\"\n"
+                             "[g32-lathe]\ninherits = \"fanuc-lathe\"\n[g32-lathe.codes]\nthread_multi = \"\"\nthread_box = \"\"\n";
+  s.push_back({scratch + "/thread.cls", "thread, G76", machine("fanuc-lathe"), {}});
+  s.push_back({scratch + "/thread.cls", "thread, G92", machine("g92-lathe", lathes), {}});
+  s.push_back({scratch + "/thread.cls", "thread, G32", machine("g32-lathe", lathes), {}});
   if (!corpus_dir().empty()) {
     const std::string extra = read_file(src("tests/machines/a_rotary_5x.toml"));
     for (auto [file, name, what] : std::vector<std::array<const char*, 3>>{

@@ -169,7 +169,7 @@ TEST_F(VerifyPlate, JsonReport) {
   print_report_json(j, c.report);
   EXPECT_THAT(j.str(), HasSubstr("\"ok\": false,"));
   EXPECT_THAT(j.str(), HasSubstr("\"max_deviation\": {\"value\": 0.01, \"line\": 15, \"column\": 1, \"gcode_line\": 18},"));
-  EXPECT_THAT(j.str(), HasSubstr("\"cl\": {\"points\": 8, \"arcs\": 1, \"holes\": 0, \"groove_cuts\": 0},"));
+  EXPECT_THAT(j.str(), HasSubstr("\"cl\": {\"points\": 8, \"arcs\": 1, \"holes\": 0, \"groove_cuts\": 0, \"thread_cuts\": 0},"));
   EXPECT_THAT(j.str(), HasSubstr("{\"line\": 15, \"column\": 1, \"gcode_line\": 18, \"message\": \"CL point (0.0000, 20.0000, -2.0000) "
                                  "is never reached: the program comes within 0.01000 of it\", \"deviation\": 0.01}"));
   EXPECT_THAT(j.str(), HasSubstr("\"problem_count\": 3,"));

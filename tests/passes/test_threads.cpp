@@ -1,0 +1,219 @@
+// Lathe threading: Fanuc's G76 pass model against hand-worked depths, THREAD sections posted
+// as G76, G92 per pass or G32 moves as the machine allows (exact blocks), constant surface
+// speed held at one speed while threading, the lead's rounding refused, the reader running
+// G32/G92/G76, and verify refusing a thread the program cuts wrong.
+#include <cmath>
+#include <cstdio>
+
+#include "helpers.h"
+#include "thread_cl.h"
+#include "ir/thread_model.h"
+#include "readback/gcode_interp.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+namespace {
+
+std::string blocks(const std::string& program, const std::string& from, const std::string& to = "N") {
+  size_t a = program.find(from);
+  if (a == std::string::npos) return program;
+  size_t e = program.find("M05", a);
+  return program.substr(a, e == std::string::npos ? std::string::npos : e - a);
+}
+
+}  // namespace
+
+TEST(ThreadModel, G76DepthsAreFanucsSquareRootInfeed) {
+  thread_model::Multi p{0.92, 0.3, 0, 0.05, 2};
+  std::vector<double> d = thread_model::depths(p);
+  ASSERT_EQ(d.size(), 11u);
+  // 0.3·√n while below k − d = 0.87: n = 1..8 (0.3·√9 = 0.9 is not), then 0.87, then 0.92 twice.
+  const double want[] = {0.3, 0.424264, 0.519615, 0.6, 0.670820, 0.734847, 0.793725, 0.848528, 0.87, 0.92, 0.92};
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_NEAR(d[i], want[i], 1e-6) << i;
+  // The smallest step: 0.5196 − 0.4243 = 0.095 < 0.1, so from the third pass on it steps by 0.1.
+  p.min_step = 0.1;
+  d = thread_model::depths(p);
+  const double clamped[] = {0.3, 0.424264, 0.524264, 0.624264, 0.724264, 0.824264, 0.87, 0.92, 0.92};
+  ASSERT_EQ(d.size(), 9u);
+  for (size_t i = 0; i < d.size(); ++i) EXPECT_NEAR(d[i], clamped[i], 1e-6) << i;
+  EXPECT_TRUE(thread_model::depths({0.5, 0.6, 0, 0.6, 1}).empty());  // allowance not below the height
+  EXPECT_TRUE(thread_model::depths({1, 1e-9, 0, 0.1, 1}).empty());   // more than 10000 passes
+}
+
+TEST(ThreadModel, G76RunsEachPassAsABoxFromTheStart) {
+  const auto steps = thread_model::multi({15, 0, 5}, {9.08, 0, -20}, {0.92, 0.6, 0, 0.1, 1});
+  // Depths 0.6, 0.82 (k − d), 0.92; crest 10.
+  ASSERT_EQ(steps.size(), 12u);
+  EXPECT_EQ(steps[0].to, ir::Vec3(9.4, 0, 5));
+  EXPECT_FALSE(steps[0].cut);
+  EXPECT_EQ(steps[1].to, ir::Vec3(9.4, 0, -20));
+  EXPECT_TRUE(steps[1].cut);
+  EXPECT_EQ(steps[2].to, ir::Vec3(15, 0, -20));
+  EXPECT_EQ(steps[3].to, ir::Vec3(15, 0, 5));
+  EXPECT_NEAR(steps[5].to.x(), 9.18, 1e-12);
+  EXPECT_NEAR(steps[9].to.x(), 9.08, 1e-12);
+}
+
+TEST(Threads, PassesOfFanucsModelBecomeOneG76) {
+  Compiled c = compile_text(thread_cl(g76_depths()), machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X30. Z5.\n"
+            "N60 G76 P020000 Q1 R0.05\n"
+            "N70 G76 X18.16 Z-20. P920 Q300 F1.5\n"
+            "N80 G00 X60. Z30.\n"
+            "N90 ");
+  EXPECT_THAT(c.diags, HasSubstr("11 thread cuts checked"));
+}
+
+TEST(Threads, WithoutG76EachPassIsAG92) {
+  Compiled c = compile_text(thread_cl({0.3, 0.6, 0.8, 0.92}), machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\n[my-lathe.codes]\nthread_multi = \"\"\n"),
+                            {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X30. Z5.\n"
+            "N60 G92 X19.4 Z-20. F1.5\n"
+            "N70 G92 X18.8 Z-20. F1.5\n"
+            "N80 G92 X18.4 Z-20. F1.5\n"
+            "N90 G92 X18.16 Z-20. F1.5\n"
+            "N100 G00 X60. Z30.\n"
+            "N110 ");
+}
+
+TEST(Threads, PassesThatAreNotFanucsModelBecomeG92) {
+  // Constant depth per pass is not G76's √n infeed: G92 per pass, not a G76 that cuts otherwise.
+  Compiled c = compile_text(thread_cl({0.2, 0.4, 0.6, 0.8, 0.92}), machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N60 G92 X19.6 Z-20. F1.5\nN70 G92 X19.2 Z-20. F1.5\n"));
+  EXPECT_THAT(c.output, Not(HasSubstr("G76")));
+}
+
+TEST(Threads, FlankInfeedIsG92FromEachPassesStart) {
+  // Each pass starts further along Z (an infeed along the flank): G76 with radial infeed would
+  // cut otherwise, so each pass is a G92 from its own start.
+  Compiled c = compile_text(thread_cl({0.3, 0.6, 0.92}, "SPINDL/RPM,800,CLW", {5, 4.85, 4.6}), machine("fanuc-lathe"),
+                            {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X30. Z5.\n"
+            "N60 G92 X19.4 Z-20. F1.5\n"
+            "N70 G00 Z4.85\n"
+            "N80 G92 X18.8 Z-20. F1.5\n"
+            "N90 G00 Z4.6\n"
+            "N100 G92 X18.16 Z-20. F1.5\n"
+            "N110 G00 X60. Z30.\n"
+            "N120 ");
+}
+
+TEST(Threads, WithoutCyclesEachCutIsG32) {
+  Compiled c = compile_text(thread_cl({0.3, 0.92}),
+                            machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\n[my-lathe.codes]\nthread_multi = \"\"\nthread_box = \"\"\n"),
+                            {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X30. Z5.\n"
+            "N60 X19.4\n"
+            "N70 G32 Z-20. F1.5\n"
+            "N80 G00 X30.\n"
+            "N90 Z5.\n"
+            "N100 X18.16\n"
+            "N110 G32 Z-20. F1.5\n"
+            "N120 G00 X30.\n"
+            "N130 Z5.\n"
+            "N140 X60. Z30.\n"
+            "N150 ");
+}
+
+TEST(Threads, SurfaceSpeedIsHeldAtOneSpeedWhileThreading) {
+  // 120 m/min at the crest (20 mm): 1909.86 rpm, written 1909; G96 again after THREAD/OFF.
+  Compiled c = compile_text(thread_cl(g76_depths(), "SPINDL/SMM,120,CLW,MAXRPM,2000"), machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N40 "),
+            "N40 G50 S2000\n"
+            "N50 G96 S120 M03\n"
+            "N60 G00 X30. Z5.\n"
+            "N70 G97 S1909 M03\n"
+            "N80 G76 P020000 Q1 R0.05\n"
+            "N90 G76 X18.16 Z-20. P920 Q300 F1.5\n"
+            "N100 G96 S120 M03\n"
+            "N110 G00 X60. Z30.\n"
+            "N120 ");
+  // The clamp caps it: 60 m/min at 20 mm is 954 rpm, under a 500 rpm clamp 500.
+  Compiled low = compile_text(thread_cl(g76_depths(), "SPINDL/SMM,60,CLW,MAXRPM,500"), machine("fanuc-lathe"));
+  EXPECT_THAT(low.output, HasSubstr("G97 S500 M03\n"));
+}
+
+TEST(Threads, ALeadThatRoundingWouldChangeIsRefused) {
+  // 13 threads per inch, 0.0769231 in, written with 3 decimals: F0.077, 0.0000769 a turn,
+  // 25 mm (0.98425 in, 12.8 turns) end 0.000984 in off: more than half an increment (0.00005 in).
+  std::string cl = thread_cl({0.3, 0.92});
+  cl.replace(cl.find("THREAD/TURN,1.5"), 15, "THREAD/TURN,0.0769231,IPR");
+  Compiled c = compile_text(cl, machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\nunits = \"inch\"\n[my-lathe.feeds]\nlead = { decimals = 3 }\n"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("error: the thread's lead of 0.0769231 in would be written F0.077 (feeds.lead: 3 decimals): "
+                                 "the thread would end 0.000984 off; give feeds.lead more decimals"));
+  // The default (6 decimals in inches) keeps it.
+  Compiled ok = compile_text(cl, machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\nunits = \"inch\"\n"), {.certify = true});
+  EXPECT_TRUE(ok.ok) << ok.diags;
+  EXPECT_THAT(ok.output, HasSubstr("F0.076923\n"));
+}
+
+TEST(Threads, TheReaderRunsG32G92AndG76) {
+  Machine m = machine("fanuc-lathe");
+  gcode::Result r = gcode::interpret(
+      "G97 S800 M03\nG00 X30. Z5.\nG92 X19.4 Z-20. F1.5\nX19.\nG76 P010000 Q1 R0.1\nG76 X18.16 Z-20. P920 Q600 F1.5\n"
+      "G00 X19.4\nG32 Z-20. F1.5\n",
+      m);
+  EXPECT_TRUE(r.problems.empty()) << r.problems[0].message;
+  std::vector<std::pair<double, double>> cuts;  // (diameter, lead) of each synchronised cut
+  for (const auto& s : r.segments)
+    if (s.thread) cuts.emplace_back(std::round(s.end.x() * 2 * 1000) / 1000, s.feed);
+  // G92 twice; G76: depths 0.6, 0.82 (k − d), 0.92 below the crest at 20 mm; G32 once.
+  ASSERT_EQ(cuts.size(), 6u);
+  const double want[] = {19.4, 19.0, 18.8, 18.36, 18.16, 19.4};
+  for (size_t i = 0; i < cuts.size(); ++i) {
+    EXPECT_DOUBLE_EQ(cuts[i].first, want[i]) << i;
+    EXPECT_DOUBLE_EQ(cuts[i].second, 1.5) << i;
+  }
+  gcode::Result css = gcode::interpret("G50 S2000\nG96 S120 M03\nG00 X30. Z5.\nG92 X19.4 Z-20. F1.5\n", m);
+  ASSERT_EQ(css.problems.size(), 1u);
+  EXPECT_EQ(css.problems[0].message, "thread cut under constant surface speed (G96): the passes would not meet; G97 first");
+  gcode::Result flank = gcode::interpret("G97 S800 M03\nG00 X30. Z5.\nG76 P010060 Q1 R0.1\n", m);
+  ASSERT_EQ(flank.problems.size(), 1u);
+  EXPECT_EQ(flank.problems[0].message, "G76 with a tool angle (P....aa, flank infeed): clpc's reader runs radial infeed only");
+}
+
+TEST(Threads, VerifyRefusesAThreadCutWrong) {
+  TempDir t;
+  write_file(t.path("thread.cls"), thread_cl(g76_depths()));
+  ASSERT_EQ(run_clpc("compile " + t.path("thread.cls") + " -t fanuc-lathe -o " + t.path("good.nc")).status, 0);
+  const std::string good = read_file(t.path("good.nc"));
+  auto verify = [&](const std::string& program) {
+    write_file(t.path("bad.nc"), program);
+    return run_clpc("verify " + t.path("thread.cls") + " -t fanuc-lathe --program " + t.path("bad.nc"));
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string p = good;
+    p.replace(p.find(from), from.size(), to);
+    return p;
+  };
+  EXPECT_EQ(verify(good).status, 0);
+  // The thread 0.02 mm too deep (k 0.94): every pass deeper than the CL's.
+  RunResult deep = verify(replaced("P920 Q300", "P940 Q300"));
+  EXPECT_NE(deep.status, 0);
+  EXPECT_THAT(deep.err, HasSubstr("is not made: the program's nearest thread cut passes 0.02000 from it"));
+  // Another lead.
+  RunResult lead = verify(replaced("Q300 F1.5", "Q300 F1.25"));
+  EXPECT_NE(lead.status, 0);
+  EXPECT_THAT(lead.err, HasSubstr("at a lead of F1.250000 where the CL's is 1.500000"));
+  // A plain feed where the CL threads.
+  std::string g01 = compile_text(thread_cl({0.3, 0.92}), machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\n[my-lathe.codes]\nthread_multi = \"\"\nthread_box = \"\"\n")).output;
+  write_file(t.path("thread.cls"), thread_cl({0.3, 0.92}));
+  g01.replace(g01.find("G32 Z-20. F1.5"), 14, "G01 Z-20. F1.5");
+  RunResult plain = verify(g01);
+  EXPECT_NE(plain.status, 0);
+  EXPECT_THAT(plain.err, HasSubstr("is made by a block not synchronised with the spindle (not G32/G92/G76)"));
+}
