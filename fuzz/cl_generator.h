@@ -59,7 +59,7 @@ class ClGenerator {
 
  private:
   void step(Choices& c) {
-    const int kinds = family_ == Family::Mill ? 5 : family_ == Family::FiveAxis ? 4 : 3;
+    const int kinds = family_ == Family::Mill ? 5 : 4;
     switch (c.pick(kinds)) {
       case 0: {  // a straight cut, or a rapid
         if (c.pick(4) == 0) line("RAPID\n");
@@ -81,6 +81,7 @@ class ClGenerator {
         break;
       case 3:
         if (family_ == Family::FiveAxis) arc(c, false);
+        else if (family_ == Family::Lathe) thread(c);
         else cycle(c);
         break;
       default: cycle(c); break;
@@ -112,6 +113,55 @@ class ClGenerator {
     line("CIRCLE/%.4f,%.4f,%.4f,%.7f,%.7f,%.7f,%.4f\n", centre[0], centre[1], centre[2], axis[0], axis[1], axis[2], r);
     x_ = end[0], y_ = end[1], z_ = end[2];
     goto_point(i_, j_, k_);
+  }
+
+  // A lathe thread: passes from a start point outside the crest, at Fanuc's G76 depths or at
+  // random ones, sometimes along the flank (each pass starting further along Z), sometimes
+  // without the return to the start, or across the face.
+  void thread(Choices& c) {
+    const double crest = c.in(8, 40), start_x = crest + c.in(1, 5), z0 = c.in(-20, 5), z1 = z0 - c.in(5, 40);
+    const double lead = 0.25 * (1 + c.pick(12));
+    line("RAPID\n");
+    x_ = start_x, z_ = z0 + 3;
+    goto_point(0, 0, 1);
+    const bool face = c.pick(6) == 0;
+    line("THREAD/%s,%.4f\n", face ? "FACE" : "TURN", lead);
+    const bool fanuc = c.pick(2) == 0, flank = c.pick(4) == 0;
+    const double k = c.in(0.3, 2), first = c.in(0.1, 0.5), allowance = c.pick(2) ? c.in(0.01, 0.1) : 0;
+    std::vector<double> depths;
+    if (fanuc) {
+      for (int n = 1; first * std::sqrt(n) < k - allowance && n < 40; ++n) depths.push_back(first * std::sqrt(n));
+      depths.push_back(k - allowance);
+      for (int m = 1 + c.pick(2); m > 0; --m) depths.push_back(k);
+    } else {
+      for (int n = 1 + c.pick(6); n > 0; --n) depths.push_back(c.in(0.05, k));
+    }
+    for (size_t n = 0; n < depths.size(); ++n) {
+      const double zs = z0 + 3 - (flank ? 0.3 * double(n) : 0);
+      line("RAPID\n");
+      if (face) {  // across the face at z0, from start_x in to the bore
+        const double inner = std::max(1.0, crest - 6);
+        line("GOTO/%.4f,0,%.4f\n", start_x, z0 - depths[n]);
+        line("GOTO/%.4f,0,%.4f\n", inner, z0 - depths[n]);
+        line("RAPID\n");
+        line("GOTO/%.4f,0,%.4f\n", inner, z0 + 3);
+        line("RAPID\n");
+        line("GOTO/%.4f,0,%.4f\n", start_x, z0 + 3);
+        x_ = start_x, z_ = z0 + 3;
+        continue;
+      }
+      if (flank) line("GOTO/%.4f,0,%.4f\n", start_x, zs);
+      line("GOTO/%.4f,0,%.4f\n", crest - depths[n], zs);
+      line("GOTO/%.4f,0,%.4f\n", crest - depths[n], z1);
+      line("RAPID\n");
+      line("GOTO/%.4f,0,%.4f\n", start_x, z1);
+      x_ = start_x, z_ = z1;
+      if (c.pick(8) == 0) continue;
+      line("RAPID\n");
+      line("GOTO/%.4f,0,%.4f\n", start_x, zs);
+      z_ = zs;
+    }
+    line("THREAD/OFF\n");
   }
 
   // Holes: a cycle, a few points at the top, CYCLE/OFF.

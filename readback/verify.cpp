@@ -762,6 +762,22 @@ class Comparison : public ProgramSink {
     groove_ = false;
     consume(groove_reach_);
     groove_reach_ = 0;
+    consume_rapids_to(prev_);
+  }
+
+  // After a section whose rapids were not matched one by one (a groove, a thread): the rapids
+  // that bring the tool to the section's last CL point are the section's, not the next
+  // record's (a rapid whose ends both lie on a following arc is not that arc cut at rapid).
+  void consume_rapids_to(const Vec3& p) {
+    if (!have_prev_) return;
+    for (size_t j = 0; j < 64; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s || s->raw.kind != gcode::Segment::Kind::Rapid || !finite(s->end)) return;
+      if ((s->end - p).norm() <= tol_) {
+        consume(j + 1);
+        return;
+      }
+    }
   }
 
   // --- lathe threads: each CL thread cut is a synchronised cut of the program at the lead,
@@ -788,7 +804,9 @@ class Comparison : public ProgramSink {
     prev_ = p;
     have_prev_ = true;
     if (rapid) return;
-    if (!have_from || !along_thread(from, p)) {
+    if (!have_from) return;
+    if (!along_thread(from, p)) {
+      if ((p - from).norm() <= tol_) return;  // no move
       ++rep_.cl_groove_points;  // an infeed or pull-out at feed: on the path, like a groove's
       groove_cut(p, p);
       return;
@@ -879,6 +897,7 @@ class Comparison : public ProgramSink {
     groove_reach_ = 0;
     thread_cuts_.clear();
     thread_used_.clear();
+    consume_rapids_to(prev_);
   }
 
   // --- limits --------------------------------------------------------------------------

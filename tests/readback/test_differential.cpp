@@ -38,9 +38,14 @@ TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
   const std::regex located(":[0-9]+:[0-9]+: error: ");
   TempDir t;
   int certified = 0, refused = 0;
+  int grepped = 0;  // certified programs with CLPC_DIFF_GREP's text in them (what a sweep exercised)
+  // CLPC_DIFF_SEEDS=N runs N programs per machine (a longer sweep by hand; ctest runs 60).
+  const unsigned seeds = std::getenv("CLPC_DIFF_SEEDS") ? unsigned(std::atoi(std::getenv("CLPC_DIFF_SEEDS"))) : 60;
+  const char* only = std::getenv("CLPC_DIFF_MACHINE");  // one machine of the list
   for (const Case& k : cases) {
+    if (only && std::string(only) != k.machine) continue;
     const Machine m = k.toml ? machine(k.machine, read_file(src(k.toml))) : machine(k.machine);
-    for (unsigned seed = 1; seed <= 60; ++seed) {
+    for (unsigned seed = 1; seed <= seeds; ++seed) {
       std::mt19937 rng(seed * 7919 + unsigned(k.family));
       std::vector<uint8_t> bytes(600);
       for (uint8_t& b : bytes) b = uint8_t(rng());
@@ -57,6 +62,7 @@ TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
       if (r.ok) {
         ++certified;
         ASSERT_TRUE(r.certificate && r.certificate->ok) << err.str();
+        if (const char* g = std::getenv("CLPC_DIFF_GREP"); g && read_file(out).find(g) != std::string::npos) ++grepped;
         EXPECT_TRUE(std::filesystem::exists(out));
       } else {
         ++refused;
@@ -70,5 +76,6 @@ TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
     }
   }
   std::printf("differential: %d programs certified, %d refused with a located error\n", certified, refused);
+  if (std::getenv("CLPC_DIFF_GREP")) std::printf("differential: %d certified programs contain '%s'\n", grepped, std::getenv("CLPC_DIFF_GREP"));
   EXPECT_GT(certified, 100);
 }
