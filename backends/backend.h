@@ -60,6 +60,8 @@ class ProgramWriter : public Backend {
   // Before motion: the coolant a tool change turned off, on again (unless the CL said).
   void restore_coolant(SourceLoc loc);
   void write_smoothing(bool on);
+  // In a straight move's block: G41/G42/G40 where a CUTCOM changed it.
+  void comp_code();
   // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
   bool spindle_within_limit(double rpm, SourceLoc loc);
   void write_header(const ir::ProgramInfo& info);

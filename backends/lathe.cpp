@@ -115,12 +115,13 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
-  if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_) {
+  if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_ && !comp_pending_set_) {
     pos_ = mv.point;
     return;
   }
   e_.begin(loc);
   absolute_code();
+  comp_code();  // tool nose radius compensation starts and ends on a straight move
   if (!rapid) feed_mode_code();
   motion_code(rapid ? Motion::Rapid : Motion::Linear);
   e_.modal_word('X', o.x());
@@ -138,6 +139,12 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
   }
   if (thread_) {
     d_.error(loc, "an arc inside THREAD: a thread is cut by straight synchronised moves (G32), not arcs");
+    return;
+  }
+  if (comp_pending_set_) {
+    d_.error(loc, "tool nose radius compensation (CUTCOM) starts or ends on an arc: the control needs a straight move "
+                  "(G00/G01) for it; have the CAM system turn it on or off before a line");
+    comp_pending_set_ = false;
     return;
   }
   if (std::abs(a.axis.y()) < 1 - 1e-9) {

@@ -107,6 +107,11 @@ void LatheBackend::write_thread_move(const ir::Move& mv, SourceLoc loc) {
   }
   const double lead = thread_lead(loc);
   if (!(lead > 0)) return;
+  if (comp_pending_set_) {
+    d_.error(loc, "tool nose radius compensation (CUTCOM) starts or ends on a thread cut: turn it on or off with a straight move");
+    comp_pending_set_ = false;
+    return;
+  }
   fix_spindle_speed(pos_.x(), loc);
   const ir::Vec3 o = mv.point * k_;
   e_.begin(loc);

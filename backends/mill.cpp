@@ -68,19 +68,6 @@ void MillBackend::motion_code(Motion mo) {
   motion_ = mo;
 }
 
-void MillBackend::comp_code() {
-  if (!comp_pending_set_) return;
-  const ir::CutterComp& c = comp_pending_;
-  if (c.side == ir::CompSide::Off) {
-    e_.code(m_.codes.comp_off);
-  } else {
-    int reg = c.reg > 0 ? c.reg : tool_;
-    e_.code(c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right,
-            TemplateVars().with(Var::Register, reg));
-  }
-  comp_pending_set_ = false;
-}
-
 bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
   if (m_.kinematics.has_rotaries()) return true;  // the kinematics pass gave the rotary positions
   if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;

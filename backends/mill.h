@@ -34,7 +34,6 @@ class MillBackend : public ProgramWriter {
   void write_offset_table();
   void write_offset_macro();
   void motion_code(Motion mo);
-  void comp_code();
   bool check_axis(const ir::Vec3& axis, SourceLoc loc);
   bool changed(char letter, double value) const;
 

@@ -473,6 +473,19 @@ void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
   e_.end();
 }
 
+void ProgramWriter::comp_code() {
+  if (!comp_pending_set_) return;
+  const ir::CutterComp& c = comp_pending_;
+  if (c.side == ir::CompSide::Off) {
+    e_.code(m_.codes.comp_off);
+  } else {
+    int reg = c.reg > 0 ? c.reg : tool_;
+    e_.code(c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right,
+            TemplateVars().with(Var::Register, reg).with(Var::Tip, m_.lathe.tip));
+  }
+  comp_pending_set_ = false;
+}
+
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   comp_pending_ = c;
   comp_pending_set_ = true;

@@ -21,6 +21,7 @@ std::string_view var_name(Var v) {
     case Var::J: return "j";
     case Var::K: return "k";
     case Var::Angle: return "angle";
+    case Var::Tip: return "tip";
     case Var::Count: break;
   }
   return "?";

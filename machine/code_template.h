@@ -16,6 +16,7 @@ enum class Var : uint8_t {
   Tool, Offset, Register, Seconds, Milliseconds, Speed, Max, Number, Level, Tolerance,
   X, Y, Z, I, J, K,  // a tilted plane: origin and Euler angles
   Angle,             // codes.unwind: the position a winding axis is renamed to
+  Tip,               // lathe comp_left/comp_right: the tool's imaginary tip number (lathe.tip)
   Count
 };
 std::string_view var_name(Var v);

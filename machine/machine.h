@@ -70,6 +70,7 @@ struct LatheSettings {
   // -Y: G02 and G03 swap. See docs/machines.md, [lathe].
   bool arcs_from_minus_y = false;
   double max_rpm = 0;       // spindle limit: caps the G50 S clamp written with surface speed (0 = none)
+  int tip = 3;              // the imaginary tool tip (0-9) for tool nose radius compensation ({tip})
 };
 
 enum class Cyclic : uint8_t {

@@ -612,6 +612,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     int v = s->choice("arcs_seen_from");
     if (v >= 0) m.lathe.arcs_from_minus_y = v == 1;
     s->number("max_rpm", m.lathe.max_rpm);
+    s->integer("tip", m.lathe.tip);
     s->finish();
   }
   if (auto s = r.sub("motion")) {

@@ -208,6 +208,8 @@ std::vector<KeySpec> build() {
   choice("lathe", "arcs_seen_from", "+Y|-Y", "G02/G03 as seen from +Y (ISO, Fanuc) or -Y",
          [](const Machine& m, size_t) { return pick("+Y|-Y", m.lathe.arcs_from_minus_y); });
   ranged("lathe", "max_rpm", K::Number, 0, 1e6, "caps the G50 S clamp", [](const Machine& m, size_t) { return n(m.lathe.max_rpm); });
+  ranged("lathe", "tip", K::Integer, 0, 9, "the imaginary tool tip for nose radius compensation ({tip})",
+         [](const Machine& m, size_t) { return n(m.lathe.tip); });
   key("motion", "velocity", K::Length3, "X Y Z: each axis's fastest, output units per minute (0: unknown)",
       [](const Machine& m, size_t) { return v3(m.motion.velocity); });
   key("motion", "acceleration", K::Length3, "X Y Z: each axis's acceleration, output units per second squared (0: unknown)",
@@ -312,7 +314,8 @@ std::vector<KeySpec> build() {
       {"coolant_tap", &Codes::coolant_tap, none}, {"coolant_off", &Codes::coolant_off, none},
       {"dwell", &Codes::dwell, bit(Var::Seconds) | bit(Var::Milliseconds)},
       {"optional_stop", &Codes::optional_stop, none}, {"stop", &Codes::stop, none},
-      {"comp_left", &Codes::comp_left, bit(Var::Register)}, {"comp_right", &Codes::comp_right, bit(Var::Register)},
+      {"comp_left", &Codes::comp_left, bit(Var::Register) | bit(Var::Tip)},
+      {"comp_right", &Codes::comp_right, bit(Var::Register) | bit(Var::Tip)},
       {"comp_off", &Codes::comp_off, none},
       {"work_offset", &Codes::work_offset, bit(Var::Number)},
       {"work_offset_extended", &Codes::work_offset_extended, bit(Var::Number)},

@@ -1,4 +1,4 @@
-// Lathe threading: Fanuc's G76 pass model against hand-worked depths, THREAD sections posted
+// Lathe: tool nose radius compensation; threading: Fanuc's G76 pass model against hand-worked depths, THREAD sections posted
 // as G76, G92 per pass or G32 moves as the machine allows (exact blocks), constant surface
 // speed held at one speed while threading, the lead's rounding refused, the reader running
 // G32/G92/G76, and verify refusing a thread the program cuts wrong.
@@ -230,4 +230,21 @@ TEST(Threads, DifferentialFindingsAreCertified) {
     EXPECT_TRUE(c.ok) << f << "\n" << c.diags;
     EXPECT_THAT(c.diags, HasSubstr("thread cuts checked")) << f;
   }
+}
+
+TEST(NoseRadius, CutcomIsG41G42OnTheNextStraightMove) {
+  const std::string head = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.2\nRAPID\nGOTO/30,0,5\n";
+  Compiled c = compile_text(head + "CUTCOM/RIGHT\nGOTO/20,0,2\nGOTO/20,0,-20\nCUTCOM/OFF\nGOTO/30,0,-20\nFINI\n", machine("fanuc-lathe"),
+                            {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X60. Z5.\n"
+            "N60 G42 G99 G01 X40. Z2. F0.2\n"
+            "N70 Z-20.\n"
+            "N80 G40 X60.\n"
+            "N90 ");
+  Compiled arc = compile_text(head + "CUTCOM/LEFT\nCIRCLE/20,0,5,0,1,0,10\nGOTO/20,0,-5\nFINI\n", machine("fanuc-lathe"));
+  EXPECT_FALSE(arc.ok);
+  EXPECT_THAT(arc.diags, HasSubstr(":9:1: error: tool nose radius compensation (CUTCOM) starts or ends on an arc: the control "
+                                   "needs a straight move (G00/G01) for it; have the CAM system turn it on or off before a line"));
 }
