@@ -7,6 +7,7 @@
 #include <map>
 
 #include "machine/format.h"
+#include "machine/kinematics.h"
 #include "machine/tilted_plane.h"
 #include "support/decimal.h"
 #include "ir/groove_model.h"
@@ -814,6 +815,18 @@ class Interp {
 };
 
 }  // namespace
+
+double combined_length(const Segment& s, const KinematicsSettings& k) {
+  double sq = (s.end - s.start).squaredNorm();
+  for (size_t i = 0; i < 3; ++i) {
+    double d = s.rotary[i] - s.rotary_start[i];
+    if (d != d) continue;  // an axis never written (NaN) did not move
+    for (const RotaryAxis& r : k.rotaries)
+      if (r.name.size() == 1 && size_t(r.name[0] - 'A') == i) d = kin::travel(r, s.rotary_start[i], s.rotary[i]);
+    sq += d * d;
+  }
+  return std::sqrt(sq);
+}
 
 struct Reader::Impl : Interp {
   using Interp::Interp;

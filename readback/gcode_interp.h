@@ -56,15 +56,9 @@ struct Segment {
 };
 
 // A block's length over all its axes at once (output units and degrees): what a control in
-// degrees-per-minute mode takes F along (kinematics.degrees_per_minute).
-inline double combined_length(const Segment& s) {
-  double sq = (s.end - s.start).squaredNorm();
-  for (size_t i = 0; i < 3; ++i) {
-    const double d = s.rotary[i] - s.rotary_start[i];
-    if (d == d) sq += d * d;  // an axis never written (NaN) did not move
-  }
-  return std::sqrt(sq);
-}
+// degrees-per-minute mode takes F along (kinematics.degrees_per_minute). A modulo axis turns
+// the short way (C350 to C10 is 20 degrees).
+double combined_length(const Segment& s, const KinematicsSettings& k);
 
 // Whether F of this block is over all its axes on a degrees-per-minute machine: a feed move,
 // without TCPC or G93, that turns a rotary.

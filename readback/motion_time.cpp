@@ -96,7 +96,7 @@ void MotionTimer::add(const gcode::Segment& s) {
   if (s.inverse_time) {
     if (s.feed > 0) b.min_seconds = std::max(b.min_seconds, 60 / s.feed);
   } else if (dpm_ && gcode::feeds_combined(s)) {
-    if (s.feed > 0) b.min_seconds = std::max(b.min_seconds, 60 * gcode::combined_length(s) / s.feed);
+    if (s.feed > 0) b.min_seconds = std::max(b.min_seconds, 60 * gcode::combined_length(s, kinematics_) / s.feed);
   } else if (feed > 0) {
     b.v_max = std::min(b.v_max, feed / 60);
   }

@@ -21,9 +21,10 @@ namespace clpc {
 
 class MotionTimer {
  public:
-  // `degrees_per_minute`: F of a feed that turns a rotary is over all the axes at once
-  // (kinematics.degrees_per_minute).
-  explicit MotionTimer(const MotionSettings& m, bool degrees_per_minute = false) : m_(m), dpm_(degrees_per_minute) {}
+  // With k.degrees_per_minute, F of a feed that turns a rotary is over all the axes at once
+  // (the rotaries' travel as k's axes turn).
+  explicit MotionTimer(const MotionSettings& m, const KinematicsSettings& k = {})
+      : m_(m), kinematics_(k), dpm_(k.degrees_per_minute) {}
   bool known() const { return m_.known(); }
   // The next segment of the program, in order (machine axes, output units).
   void add(const gcode::Segment& s);
@@ -45,6 +46,7 @@ class MotionTimer {
   static double trapezoid(double length, double v0, double v1, double v_max, double a);
 
   MotionSettings m_;
+  KinematicsSettings kinematics_;
   bool dpm_ = false;
   std::deque<Block> window_;
   double entry_ = 0;  // the speed the first block of the window starts with (fixed)

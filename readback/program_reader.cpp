@@ -30,7 +30,7 @@ ir::Arc arc_of(const TipSegment& s) {
   return a;
 }
 
-ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m), timer_(m.motion, m.kinematics.degrees_per_minute) {
+ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m), timer_(m.motion, m.kinematics) {
   known_registers_.insert(m.offsets.default_index);
   for (const ir::WorkOffset& w : info.offsets) known_registers_.insert(w.index);
   use_offsets_ = !info.offsets.empty();
@@ -156,7 +156,7 @@ void ProgramReader::account(const gcode::Segment& s) {
       if (s.inverse_time) {
         if (s.feed > 0) t.feed_minutes += 1 / s.feed;
       } else if (m_.kinematics.degrees_per_minute && gcode::feeds_combined(s)) {
-        if (s.feed > 0) t.feed_minutes += gcode::combined_length(s) / s.feed;
+        if (s.feed > 0) t.feed_minutes += gcode::combined_length(s, m_.kinematics) / s.feed;
         else t.feed_time_known = false;
       } else if (len > 0) {
         double rate = s.per_rev ? s.feed * s.rpm : s.feed;

@@ -356,7 +356,7 @@ class Comparison : public ProgramSink {
       // Degrees per minute: F over all the axes, for the tip's own length at the CL feed.
       const double tip = (s.end - s.start).norm();
       if (!(tip > 0)) return;
-      want *= gcode::combined_length(s.raw) / tip;
+      want *= gcode::combined_length(s.raw, m_.kinematics) / tip;
       if (std::abs(s.raw.feed - want) > m_.feeds.max_rounding * want + 1e-12)
         fail(loc_, s.raw.line,
              "the block's F is " + fixed(s.raw.feed, 4) + " (degrees per minute: over X Y Z and the rotaries); the CL's feed " +

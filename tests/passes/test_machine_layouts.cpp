@@ -143,6 +143,26 @@ TEST(MachineLayouts, DegreesPerMinuteFeedIsTheCombinedLengthOverTheTipsTime) {
                         "degrees_per_minute, not both"));
 }
 
+// Degrees per minute across C's zero (a modulo axis turns the short way): C359 to C0 is one
+// degree, so the block's F is its neighbours' (1635.3, not 514514 from a raw 359-degree
+// difference, which verify used to expect and so refused the right program).
+TEST(MachineLayouts, DegreesPerMinuteAcrossAModuloAxissZeroTakesTheShortWay) {
+  const std::string toml = read_file(src("examples/head_table_bc.toml")) +
+                           "\n[bc-dpm]\ninherits = \"head-table-bc\"\n[bc-dpm.kinematics]\ndegrees_per_minute = true\n";
+  std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,6000,CLW\nMULTAX/ON\nRAPID\nGOTO/0,0,60,0,0,1\nFEDRAT/MMPM,800\nRAPID\n";
+  char line[160];
+  for (int i = 0; i <= 10; ++i) {  // tilt 20 degrees, azimuth -10 to 10
+    const double az = (-10 + 2 * i) * M_PI / 180, b = 20 * M_PI / 180;
+    std::snprintf(line, sizeof line, "GOTO/%.4f,%.4f,5,%.7f,%.7f,%.7f\n", 10.0 + i, 0.5 * i, std::sin(b) * std::cos(az),
+                  std::sin(b) * std::sin(az), std::cos(b));
+    cl += line;
+  }
+  cl += "RAPID\nGOTO/20,5,60,0,0,1\nFINI\n";
+  Compiled c = compile_text(cl, machine("bc-dpm", toml), certified());
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("X99.952 Y2.503 Z-10.073 C359. B19.997 F1616.7\nN180 X100.505 Y2.5 Z-10.077 C0. B20. F1635.3\n"));
+}
+
 // With kinematics.work_zero the limits pass checks each position of the chain in machine
 // coordinates, the head's pivot included: the fork head's gauge line is 150 mm from A, so with
 // the tool horizontal at tip Z -60 over a part zero at machine Z -700 the head sits at
