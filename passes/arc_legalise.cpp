@@ -60,7 +60,6 @@ class ArcLegalise : public Pass {
   void run(ir::Operation& op, PassContext& ctx) override {
     const ArcSettings& s = ctx.machine.arcs;
     const double to_prog = ctx.from_output();
-    const double tol = ctx.tolerance();
     const double res = ctx.resolution();
     const bool r_format = s.center == ArcCenter::Radius;
     arcedit::rewrite(op, [&](ir::Instr& in, std::vector<ir::Instr>& out) {
@@ -93,7 +92,7 @@ class ArcLegalise : public Pass {
       }
       bool radius_ok = (s.min_radius <= 0 || r >= s.min_radius * to_prog) && (s.max_radius <= 0 || r <= s.max_radius * to_prog);
       if (!plane_ok(s, a->axis) || !radius_ok) {
-        if (!arcedit::linearise(*a, tol, in.loc, out, ctx.diags)) out.push_back(in);
+        if (!arcedit::linearise(*a, ctx.chord_tolerance(), in.loc, out, ctx.diags)) out.push_back(in);
         return true;
       }
       double limit = s.max_sweep;

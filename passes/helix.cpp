@@ -21,7 +21,6 @@ class Helix : public Pass {
   void run(ir::Operation& op, PassContext& ctx) override {
     const ArcSettings& s = ctx.machine.arcs;
     const double rise_tol = ctx.resolution() / 2;
-    const double tol = ctx.tolerance();
     arcedit::rewrite(op, [&](ir::Instr& in, std::vector<ir::Instr>& out) {
       auto* a = std::get_if<ir::Arc>(&in.op);
       if (!a || a->dir == ir::ArcDir::Unknown) return false;
@@ -29,7 +28,7 @@ class Helix : public Pass {
       bool helical = rise > rise_tol;
       if (!helical && a->extra_turns == 0) return false;
       if (helical && !s.helical) {
-        if (!arcedit::linearise(*a, tol, in.loc, out, ctx.diags)) out.push_back(in);
+        if (!arcedit::linearise(*a, ctx.chord_tolerance(), in.loc, out, ctx.diags)) out.push_back(in);
         return true;
       }
       double limit = helical ? s.helix_max_sweep : s.max_sweep;

@@ -25,6 +25,11 @@ struct PassContext {
   double tolerance() const { return machine.arcs.tolerance * from_output(); }
   // One increment of the X address (the output resolution) in program units.
   double resolution() const;
+  // The chord error an arc made into lines may have: the tolerance, or half of it where clpc
+  // turns points through the machine's chain itself (kinematics "transform"): the rounding of
+  // the written rotary angles then moves the tip too (0.0005 degrees is 0.001 mm at 115 mm
+  // from the axis), and takes the other half.
+  double chord_tolerance() const;
   // The machine's kinematics with its lengths (centres, pivot, retract) in program units, as
   // the kinematic model works on the IR.
   KinematicsSettings kinematics() const;

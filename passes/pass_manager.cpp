@@ -16,6 +16,12 @@ double PassContext::resolution() const {
   return std::abs(inc) * from_output();
 }
 
+double PassContext::chord_tolerance() const {
+  const KinematicsSettings& k = machine.kinematics;
+  const bool transforms = k.has_rotaries() && (k.simultaneous == Simultaneous::Transform || k.indexed == Indexed::Transform);
+  return transforms ? 0.5 * tolerance() : tolerance();
+}
+
 KinematicsSettings PassContext::kinematics() const {
   KinematicsSettings k = machine.kinematics;
   const double f = from_output();

@@ -163,6 +163,17 @@ TEST(MachineLayouts, DegreesPerMinuteAcrossAModuloAxissZeroTakesTheShortWay) {
   EXPECT_THAT(c.output, HasSubstr("X99.952 Y2.503 Z-10.073 C359. B19.997 F1616.7\nN180 X100.505 Y2.5 Z-10.077 C0. B20. F1635.3\n"));
 }
 
+// Found by differential fuzzing on head-table-bc: a CL arc in YZ with the table turned is made
+// into lines (no such plane on the machine) within the tolerance, but the rounding of the written
+// C (0.0005 degrees, 0.001 mm at 115 mm) came on top: 0.00611 against 0.006. On machines whose
+// points clpc turns through the chain, arcs become lines within half the tolerance.
+TEST(MachineLayouts, ArcsMadeLinesLeaveRoomForTheRotariesRounding) {
+  Compiled c = compile_path(src("tests/fuzz_regressions/arc_lines_rotary_rounding.cls"),
+                            machine("head-table-bc", read_file(src("examples/head_table_bc.toml"))), certified());
+  EXPECT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
+}
+
 // With kinematics.work_zero the limits pass checks each position of the chain in machine
 // coordinates, the head's pivot included: the fork head's gauge line is 150 mm from A, so with
 // the tool horizontal at tip Z -60 over a part zero at machine Z -700 the head sits at

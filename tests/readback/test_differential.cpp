@@ -32,9 +32,8 @@ TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
                         {fuzz::Family::FiveAxis, "haas-umc750"},
                         {fuzz::Family::Lathe, "fanuc-lathe"},
                         {fuzz::Family::FiveAxis, "fanuc-ac-plane", "examples/fanuc_ac_plane.toml"},
-                        {fuzz::Family::FiveAxis, "gantry-ac-head", "examples/gantry_ac_head.toml"}};
-  // head-table-bc (no TCPC) is not here yet: 1 of its 60 programs keeps a CL arc as a G02 that
-  // its certificate finds 0.00611 mm off (tolerance 0.006), a finding still open.
+                        {fuzz::Family::FiveAxis, "gantry-ac-head", "examples/gantry_ac_head.toml"},
+                        {fuzz::Family::FiveAxis, "head-table-bc", "examples/head_table_bc.toml"}};
   const std::regex located(":[0-9]+:[0-9]+: error: ");
   TempDir t;
   int certified = 0, refused = 0;
