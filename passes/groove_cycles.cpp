@@ -22,6 +22,7 @@
 #include <map>
 
 #include "ir/groove_model.h"
+#include "passes/motion_state.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -116,22 +117,7 @@ class GrooveCycles : public Pass {
   }
 
  private:
-  void track(const ir::Instr& in) {
-    if (auto* m = std::get_if<ir::Move>(&in.op)) {
-      pos_ = m->point;
-      have_pos_ = true;
-    } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
-      pos_ = a->end;
-      have_pos_ = true;
-    } else if (auto* f = std::get_if<ir::Feed>(&in.op)) {
-      feed_ = *f;
-      feed_known_ = true;
-    } else if (auto* g = std::get_if<ir::Groove>(&in.op)) {
-      pos_ = g->start;
-    } else if (auto* t = std::get_if<ir::ThreadCycle>(&in.op)) {
-      pos_ = t->start;
-    }
-  }
+  void track(const ir::Instr& in) { at_.track(in); }
 
   double pl(const ir::Vec3& v, bool face) const { return face ? v.z() : v.x(); }
   double sh(const ir::Vec3& v, bool face) const { return face ? v.x() : v.z(); }
@@ -227,10 +213,10 @@ class GrooveCycles : public Pass {
                PassContext& ctx, std::vector<ir::Instr>& out, size_t min_stations = 1) {
     // The region's moves, with where each starts and the feed in effect.
     std::vector<Item> items;
-    ir::Vec3 p = pos_;
-    bool have = have_pos_;
-    ir::Feed f = feed_;
-    bool fk = feed_known_;
+    ir::Vec3 p = at_.pos;
+    bool have = at_.have_pos;
+    ir::Feed f = at_.feed;
+    bool fk = at_.feed_known;
     bool other = false;
     for (size_t k = 0; k < region.size(); ++k) {
       if (auto* fe = std::get_if<ir::Feed>(&region[k].op)) {
@@ -380,10 +366,10 @@ class GrooveCycles : public Pass {
         m.point = start;
         m.axis = ir::Vec3::UnitZ();
         m.kind = ir::MoveKind::Rapid;
-        if (!have_pos_ || (pos_ - start).norm() > tol_) out.push_back({region[k].loc, m});
+        if (!at_.have_pos || (at_.pos - start).norm() > tol_) out.push_back({region[k].loc, m});
         out.push_back({record ? loc : region[k].loc, ir::Groove{start, end, spec_index}});
-        pos_ = start;
-        have_pos_ = true;
+        at_.pos = start;
+        at_.have_pos = true;
       }
       if (drop[k] || std::holds_alternative<ir::GrooveMark>(region[k].op)) {
         if (auto* fe = std::get_if<ir::Feed>(&region[k].op)) {  // keep the modal feed
@@ -401,10 +387,7 @@ class GrooveCycles : public Pass {
   }
 
   double tol_ = 1e-6;
-  ir::Vec3 pos_ = ir::Vec3::Zero();
-  bool have_pos_ = false;
-  ir::Feed feed_;
-  bool feed_known_ = false;
+  MotionState at_;
 };
 
 }  // namespace

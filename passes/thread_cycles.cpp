@@ -18,6 +18,7 @@
 
 #include "ir/thread_model.h"
 #include "machine/format.h"
+#include "passes/motion_state.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -61,24 +62,7 @@ class ThreadCycles : public Pass {
   }
 
  private:
-  void track(const ir::Instr& in) {
-    if (auto* m = std::get_if<ir::Move>(&in.op)) {
-      pos_ = m->point;
-      have_pos_ = true;
-    } else if (auto* a = std::get_if<ir::Arc>(&in.op)) {
-      pos_ = a->end;
-      have_pos_ = true;
-    } else if (auto* f = std::get_if<ir::Feed>(&in.op)) {
-      feed_ = *f;
-      feed_known_ = true;
-    } else if (auto* g = std::get_if<ir::Groove>(&in.op)) {
-      pos_ = g->start;
-    } else if (auto* tc = std::get_if<ir::ThreadCycle>(&in.op)) {
-      pos_ = tc->start;
-    } else if (std::holds_alternative<ir::ToolChange>(in.op)) {
-      have_pos_ = false;
-    }
-  }
+  void track(const ir::Instr& in) { at_.track(in); }
 
   void copy(std::vector<ir::Instr>& body, size_t from, size_t to, std::vector<ir::Instr>& out) {
     for (size_t k = from; k < to; ++k) {
@@ -92,7 +76,7 @@ class ThreadCycles : public Pass {
   void section(std::vector<ir::Instr>& body, size_t from, size_t to, const ir::ThreadMark& mark, PassContext& ctx,
                std::vector<ir::Instr>& out) {
     // Only plain motion (and feeds) can be read as passes.
-    bool plain = mark.kind == ir::ThreadKind::Turn && have_pos_;
+    bool plain = mark.kind == ir::ThreadKind::Turn && at_.have_pos;
     double lead = mark.lead;
     for (size_t k = from; k < to && plain; ++k) {
       if (auto* f = std::get_if<ir::Feed>(&body[k].op)) {
@@ -104,7 +88,7 @@ class ThreadCycles : public Pass {
         plain = false;
       }
     }
-    if (!(lead > 0) && feed_known_ && feed_.mode == ir::FeedMode::PerRev) lead = feed_.value;
+    if (!(lead > 0) && at_.feed_known && at_.feed.mode == ir::FeedMode::PerRev) lead = at_.feed.value;
     if (!plain || !(lead > 0)) return copy(body, from, to, out);
 
     // The moves, and the boxes among them.
@@ -113,7 +97,7 @@ class ThreadCycles : public Pass {
       if (std::holds_alternative<ir::Move>(body[k].op)) moves.push_back(k);
     auto mv = [&](size_t n) -> const ir::Move& { return std::get<ir::Move>(body[moves[n]].op); };
     std::vector<Box> boxes;
-    ir::Vec3 p = pos_;
+    ir::Vec3 p = at_.pos;
     for (size_t n = 0; n < moves.size();) {
       if (n + 3 < moves.size()) {
         const ir::Vec3 in = mv(n).point, cut = mv(n + 1).point, out_x = mv(n + 2).point, back = mv(n + 3).point;
@@ -139,7 +123,7 @@ class ThreadCycles : public Pass {
       const size_t first = moves[boxes.front().first], last = moves[boxes.back().first + 3];
       copy(body, from, first, out);
       out.push_back({body[first].loc, multi});
-      pos_ = multi.start;
+      at_.pos = multi.start;
       copy(body, last + 1, to, out);
       return;
     }
@@ -156,7 +140,7 @@ class ThreadCycles : public Pass {
       // Feeds among the box's moves still set the feed in force.
       for (size_t q = first; q <= last; ++q)
         if (std::holds_alternative<ir::Feed>(body[q].op)) out.push_back(std::move(body[q]));
-      pos_ = b.start;
+      at_.pos = b.start;
       k = last + 1;
     }
     copy(body, k, to, out);
@@ -221,10 +205,7 @@ class ThreadCycles : public Pass {
   }
 
   double tol_ = 1e-9;
-  ir::Vec3 pos_ = ir::Vec3::Zero();
-  bool have_pos_ = false;
-  ir::Feed feed_;
-  bool feed_known_ = false;
+  MotionState at_;
 };
 
 }  // namespace
