@@ -73,6 +73,16 @@ class ThreadCycles : public Pass {
 
   bool eq(double a, double b) const { return std::abs(a - b) <= tol_; }
 
+  // What the cycle replaced besides moves stays, after it: a FEDRAT among the passes still sets
+  // the feed in force after the thread, a comment is still written.
+  void keep_between(std::vector<ir::Instr>& body, size_t first, size_t last, std::vector<ir::Instr>& out) {
+    for (size_t q = first; q <= last; ++q)
+      if (!std::holds_alternative<ir::Move>(body[q].op)) {
+        track(body[q]);
+        out.push_back(std::move(body[q]));
+      }
+  }
+
   void section(std::vector<ir::Instr>& body, size_t from, size_t to, const ir::ThreadMark& mark, PassContext& ctx,
                std::vector<ir::Instr>& out) {
     // Only plain motion (and feeds) can be read as passes.
@@ -123,6 +133,7 @@ class ThreadCycles : public Pass {
       const size_t first = moves[boxes.front().first], last = moves[boxes.back().first + 3];
       copy(body, from, first, out);
       out.push_back({body[first].loc, multi});
+      keep_between(body, first, last, out);
       at_.pos = multi.start;
       copy(body, last + 1, to, out);
       return;
@@ -137,9 +148,7 @@ class ThreadCycles : public Pass {
       tc.end = b.end;
       tc.lead = lead;
       out.push_back({body[first].loc, tc});
-      // Feeds among the box's moves still set the feed in force.
-      for (size_t q = first; q <= last; ++q)
-        if (std::holds_alternative<ir::Feed>(body[q].op)) out.push_back(std::move(body[q]));
+      keep_between(body, first, last, out);
       at_.pos = b.start;
       k = last + 1;
     }

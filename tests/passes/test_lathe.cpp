@@ -248,3 +248,20 @@ TEST(NoseRadius, CutcomIsG41G42OnTheNextStraightMove) {
   EXPECT_THAT(arc.diags, HasSubstr(":9:1: error: tool nose radius compensation (CUTCOM) starts or ends on an arc: the control "
                                    "needs a straight move (G00/G01) for it; have the CAM system turn it on or off before a line"));
 }
+
+TEST(Threads, AFeedAndACommentAmongThePassesOutliveTheCycle) {
+  // A FEDRAT among the passes the G76 replaced still sets the feed in force after the thread,
+  // and a comment there is still written (both were dropped with the moves).
+  std::string cl = thread_cl(g76_depths());
+  cl.replace(cl.find("GOTO/9.7000,0,-20\n"), 0, "FEDRAT/MMPR,0.15\nPPRINT FIRST PASS\n");
+  cl.replace(cl.find("THREAD/OFF\nRAPID\n"), 17, "THREAD/OFF\n");
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N50 "),
+            "N50 G00 X30. Z5.\n"
+            "N60 G76 P020000 Q1 R0.05\n"
+            "N70 G76 X18.16 Z-20. P920 Q300 F1.5\n"
+            "(FIRST PASS)\n"
+            "N80 G99 G01 X60. Z30. F0.15\n"
+            "N90 ");
+}
