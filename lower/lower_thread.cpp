@@ -62,7 +62,10 @@ void Lowerer::lower_thread(const Record& r) {
     }
   }
   t.lead *= scale;
-  if (thread_open_) d_.warning(r.loc, "THREAD replaces a thread still on (no THREAD/OFF before it)", "cycle");
+  if (thread_open_) {
+    d_.warning(r.loc, "THREAD replaces a thread still on (no THREAD/OFF before it)", "cycle");
+    push(r.loc, ir::ThreadMark{false, ir::ThreadKind::Turn, 0});  // the first section ends here
+  }
   thread_open_ = true;
   push(r.loc, t);
 }

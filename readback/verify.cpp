@@ -785,6 +785,7 @@ class Comparison : public ProgramSink {
   // thread). Cycles (G92, G76) run their passes in their own order, as grooves do. -----------
 
   void begin_thread(const ir::ThreadMark& t) {
+    if (thread_on_) end_thread();
     thread_ = t;
     thread_on_ = true;
     groove_reach_ = 0;

@@ -265,3 +265,17 @@ TEST(Threads, AFeedAndACommentAmongThePassesOutliveTheCycle) {
             "N80 G99 G01 X60. Z30. F0.15\n"
             "N90 ");
 }
+
+TEST(Threads, AThreadWithoutOffEndsWhereTheNextBegins) {
+  // Two threads, the first without THREAD/OFF: a warning, and each section is read on its own
+  // (the first's passes one G76, the second's too), the program certified.
+  std::string one = thread_cl(g76_depths());
+  const std::string passes = one.substr(one.find("THREAD/TURN"), one.find("THREAD/OFF") - one.find("THREAD/TURN"));
+  std::string cl = one;
+  cl.replace(cl.find("THREAD/OFF"), 0, "RAPID\nGOTO/15,0,5\n" + passes);
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr("warning: THREAD replaces a thread still on (no THREAD/OFF before it)"));
+  EXPECT_THAT(c.output, HasSubstr("N70 G76 X18.16 Z-20. P920 Q300 F1.5\nN80 G76 P020000 Q1 R0.05\nN90 G76 X18.16 Z-20. P920 Q300 F1.5\n"));
+  EXPECT_THAT(c.diags, HasSubstr("22 thread cuts checked"));
+}
