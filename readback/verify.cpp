@@ -56,6 +56,14 @@ double point_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (a + t * ab - p).norm();
 }
 
+// How far a point lies from the CL line from→to (0 while there is no line yet: the first
+// point of a program).
+struct LineDistance {
+  Vec3 from, to;
+  bool active;
+  double operator()(const Vec3& q) const { return active ? point_segment(q, from, to) : 0.0; }
+};
+
 std::string xyz(const Vec3& v) {
   char b[96];
   std::snprintf(b, sizeof b, "(%.4f, %.4f, %.4f)", v.x(), v.y(), v.z());
@@ -299,6 +307,7 @@ class Comparison : public ProgramSink {
     if (!finite(s.end)) return true;
     if (on_last_hole_axis(s)) return true;
     dev = on_path(s.end);
+    if (dev > tol_) return false;  // (then its bow does not matter: the walk stops here)
     if (s.rotates && finite(s.start)) dev = std::max(dev, worst_while_turning(s, on_path));
     return dev <= tol_;
   }
@@ -308,6 +317,15 @@ class Comparison : public ProgramSink {
   template <class Distance>
   double worst_while_turning(const TipSegment& s, Distance distance) {
     return worst_point([&](double t) { return distance(rd_.tip_at(s, t)); });
+  }
+
+  // The same against the CL line from→to, remembered for the last segment asked: the walk
+  // asks it twice of the block that reaches a CL point (looking past it for a nearer end,
+  // then taking it), and the search costs some twenty-five tip positions.
+  double worst_while_turning(const TipSegment& s, const LineDistance& line) {
+    if (s.index != bow_.index || line.from != bow_.from || line.to != bow_.to || line.active != bow_.active)
+      bow_ = {s.index, line.from, line.to, line.active, worst_point([&](double t) { return line(rd_.tip_at(s, t)); })};
+    return bow_.dev;
   }
 
   bool on_last_hole_axis(const TipSegment& s) const {
@@ -500,8 +518,7 @@ class Comparison : public ProgramSink {
       }
     if (s.rotates && have_prev_ && finite(s.start) && !rapid) {
       // Five-axis without TCPC: the tip between the block's ends must stay on the CL line.
-      const Vec3 from = prev_;
-      double dev = worst_while_turning(s, [&](const Vec3& q) { return point_segment(q, from, p); });
+      double dev = worst_while_turning(s, LineDistance{prev_, p, true});
       deviate(dev, loc_, s.raw.line);
       if (dev > tol_)
         fail(loc_, s.raw.line, "while the rotaries turn the tool tip leaves the CL line by " + fixed(dev, 5) + " at its worst point", dev);
@@ -515,7 +532,7 @@ class Comparison : public ProgramSink {
     ++rep_.cl_points;
     const Vec3 from = prev_;
     const bool have_from = have_prev_;
-    auto on_path = [&](const Vec3& q) { return have_from ? point_segment(q, from, p) : 0.0; };
+    const LineDistance on_path{from, p, have_from};
     double nearest;
     size_t at;
     if (already_there(p)) {
@@ -975,6 +992,12 @@ class Comparison : public ProgramSink {
   double increment_ = 0;      // one output increment of Z
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
   bool have_hole_ = false;
+  struct Bow {
+    int index = -1;
+    Vec3 from, to;
+    bool active = false;
+    double dev = 0;
+  } bow_;  // worst_while_turning's last answer against a CL line
   double cut_deg_ = -1, cut_cos_ = 1;  // axis_ok's angle below which nothing changes, and its cosine
   double point_dev_ = -1;      // the largest deviation found for the CL record being checked
   long sample_count_ = 0;
