@@ -21,6 +21,7 @@
 #include "support/output.h"
 #include "support/suggest.h"
 #include "machine/machine_loader.h"
+#include "machine/json_schema.h"
 #include "machine/schema.h"
 
 using namespace clpc;
@@ -220,6 +221,8 @@ int main(int argc, char** argv) {
   add_machine_files(explain);
   add_job(explain);
 
+  CLI::App* schema = app.add_subcommand("schema", "Print the JSON Schema of machine files (for editors that check TOML; docs/machines.md)");
+
   CLI::App* passes = app.add_subcommand("passes", "List the passes a pipeline may use, with their contracts");
   bool passes_markdown_flag = false;
   passes->add_flag("--markdown", passes_markdown_flag, "As the generated section of docs/passes.md");
@@ -233,6 +236,10 @@ int main(int argc, char** argv) {
   Diagnostics diags(&std::cerr);
   MachineRegistry reg(pass_contracts());
 
+  if (*schema) {
+    std::cout << machine_json_schema();
+    return kOk;
+  }
   if (*passes) {
     std::cout << (passes_markdown_flag ? passes_markdown() : describe_passes());
     return kOk;

@@ -180,10 +180,14 @@ Compiled compile_text(const std::string& cl, const Machine& m, CompileOptions op
 }
 
 RunResult run_clpc(const std::string& args, const std::string& stdin_text) {
+  return run_shell(std::string(CLPC_BINARY) + " " + args, stdin_text);
+}
+
+RunResult run_shell(const std::string& command, const std::string& stdin_text) {
   TempDir t;
   std::string in = t.path("stdin"), out = t.path("stdout"), err = t.path("stderr");
   write_file(in, stdin_text);
-  std::string cmd = std::string(CLPC_BINARY) + " " + args + " <" + in + " >" + out + " 2>" + err;
+  std::string cmd = "(" + command + ") <" + in + " >" + out + " 2>" + err;
   int st = std::system(cmd.c_str());
   RunResult r;
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;

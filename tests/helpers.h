@@ -73,6 +73,8 @@ struct RunResult {
   std::string out, err;
 };
 RunResult run_clpc(const std::string& args, const std::string& stdin_text = {});
+// Runs a shell command line the same way.
+RunResult run_shell(const std::string& command, const std::string& stdin_text = {});
 
 // The corpus folder, or "" (tests then say so and skip).
 std::string corpus_dir();
