@@ -112,7 +112,7 @@ Totals compile_parallel(const std::vector<std::string>& inputs, OutputFor output
 
 int main(int argc, char** argv) {
   install_output_cleanup_handlers();
-  CLI::App app{"clpc - a CNC postprocessor built as a compiler: CL data (APT/CLSF) in, G-code out"};
+  CLI::App app{"clpc - a CNC postprocessor built as a compiler: CL data (APT/CLSF) in, G-code out", "clpc"};
   app.set_version_flag("--version", std::string("clpc ") + CLPC_VERSION);
   app.require_subcommand(1);
   app.fallthrough();

@@ -9,8 +9,9 @@
 set -euo pipefail
 
 build_pkgs=(cmake ninja-build g++ clang re2c bison pkg-config libeigen3-dev
-            libtomlplusplus-dev libgtest-dev libgmock-dev libcli11-dev libbenchmark-dev time)
-test_pkgs=(linuxcnc-uspace chromium python3 python3-jsonschema)
+            libtomlplusplus-dev libgtest-dev libgmock-dev libcli11-dev libbenchmark-dev time
+            help2man gzip dpkg-dev file)
+test_pkgs=(linuxcnc-uspace chromium python3 python3-jsonschema man-db bsdextrautils)
 
 want=("${build_pkgs[@]}")
 [[ ${1:-} == --tests ]] && want+=("${test_pkgs[@]}")
