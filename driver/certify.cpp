@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include <pthread.h>
 
 #include "driver/pipeline.h"
 #include "readback/program_reader.h"
+#include "support/threads.h"
 
 namespace clpc {
 
@@ -97,14 +97,15 @@ CertifyBeside::~CertifyBeside() {
 }
 
 std::unique_ptr<ProgramSink> CertifyBeside::wrap(std::unique_ptr<ProgramSink> sink) {
-  out_.tee(&channel_);
+  if (threads_available()) out_.tee(&channel_);
   return std::make_unique<Sink>(*this, std::move(sink));
 }
 
 void CertifyBeside::start(const ir::ProgramInfo& info) {
   info_ = info;
+  if (!threads_available()) return;  // finish() reads the program back when it is written
   thread_ = std::thread([this] {
-    pthread_setname_np(pthread_self(), "clpc-certify");
+    name_this_thread("clpc-certify");
     ProgramReader rd(m_, info_);
     rd.open(channel_);
     try {
@@ -122,6 +123,16 @@ void CertifyBeside::start(const ir::ProgramInfo& info) {
 }
 
 VerifyReport CertifyBeside::finish(Diagnostics& d) {
+  if (!threads_available()) {
+    // No thread to read it beside the compile (the browser build): read the program back
+    // from where it was written, now that it is whole.
+    std::string why;
+    ProgramReader rd(m_, info_);
+    if (rd.open(out_.read_path(), why)) compare(src_, rd, m_, info_, opt_, diags_, report_, LowerOptions{});
+    else diags_.error({}, "cannot read the program back to verify it: " + why);
+    for (const Diagnostics::Deferred& x : diags_.take_deferred()) d.replay(x);
+    return std::move(report_);
+  }
   out_.end_tee();  // (done already when the pipeline ended normally)
   channel_.close();
   if (thread_.joinable()) thread_.join();

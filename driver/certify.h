@@ -39,7 +39,8 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
 // the compile's sink; the certificate starts when the pipeline begins (the program tables
 // complete) and finish() waits for it and replays its problems into the compile's
 // diagnostics, in order, after the compile's own. Destroyed unfinished (a compile that
-// failed), it stops and is waited for.
+// failed), it stops and is waited for. Without threads (support/threads.h: the browser
+// build) finish() reads the written program back instead, after the compile.
 class CertifyBeside {
  public:
   CertifyBeside(SourceFile& src, const Machine& m, OutputFile& out, CertifyOptions opt);

@@ -2,6 +2,7 @@
 
 #include "driver/stages.h"
 #include "grammar/parse.h"
+#include "support/threads.h"
 
 namespace clpc {
 
@@ -59,7 +60,7 @@ bool Pipeline::run(SourceFile& src, ProgramSink& sink) {
   sink.begin(info_);
   bool motion = false;
 
-  if (opt_.schedule == Schedule::Single) {
+  if (opt_.schedule == Schedule::Single || !threads_available()) {
     Diagnostics front_diags = deferred();
     Direct direct(pm, pass_diags, front_diags, d_, sink, motion, opt_.sink_after_errors);
     try {

@@ -1,9 +1,9 @@
 #include "driver/stages.h"
 
-#include <pthread.h>
 
 #include "grammar/parse.h"
 #include "lower/lower.h"
+#include "support/threads.h"
 
 namespace clpc {
 
@@ -87,7 +87,7 @@ FrontEnd::~FrontEnd() {
 }
 
 void FrontEnd::run() {
-  pthread_setname_np(pthread_self(), "clpc-front");
+  name_this_thread("clpc-front");
   Sink sink(*this);
   try {
     Lowerer low(info_, diags_, sink, lower_);
@@ -116,7 +116,7 @@ PassStage::~PassStage() {
 }
 
 void PassStage::run() {
-  pthread_setname_np(pthread_self(), "clpc-passes");
+  name_this_thread("clpc-passes");
   for (;;) {
     Piece p = in_.pop();
     if (p.end) {

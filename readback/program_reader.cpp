@@ -1,6 +1,5 @@
 #include "readback/program_reader.h"
 
-#include <pthread.h>
 
 #include <unistd.h>
 
@@ -8,6 +7,7 @@
 #include <cstdlib>
 
 #include "support/text.h"
+#include "support/threads.h"
 
 namespace clpc {
 
@@ -280,13 +280,13 @@ bool ProgramReader::next(TipSegment& out) {
 }
 
 void ProgramReader::read_ahead() {
-  if (ahead_) return;
+  if (ahead_ || !threads_available()) return;  // (without threads next() reads as asked)
   ahead_ = true;
   thread_ = std::thread([this] { ahead(); });
 }
 
 void ProgramReader::ahead() {
-  pthread_setname_np(pthread_self(), "clpc-readback");
+  name_this_thread("clpc-readback");
   for (bool end = false; !end;) {
     std::vector<Item> batch;
     batch.reserve(kBatch);

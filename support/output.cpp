@@ -1,6 +1,6 @@
 #include "support/output.h"
+#include "support/threads.h"
 
-#include <pthread.h>
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -158,6 +158,14 @@ void OutputFile::flush() {
   if (tee_) tee_->push(buf_);
   if (null_) buf_.clear();
   if (fd_ < 0 || buf_.empty()) return;
+  if (!threads_available()) {  // (the browser build) written here and now
+    if (!failed_ && !write_all(fd_, buf_.data(), buf_.size())) {
+      failed_ = true;
+      errno_ = errno;
+    }
+    buf_.clear();
+    return;
+  }
   if (!thread_.joinable()) {
     writing_.reserve(kBuffer);
     thread_ = std::thread([this] { writer(); });
@@ -179,7 +187,7 @@ void OutputFile::end_tee() {
 }
 
 void OutputFile::writer() {
-  pthread_setname_np(pthread_self(), "clpc-writer");
+  name_this_thread("clpc-writer");
   std::unique_lock<std::mutex> g(lock_);
   for (;;) {
     changed_.wait(g, [&] { return write_pending_ || writer_stop_; });

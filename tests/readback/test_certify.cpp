@@ -8,6 +8,7 @@
 #include "driver/driver.h"
 #include "helpers.h"
 #include "passes/pass.h"
+#include "support/threads.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -312,4 +313,33 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   RunResult r = run_clpc("verify " + t.path("ops.cls") + " --program " + t.path("was.nc") + " -t haas-umc750");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_THAT(r.out, HasSubstr("result: PASS"));
+}
+
+// Without threads (the browser build, support/threads.h) every stage runs in turn and the
+// program is read back once written: the same programs, the same certificates, and a wrong
+// compile still never written.
+TEST(Certify, WithoutThreadsTheSameProgramsAndCertificates) {
+  TempDir t;
+  const std::string golden = std::string(CLPC_SOURCE_DIR) + "/tests/golden/";
+  for (const auto& [cl, name] : std::vector<std::pair<std::string, std::string>>{
+           {"nx_mill.cls", "haas-umc750"}, {"creo_lathe.ncl", "fanuc-lathe"}, {"creo_mill.ncl", "fanuc-mill"}}) {
+    const Machine m = machine(name);
+    Result threaded = certified_compile(golden + cl, t.path("a.nc"), m);
+    set_threads_available(false);
+    Result single = certified_compile(golden + cl, t.path("b.nc"), m);
+    set_threads_available(true);
+    ASSERT_TRUE(single.r.ok) << cl << ": " << single.diags;
+    EXPECT_THAT(single.diags, HasSubstr("clpc: certified "));
+    EXPECT_EQ(read_file(t.path("b.nc")), read_file(t.path("a.nc"))) << cl;
+    std::string diags = threaded.diags;
+    diags.replace(diags.find(t.path("a.nc")), t.path("a.nc").size(), t.path("b.nc"));
+    EXPECT_EQ(single.diags, diags) << cl;
+  }
+  write_file(t.path("plate.cls"), kPlate);
+  set_threads_available(false);
+  Result x = certified_compile(t.path("plate.cls"), t.path("plate.nc"), with_double("test-flip-arcs"));
+  set_threads_available(true);
+  EXPECT_FALSE(x.r.ok);
+  EXPECT_THAT(x.diags, HasSubstr(t.path("plate.cls") + ":13:1: error: the program turns this CL arc the other way"));
+  EXPECT_FALSE(std::filesystem::exists(t.path("plate.nc")));
 }
