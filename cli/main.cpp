@@ -66,9 +66,7 @@ struct Totals {
   }
   // "2 errors, 1 warning" on standard error when there were any; the exit status.
   int finish() const {
-    if (errors || warnings)
-      std::cerr << "clpc: " << errors << (errors == 1 ? " error, " : " errors, ") << warnings
-                << (warnings == 1 ? " warning" : " warnings") << "\n";
+    std::cerr << totals_line(errors, warnings);
     return ok ? 0 : 1;
   }
 };

@@ -192,4 +192,10 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
   return res;
 }
 
+std::string totals_line(size_t errors, size_t warnings) {
+  if (!errors && !warnings) return "";
+  return "clpc: " + std::to_string(errors) + (errors == 1 ? " error, " : " errors, ") + std::to_string(warnings) +
+         (warnings == 1 ? " warning" : " warnings") + "\n";
+}
+
 }  // namespace clpc

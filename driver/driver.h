@@ -50,6 +50,10 @@ struct CompileResult {
 
 // Compiles `input` ("-" = stdin) for `machine` into `output` ("-" = stdout). Diagnostics go
 // to `err`. The output file is only created (renamed into place) on success.
+// The line clpc compile ends with when there were errors or warnings ("clpc: 2 errors, 1
+// warning\n"); "" when there were none.
+std::string totals_line(size_t errors, size_t warnings);
+
 CompileResult compile_file(const std::string& input, const std::string& output, const Machine& machine,
                            const CompileOptions& opt, std::ostream& err);
 

@@ -1,6 +1,5 @@
 #include "machine/json_schema.h"
 
-#include <cstdio>
 #include <map>
 #include <string_view>
 
@@ -10,27 +9,6 @@
 namespace clpc {
 
 namespace {
-
-std::string json_string(std::string_view s) {
-  std::string o = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char b[8];
-          std::snprintf(b, sizeof b, "\\u%04x", c);
-          o += b;
-        } else {
-          o.push_back(c);
-        }
-    }
-  }
-  return o + "\"";
-}
 
 // The definition name of a section: "machine" for the machine's own keys.
 std::string def_name(std::string_view section) { return section.empty() ? "machine" : std::string(section); }
@@ -45,7 +23,7 @@ std::string bounds(const KeySpec& k) {
 std::string enum_of(const KeySpec& k) {
   std::string o = "\"enum\": [";
   const std::vector<std::string> c = k.choice_list();
-  for (size_t i = 0; i < c.size(); ++i) o += (i ? ", " : "") + json_string(c[i]);
+  for (size_t i = 0; i < c.size(); ++i) o += (i ? ", " : "") + json_text(c[i]);
   return o + "]";
 }
 
@@ -80,7 +58,7 @@ std::string key_schema(const KeySpec& k) {
     case KeyKind::Table:
     case KeyKind::Format: break;
   }
-  return "{" + body + ", \"description\": " + json_string(k.doc) + "}";
+  return "{" + body + ", \"description\": " + json_text(k.doc) + "}";
 }
 
 }  // namespace
@@ -99,11 +77,11 @@ std::string machine_json_schema() {
   o += "  \"description\": \"A clpc machines file (TOML): each top-level table is one machine (docs/machines.md).\",\n";
   o += "  \"type\": \"object\",\n  \"additionalProperties\": " + ref_to("") + ",\n  \"definitions\": {";
   for (size_t i = 0; i < order.size(); ++i) {
-    o += std::string(i ? "," : "") + "\n    " + json_string(def_name(order[i])) + ": {\n      \"type\": \"object\",\n";
+    o += std::string(i ? "," : "") + "\n    " + json_text(def_name(order[i])) + ": {\n      \"type\": \"object\",\n";
     o += "      \"additionalProperties\": false,\n      \"properties\": {";
     const std::vector<const KeySpec*>& ks = keys[order[i]];
     for (size_t j = 0; j < ks.size(); ++j)
-      o += std::string(j ? "," : "") + "\n        " + json_string(ks[j]->key) + ": " + key_schema(*ks[j]);
+      o += std::string(j ? "," : "") + "\n        " + json_text(ks[j]->key) + ": " + key_schema(*ks[j]);
     o += "\n      }\n    }";
   }
   return o + "\n  }\n}\n";

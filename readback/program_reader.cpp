@@ -3,8 +3,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 #include "support/text.h"
 #include "support/threads.h"
@@ -60,7 +62,7 @@ ProgramReader::~ProgramReader() {
 bool ProgramReader::open(const std::string& path, std::string& error) {
   file_ = std::fopen(path.c_str(), "rb");
   if (!file_) {
-    error = "cannot read '" + path + "'";
+    error = "cannot read '" + path + "': " + std::strerror(errno);
     return false;
   }
   return true;

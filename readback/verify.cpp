@@ -1046,19 +1046,6 @@ std::string minutes_text(double min) {
   return b;
 }
 
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      o += b;
-    } else o += c;
-  }
-  return o + "\"";
-}
-
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
   char b[48];
@@ -1118,8 +1105,8 @@ void print_report(std::ostream& o, const VerifyReport& r) {
 void print_report_json(std::ostream& o, const VerifyReport& r) {
   const ProgramTotals& p = r.program;
   o << "{\n";
-  o << "  \"input\": " << json_string(r.input) << ",\n";
-  o << "  \"machine\": " << json_string(r.machine) << ",\n";
+  o << "  \"input\": " << json_text(r.input) << ",\n";
+  o << "  \"machine\": " << json_text(r.machine) << ",\n";
   o << "  \"units\": \"" << (r.units == ir::Units::Inch ? "inch" : "mm") << "\",\n";
   o << "  \"tolerance\": " << json_number(r.tolerance) << ",\n";
   o << "  \"axis_tolerance_deg\": " << json_number(r.axis_tolerance) << ",\n";
@@ -1146,7 +1133,7 @@ void print_report_json(std::ostream& o, const VerifyReport& r) {
   for (size_t i = 0; i < r.problems.size(); ++i) {
     const VerifyProblem& q = r.problems[i];
     o << (i ? ",\n    " : "\n    ") << "{\"line\": " << q.loc.line << ", \"column\": " << q.loc.col << ", \"gcode_line\": " << q.gcode_line
-      << ", \"message\": " << json_string(q.message) << ", \"deviation\": " << json_number(q.deviation) << "}";
+      << ", \"message\": " << json_text(q.message) << ", \"deviation\": " << json_number(q.deviation) << "}";
   }
   o << (r.problems.empty() ? "]\n" : "\n  ]\n") << "}\n";
 }

@@ -5,10 +5,38 @@
 // double from_chars gives. Anything else (an exponent, more digits, "inf") goes to from_chars.
 #pragma once
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 
 namespace clpc {
+
+// std::from_chars for a double, where the standard library has it (libstdc++); the browser
+// build's libc++ (Emscripten's) has only the integer ones, and there strtod reads the same
+// forms: an optional minus, digits with a point, an exponent, inf, nan (no plus, no spaces,
+// no hexadecimal: a leading "0x" reads as 0, as from_chars reads it).
+inline std::from_chars_result from_chars_double(const char* b, const char* e, double& v) {
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  return std::from_chars(b, e, v);
+#else
+  char buf[128];
+  const size_t n = std::min<size_t>(size_t(e - b), sizeof buf - 1);
+  std::memcpy(buf, b, n);
+  buf[n] = 0;
+  const char* digits = buf + (n > 0 && buf[0] == '-');
+  if (n == 0 || !(unsigned(*digits - '0') < 10 || *digits == '.' || *digits == 'i' || *digits == 'I' || *digits == 'n' ||
+                  *digits == 'N'))
+    return {b, std::errc::invalid_argument};
+  if (digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) buf[digits + 1 - buf] = 0;
+  char* end = nullptr;
+  const double x = std::strtod(buf, &end);
+  if (end == buf) return {b, std::errc::invalid_argument};
+  v = x;
+  return {b + (end - buf), std::errc()};
+#endif
+}
 
 inline std::from_chars_result read_decimal(const char* b, const char* e, double& v) {
   static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
@@ -35,7 +63,7 @@ inline std::from_chars_result read_decimal(const char* b, const char* e, double&
       ++digits;
     }
   }
-  if (!any || digits > 15 || decimals > 22 || (p < e && (*p == 'e' || *p == 'E'))) return std::from_chars(b, e, v);
+  if (!any || digits > 15 || decimals > 22 || (p < e && (*p == 'e' || *p == 'E'))) return from_chars_double(b, e, v);
   const double x = double(m) / kPow10[decimals];
   v = negative ? -x : x;
   return {p, std::errc()};

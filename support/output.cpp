@@ -146,10 +146,11 @@ bool OutputFile::open(const std::string& path, std::string& error) {
     unlink(temp_.c_str());  // anonymous: nothing to clean up, whatever happens
     unregister_temp(temp_);
   } else {
-    // mkstemp makes 0600; a program file should get the usual permissions.
+    // mkstemp makes 0600; a program file should get the usual permissions, and its owner
+    // always reads it (the certificate does; Emscripten's file system starts with umask 0777).
     mode_t um = umask(0);
     umask(um);
-    fchmod(fd_, 0666 & ~um);
+    fchmod(fd_, (0666 & ~um) | S_IRUSR | S_IWUSR);
   }
   return true;
 }

@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 
 namespace clpc {
 
@@ -25,12 +27,39 @@ std::string xml_text(std::string_view s) {
   return o;
 }
 
+std::string json_text(std::string_view s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      o += '\\';
+      o += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      o += b;
+    } else {
+      o += c;
+    }
+  }
+  return o + "\"";
+}
+
 std::string num_text(double v) {
   if (v == 0) return "0";  // also folds -0
   if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(int64_t(v));
   char buf[32];
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
   auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, ec == std::errc() ? end : buf);
+#else
+  // (The browser build's libc++ has no floating-point to_chars: the fewest digits that read
+  // back as the same double, as to_chars gives them.)
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+#endif
 }
 
 }  // namespace clpc

@@ -13,5 +13,7 @@ std::string upper(std::string_view s);  // ASCII upper case
 // Text for an XML or HTML page (the backplot, the verify report): < > & " escaped, control
 // characters dropped.
 std::string xml_text(std::string_view s);
+// `s` as a JSON string, quoted: " and \ escaped, control characters as \u00XX.
+std::string json_text(std::string_view s);
 
 }  // namespace clpc
