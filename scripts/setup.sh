@@ -5,13 +5,14 @@
 #   scripts/setup.sh            build + unit-test packages
 #   scripts/setup.sh --tests    also the independent checkers the test suite starts
 #                               (LinuxCNC's rs274 interpreter, Chromium for the plot test,
-#                               Python's jsonschema for the machine-file schema test)
+#                               Python's jsonschema for the machine-file schema test,
+#                               Emscripten for the browser page, web/)
 set -euo pipefail
 
 build_pkgs=(cmake ninja-build g++ clang re2c bison pkg-config libeigen3-dev
             libtomlplusplus-dev libgtest-dev libgmock-dev libcli11-dev libbenchmark-dev time
             help2man gzip dpkg-dev file)
-test_pkgs=(linuxcnc-uspace chromium python3 python3-jsonschema man-db bsdextrautils)
+test_pkgs=(linuxcnc-uspace chromium python3 python3-jsonschema man-db bsdextrautils emscripten)
 
 want=("${build_pkgs[@]}")
 [[ ${1:-} == --tests ]] && want+=("${test_pkgs[@]}")
