@@ -41,7 +41,9 @@ TEST(Layering, TheTableNamesEveryLayer) {
     for (const auto& f : fs::directory_iterator(e.path()))
       has_sources = has_sources || f.path().extension() == ".cpp" || f.path().extension() == ".h";
     const bool outside = name == "tests" || name == "bench" || name == "fuzz" || name == "build" || name[0] == '.';
-    if (has_sources && !outside) EXPECT_TRUE(allowed.count(name)) << name << "/ holds sources but is no layer of docs/design.md";
+    if (has_sources && !outside) {
+      EXPECT_TRUE(allowed.count(name)) << name << "/ holds sources but is no layer of docs/design.md";
+    }
   }
 }
 
