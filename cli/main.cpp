@@ -31,12 +31,6 @@ namespace {
 // Exit codes: 0 success, 1 input or machine errors, 2 usage errors.
 constexpr int kOk = 0, kFailed = 1, kUsage = 2;
 
-bool load_machines(MachineRegistry& reg, const std::vector<std::string>& files, Diagnostics& d) {
-  bool ok = reg.load_builtin(d);
-  for (const std::string& f : files) ok = reg.load_file(f, d) && ok;
-  return ok;
-}
-
 // An output path as one file: its folder resolved (a./b.nc and a/b.nc are one file).
 std::string canonical_output(const std::string& path) {
   size_t slash = path.rfind('/');
@@ -243,12 +237,12 @@ int main(int argc, char** argv) {
     return kOk;
   }
   if (*machines) {
-    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    if (!reg.load_builtin_and(machine_files, diags)) return kFailed;
     for (const auto& [name, desc] : reg.list()) std::cout << name << "\t" << desc << "\n";
     return kOk;
   }
   if (*explain) {
-    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    if (!reg.load_builtin_and(machine_files, diags)) return kFailed;
     auto m = reg.resolve(machine_name, diags, job);
     if (!m) return kFailed;
     std::cout << explain_machine(*m);
@@ -290,7 +284,7 @@ int main(int argc, char** argv) {
   }
   std::optional<Machine> machine;
   if (!machine_name.empty()) {
-    if (!load_machines(reg, machine_files, diags)) return kFailed;
+    if (!reg.load_builtin_and(machine_files, diags)) return kFailed;
     machine = reg.resolve(machine_name, diags, job);
     if (!machine) return kFailed;
   }

@@ -126,10 +126,7 @@ VerifyReport CertifyBeside::finish(Diagnostics& d) {
   if (!threads_available()) {
     // No thread to read it beside the compile (the browser build): read the program back
     // from where it was written, now that it is whole.
-    std::string why;
-    ProgramReader rd(m_, info_);
-    if (rd.open(out_.read_path(), why)) compare(src_, rd, m_, info_, opt_, diags_, report_, LowerOptions{});
-    else diags_.error({}, "cannot read the program back to verify it: " + why);
+    report_ = certify(src_, out_.read_path(), m_, info_, opt_, diags_);
     for (const Diagnostics::Deferred& x : diags_.take_deferred()) d.replay(x);
     return std::move(report_);
   }

@@ -851,6 +851,12 @@ bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, st
   return ok;
 }
 
+bool MachineRegistry::load_builtin_and(const std::vector<std::string>& files, Diagnostics& d) {
+  bool ok = load_builtin(d);
+  for (const std::string& f : files) ok = load_file(f, d) && ok;
+  return ok;
+}
+
 bool MachineRegistry::load_builtin(Diagnostics& d) {
   auto s = std::make_unique<Source>();
   s->path = kBuiltinName;

@@ -33,6 +33,8 @@ class MachineRegistry {
   ~MachineRegistry();
 
   bool load_builtin(Diagnostics& d);
+  // The built-ins, then each file in order (--machines): false after errors, all tried.
+  bool load_builtin_and(const std::vector<std::string>& files, Diagnostics& d);
   // Adds the machines of a TOML file (or text, for tests); later ones replace earlier ones
   // of the same name.
   bool load_file(const std::string& path, Diagnostics& d);

@@ -33,6 +33,8 @@ inline std::from_chars_result from_chars_double(const char* b, const char* e, do
   char* end = nullptr;
   const double x = std::strtod(buf, &end);
   if (end == buf) return {b, std::errc::invalid_argument};
+  // A number as long as the buffer may go on past it: refused, never read short.
+  if (end == buf + n && n < size_t(e - b)) return {b, std::errc::result_out_of_range};
   v = x;
   return {b + (end - buf), std::errc()};
 #endif

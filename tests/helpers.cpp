@@ -13,6 +13,8 @@
 
 namespace clpc::test {
 
+std::string source_path(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;

@@ -21,6 +21,8 @@
 
 namespace clpc::test {
 
+// A file of the source tree, by its path from the top ("tests/tools/svg_check.py").
+std::string source_path(const std::string& rel);
 std::string read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& text);
 

@@ -10,7 +10,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 // What is missing here to build or install the package ("" when nothing).
 std::string tools_missing() {
@@ -62,10 +61,10 @@ TEST(Package, DebInstallsIntoAScratchRootAndWorks) {
   EXPECT_THAT(version.out, ::testing::MatchesRegex("clpc [0-9]+\\.[0-9]+\\.[0-9]+\n"));
 
   // The installed program compiles the bundled example as the build's does, byte for byte.
-  RunResult mine = run_shell(clpc + " compile " + src("examples/bracket.cls") + " -t fanuc-mill -o " + t.path("installed.nc"));
+  RunResult mine = run_shell(clpc + " compile " + source_path("examples/bracket.cls") + " -t fanuc-mill -o " + t.path("installed.nc"));
   ASSERT_EQ(mine.status, 0) << mine.err;
   EXPECT_THAT(mine.err, HasSubstr("clpc: certified "));
-  RunResult built = run_clpc("compile " + src("examples/bracket.cls") + " -t fanuc-mill -o " + t.path("built.nc"));
+  RunResult built = run_clpc("compile " + source_path("examples/bracket.cls") + " -t fanuc-mill -o " + t.path("built.nc"));
   ASSERT_EQ(built.status, 0) << built.err;
   EXPECT_EQ(read_file(t.path("installed.nc")), read_file(t.path("built.nc")));
 

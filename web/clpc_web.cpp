@@ -23,9 +23,8 @@ namespace {
 std::string result;  // what the last call returns: it lives until the next call
 
 bool load(MachineRegistry& reg, const char* machines_file, Diagnostics& d) {
-  bool ok = reg.load_builtin(d);
-  if (machines_file && *machines_file) ok = reg.load_file(machines_file, d) && ok;
-  return ok;
+  if (machines_file && *machines_file) return reg.load_builtin_and({machines_file}, d);
+  return reg.load_builtin(d);
 }
 
 }  // namespace

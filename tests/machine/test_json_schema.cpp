@@ -12,7 +12,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 // The validator, or why it cannot run here.
 std::string validator_missing() {
@@ -21,7 +20,7 @@ std::string validator_missing() {
 }
 
 RunResult validate(const std::string& schema, const std::string& files) {
-  return run_shell("python3 " + src("tests/tools/validate_machines.py") + " " + schema + " " + files);
+  return run_shell("python3 " + source_path("tests/tools/validate_machines.py") + " " + schema + " " + files);
 }
 
 }  // namespace
@@ -54,8 +53,8 @@ TEST(JsonSchema, BuiltInAndExampleMachinesValidate) {
   if (std::string why = validator_missing(); !why.empty()) GTEST_SKIP() << why;
   TempDir t;
   write_file(t.path("schema.json"), machine_json_schema());
-  const std::string files = src("machines.toml") + " " + src("examples/*.toml") + " " + src("tests/machines/*.toml") + " " +
-                            src("tests/offsets/machines.toml");
+  const std::string files = source_path("machines.toml") + " " + source_path("examples/*.toml") + " " + source_path("tests/machines/*.toml") + " " +
+                            source_path("tests/offsets/machines.toml");
   RunResult r = validate(t.path("schema.json"), files);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_THAT(r.out, ::testing::MatchesRegex("ok [0-9]+ files\n"));

@@ -15,7 +15,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 struct Example {
   const char* name;
@@ -25,7 +24,7 @@ const Example kExamples[] = {{"fanuc-ac-plane", "examples/fanuc_ac_plane.toml"},
                              {"gantry-ac-head", "examples/gantry_ac_head.toml"},
                              {"head-table-bc", "examples/head_table_bc.toml"}};
 
-Machine example(const Example& e) { return machine(e.name, read_file(src(e.file))); }
+Machine example(const Example& e) { return machine(e.name, read_file(source_path(e.file))); }
 
 // A five-axis finish: 41 points along a wave, the tool tilting from 5 to 30 degrees while its
 // azimuth turns a quarter turn.
@@ -106,7 +105,7 @@ TEST(MachineLayouts, HeadTableWithoutTcpSplitsMovesAndVerifyProvesTheWorstPoint)
   write_file(t.path("p.cls"), kShortFive);
   write_file(t.path("one.nc"), one);
   RunResult r = run_clpc("verify " + t.path("p.cls") + " --program " + t.path("one.nc") + " -t head-table-bc --machines " +
-                         src("examples/head_table_bc.toml"));
+                         source_path("examples/head_table_bc.toml"));
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.out + r.err, HasSubstr("while the rotaries turn the tool tip leaves the CL line by "));
   EXPECT_THAT(r.out + r.err, HasSubstr(" at its worst point [G-code line "));
@@ -119,7 +118,7 @@ TEST(MachineLayouts, HeadTableWithoutTcpSplitsMovesAndVerifyProvesTheWorstPoint)
 // CL's F. verify checks F this way (every block of a split move, not only the last), and refuses
 // the CL feed written instead (its 6172.0 is measured from the written, rounded coordinates).
 TEST(MachineLayouts, DegreesPerMinuteFeedIsTheCombinedLengthOverTheTipsTime) {
-  const std::string toml = read_file(src("examples/head_table_bc.toml")) +
+  const std::string toml = read_file(source_path("examples/head_table_bc.toml")) +
                            "\n[bc-dpm]\ninherits = \"head-table-bc\"\n[bc-dpm.kinematics]\ndegrees_per_minute = true\n";
   Compiled c = compile_text(kShortFive, machine("bc-dpm", toml), certified());
   ASSERT_TRUE(c.ok) << c.diags;
@@ -147,7 +146,7 @@ TEST(MachineLayouts, DegreesPerMinuteFeedIsTheCombinedLengthOverTheTipsTime) {
 // degree, so the block's F is its neighbours' (1635.3, not 514514 from a raw 359-degree
 // difference, which verify used to expect and so refused the right program).
 TEST(MachineLayouts, DegreesPerMinuteAcrossAModuloAxissZeroTakesTheShortWay) {
-  const std::string toml = read_file(src("examples/head_table_bc.toml")) +
+  const std::string toml = read_file(source_path("examples/head_table_bc.toml")) +
                            "\n[bc-dpm]\ninherits = \"head-table-bc\"\n[bc-dpm.kinematics]\ndegrees_per_minute = true\n";
   std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,6000,CLW\nMULTAX/ON\nRAPID\nGOTO/0,0,60,0,0,1\nFEDRAT/MMPM,800\nRAPID\n";
   char line[160];
@@ -168,8 +167,8 @@ TEST(MachineLayouts, DegreesPerMinuteAcrossAModuloAxissZeroTakesTheShortWay) {
 // C (0.0005 degrees, 0.001 mm at 115 mm) came on top: 0.00611 against 0.006. On machines whose
 // points clpc turns through the chain, arcs become lines within half the tolerance.
 TEST(MachineLayouts, ArcsMadeLinesLeaveRoomForTheRotariesRounding) {
-  Compiled c = compile_path(src("tests/fuzz_regressions/arc_lines_rotary_rounding.cls"),
-                            machine("head-table-bc", read_file(src("examples/head_table_bc.toml"))), certified());
+  Compiled c = compile_path(source_path("tests/fuzz_regressions/arc_lines_rotary_rounding.cls"),
+                            machine("head-table-bc", read_file(source_path("examples/head_table_bc.toml"))), certified());
   EXPECT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 }
@@ -179,7 +178,7 @@ TEST(MachineLayouts, ArcsMadeLinesLeaveRoomForTheRotariesRounding) {
 // the tool horizontal at tip Z -60 over a part zero at machine Z -700 the head sits at
 // -700 - 60 - 150 = -910, past Z's -900; vertical it is at -760, at 45 degrees -803.9.
 TEST(MachineLayouts, TravelInMachineCoordinatesCountsTheHeadsPivot) {
-  const std::string toml = read_file(src("examples/gantry_ac_head.toml")) +
+  const std::string toml = read_file(source_path("examples/gantry_ac_head.toml")) +
                            "\n[gz]\ninherits = \"gantry-ac-head\"\n[gz.kinematics]\nwork_zero = [500.0, 500.0, -700.0]\n";
   const std::string cl = "TOOL PATH/SIDE,TOOL,T1\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,500\nRAPID\n"
                          "GOTO/100,100,-60,0,0,1\nMULTAX/ON\nGOTO/100,120,-60,0,-0.7071068,0.7071068\n"

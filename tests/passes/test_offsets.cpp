@@ -20,10 +20,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 // The example A/C trunnion and its g10 / none variants.
-std::string ac_toml() { return read_file(src("examples/ac_trunnion.toml")) + "\n" + read_file(src("tests/offsets/machines.toml")); }
+std::string ac_toml() { return read_file(source_path("examples/ac_trunnion.toml")) + "\n" + read_file(source_path("tests/offsets/machines.toml")); }
 
 // The words of a block as letter -> value ("G90 G10 L2 P1 X0. Y28.284" -> L 2, P 1, X 0, Y 28.284;
 // G codes are not kept).
@@ -198,7 +197,7 @@ TEST(SeedMacro, G10EqualsTheMacroForRandomFrames) {
 // The reader evaluates the macro from the G65 call and gets the offsets the G10 program sets.
 TEST(SeedMacro, ReaderEvaluatesTheMacro) {
   const std::string t = ac_toml();
-  const std::string cls = src("tests/offsets/three_frames.cls");
+  const std::string cls = source_path("tests/offsets/three_frames.cls");
   Compiled cm = compile_path(cls, machine("ac-trunnion", t)), cg = compile_path(cls, machine("ac-trunnion-g10", t));
   ASSERT_TRUE(cm.ok && cg.ok) << cm.diags << cg.diags;
   Readback bm = read_back(cm.output, machine("ac-trunnion", t)), bg = read_back(cg.output, machine("ac-trunnion-g10", t));
@@ -218,10 +217,10 @@ TEST(OffsetTable, ThreeFramesGolden) {
   bool update = std::getenv("CLPC_UPDATE_GOLDEN") != nullptr;
   for (const char* name : {"ac-trunnion", "ac-trunnion-g10", "ac-trunnion-none"}) {
     SCOPED_TRACE(name);
-    Compiled c = compile_path(src("tests/offsets/three_frames.cls"), machine(name, t));
+    Compiled c = compile_path(source_path("tests/offsets/three_frames.cls"), machine(name, t));
     ASSERT_TRUE(c.ok) << c.diags;
     EXPECT_EQ(c.diags, "");
-    std::string expected = src(std::string("tests/offsets/three_frames.") + name + ".nc");
+    std::string expected = source_path(std::string("tests/offsets/three_frames.") + name + ".nc");
     if (update) write_file(expected, c.output);
     else EXPECT_EQ(c.output, read_file(expected));
   }
@@ -229,9 +228,9 @@ TEST(OffsetTable, ThreeFramesGolden) {
 
 TEST(OffsetTable, OneOffsetPerRegisterAndTheRightOneInEachOperation) {
   const std::string t = ac_toml();
-  Compiled m = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion", t));
-  Compiled g = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion-g10", t));
-  Compiled n = compile_path(src("tests/offsets/three_frames.cls"), machine("ac-trunnion-none", t));
+  Compiled m = compile_path(source_path("tests/offsets/three_frames.cls"), machine("ac-trunnion", t));
+  Compiled g = compile_path(source_path("tests/offsets/three_frames.cls"), machine("ac-trunnion-g10", t));
+  Compiled n = compile_path(source_path("tests/offsets/three_frames.cls"), machine("ac-trunnion-none", t));
   ASSERT_TRUE(m.ok && g.ok && n.ok);
   // The head: one call / one G10 per register, in order of first use.
   auto calls = lines_with(m.output, "G65 P2013");
@@ -273,7 +272,7 @@ TEST(OffsetTable, OneOffsetPerRegisterAndTheRightOneInEachOperation) {
 // every CL point of the part, whichever strategy set the offsets.
 TEST(OffsetTable, ThreeFramesFollowTheClPath) {
   const std::string t = ac_toml();
-  const std::string cls = src("tests/offsets/three_frames.cls");
+  const std::string cls = source_path("tests/offsets/three_frames.cls");
   const auto cl = cl_points(cls);
   ASSERT_GT(cl.size(), 30u);
   std::map<int, Vec3> set_by_g10;

@@ -16,7 +16,6 @@ using ir::Vec3;
 
 namespace {
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 void expect_angles(const Vec3& axis, EulerOrder order, const Vec3& want) {
   const ir::Mat3 r = plane::least_tilt(axis.normalized());
@@ -29,7 +28,7 @@ void expect_angles(const Vec3& axis, EulerOrder order, const Vec3& want) {
 
 
 Machine fanuc_plane() {
-  return machine("fanuc-ac-plane", read_file(src("examples/fanuc_ac_plane.toml")));
+  return machine("fanuc-ac-plane", read_file(source_path("examples/fanuc_ac_plane.toml")));
 }
 
 const char* kHaasPlane =
@@ -131,7 +130,7 @@ TEST(TiltedPlane, VerifyChecksThePointsThroughThePlanesAngles) {
   ASSERT_NE(at, std::string::npos);
   bad.replace(at, 4, "J30.5");
   write_file(t.path("bad.nc"), bad);
-  const std::string args = " -t fanuc-ac-plane --machines " + src("examples/fanuc_ac_plane.toml");
+  const std::string args = " -t fanuc-ac-plane --machines " + source_path("examples/fanuc_ac_plane.toml");
   RunResult good = run_clpc("verify " + t.path("p.cls") + " --program " + t.path("good.nc") + args);
   EXPECT_EQ(good.status, 0) << good.err << good.out;
   RunResult wrong = run_clpc("verify " + t.path("p.cls") + " --program " + t.path("bad.nc") + args);

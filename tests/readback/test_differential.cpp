@@ -22,7 +22,6 @@ struct Case {
   const char* toml = nullptr;  // an example machine's description (examples/), or a built-in
 };
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 }  // namespace
 
@@ -43,7 +42,7 @@ TEST(Differential, RandomProgramsAreCertifiedOrRefusedWithALocatedError) {
   const char* only = std::getenv("CLPC_DIFF_MACHINE");  // one machine of the list
   for (const Case& k : cases) {
     if (only && std::string(only) != k.machine) continue;
-    const Machine m = k.toml ? machine(k.machine, read_file(src(k.toml))) : machine(k.machine);
+    const Machine m = k.toml ? machine(k.machine, read_file(source_path(k.toml))) : machine(k.machine);
     for (unsigned seed = 1; seed <= seeds; ++seed) {
       std::mt19937 rng(seed * 7919 + unsigned(k.family));
       std::vector<uint8_t> bytes(600);

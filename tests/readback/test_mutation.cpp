@@ -27,7 +27,6 @@ using ir::Vec3;
 
 namespace {
 
-std::string src(const std::string& rel) { return std::string(CLPC_SOURCE_DIR) + "/" + rel; }
 
 enum class Kind { FlipArc, DropBlock, Coordinate, Rotary, FeedToRapid, WorkOffset, LengthOffset, CycleDepth };
 constexpr Kind kKinds[] = {Kind::FlipArc,     Kind::DropBlock,  Kind::Coordinate,   Kind::Rotary,
@@ -231,12 +230,12 @@ struct Subject {
 
 std::vector<Subject> subjects(const std::string& scratch) {
   std::vector<Subject> s;
-  const std::string ac = read_file(src("examples/ac_trunnion.toml")) + "\n" + read_file(src("tests/offsets/machines.toml"));
-  s.push_back({src("tests/golden/nx_mill.cls"), "mill, arcs, cutter compensation", machine("fanuc-mill"), {}});
-  s.push_back({src("tests/golden/creo_mill.ncl"), "mill on the five-axis UMC-750", machine("haas-umc750"), {}});
-  s.push_back({src("tests/golden/creo_lathe.ncl"), "lathe", machine("fanuc-lathe"), {}});
-  s.push_back({src("tests/offsets/three_frames.cls"), "3+2, offsets by the G65 macro", machine("ac-trunnion", ac), {}});
-  s.push_back({src("tests/offsets/three_frames.cls"), "3+2, offsets by G10", machine("ac-trunnion-g10", ac), {}});
+  const std::string ac = read_file(source_path("examples/ac_trunnion.toml")) + "\n" + read_file(source_path("tests/offsets/machines.toml"));
+  s.push_back({source_path("tests/golden/nx_mill.cls"), "mill, arcs, cutter compensation", machine("fanuc-mill"), {}});
+  s.push_back({source_path("tests/golden/creo_mill.ncl"), "mill on the five-axis UMC-750", machine("haas-umc750"), {}});
+  s.push_back({source_path("tests/golden/creo_lathe.ncl"), "lathe", machine("fanuc-lathe"), {}});
+  s.push_back({source_path("tests/offsets/three_frames.cls"), "3+2, offsets by the G65 macro", machine("ac-trunnion", ac), {}});
+  s.push_back({source_path("tests/offsets/three_frames.cls"), "3+2, offsets by G10", machine("ac-trunnion-g10", ac), {}});
   // Drilling (G81, G83, G82 with a dwell) and a five-axis sweep, made here.
   const std::string drill = "UNITS/MM\nLOADTL/3\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,120\n"
                             "CYCLE/DRILL,DEPTH,12,MMPM,120,CLEAR,2\nGOTO/10,10,0\nGOTO/30,10,0\nGOTO/30,25,-1\nCYCLE/OFF\n"
@@ -264,7 +263,7 @@ std::vector<Subject> subjects(const std::string& scratch) {
   s.push_back({scratch + "/thread.cls", "thread, G92", machine("g92-lathe", lathes), {}});
   s.push_back({scratch + "/thread.cls", "thread, G32", machine("g32-lathe", lathes), {}});
   if (!corpus_dir().empty()) {
-    const std::string extra = read_file(src("tests/machines/a_rotary_5x.toml"));
+    const std::string extra = read_file(source_path("tests/machines/a_rotary_5x.toml"));
     for (auto [file, name, what] : std::vector<std::array<const char*, 3>>{
              {"nist/multi_axis1.ncl.2", "haas-umc750", "five-axis (Creo)"},
              {"nx-course/APT_Variable_Axis.cls", "haas-umc750", "five-axis (NX)"},

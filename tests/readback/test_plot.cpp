@@ -7,18 +7,12 @@ using namespace clpc;
 using namespace clpc::test;
 using ::testing::HasSubstr;
 
-namespace {
-
-std::string tool(const std::string& name) { return std::string(CLPC_SOURCE_DIR) + "/tests/tools/" + name; }
-
-}  // namespace
-
 TEST(Plot, SvgHasFourViewsArcsAndToolChanges) {
   TempDir t;
   const std::string svg = t.path("nx_mill.svg");
   RunResult r = run_clpc("plot " + std::string(CLPC_SOURCE_DIR) + "/tests/golden/nx_mill.cls -t fanuc-mill -o " + svg);
   ASSERT_EQ(r.status, 0) << r.err;
-  RunResult c = run_shell("python3 " + tool("svg_check.py") + " " + svg);
+  RunResult c = run_shell("python3 " + source_path("tests/tools/svg_check.py") + " " + svg);
   ASSERT_EQ(c.status, 0) << c.err;
   // nx_mill: two tools; two slot-end arcs and a full circle (drawn as two halves) in the XY
   // plane, so four SVG arcs where the view sees that plane (top, isometric) and none edge-on.
@@ -36,12 +30,12 @@ TEST(Plot, CorpusFiveAxisAndLathe) {
   TempDir t;
   RunResult r = run_clpc("plot " + corpus_dir() + "/nist/multi_axis1.ncl.2 -t haas-umc750 -o " + t.path("ma.svg"));
   ASSERT_EQ(r.status, 0) << r.err;
-  RunResult c = run_shell("python3 " + tool("svg_check.py") + " " + t.path("ma.svg"));
+  RunResult c = run_shell("python3 " + source_path("tests/tools/svg_check.py") + " " + t.path("ma.svg"));
   ASSERT_EQ(c.status, 0) << c.err;
   EXPECT_THAT(c.out, HasSubstr("top feed rapid arcs 0 tools T3\n"));
   RunResult l = run_clpc("plot " + corpus_dir() + "/nist/b_turn_groove2.ncl.1 -t fanuc-lathe -o " + t.path("lathe.svg"));
   ASSERT_EQ(l.status, 0) << l.err;
-  RunResult lc = run_shell("python3 " + tool("svg_check.py") + " " + t.path("lathe.svg"));
+  RunResult lc = run_shell("python3 " + source_path("tests/tools/svg_check.py") + " " + t.path("lathe.svg"));
   ASSERT_EQ(lc.status, 0) << lc.err;
   EXPECT_THAT(lc.out, HasSubstr("views XZ\nXZ feed rapid arcs 2 tools T3\n"));  // the two corner radii
 }
@@ -69,7 +63,7 @@ TEST(Plot, ChromiumRendersItToPng) {
                       "--screenshot=" + png + " file://" + svg);
   ASSERT_EQ(c.status, 0) << c.err;
   ASSERT_TRUE(std::filesystem::exists(png)) << c.err;
-  RunResult p = run_shell("python3 " + tool("png_colours.py") + " " + png + " 1565c0 e65100 2e7d32");
+  RunResult p = run_shell("python3 " + source_path("tests/tools/png_colours.py") + " " + png + " 1565c0 e65100 2e7d32");
   ASSERT_EQ(p.status, 0) << p.err;
   std::istringstream in(p.out);
   std::string size, name;
