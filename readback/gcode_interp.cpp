@@ -11,6 +11,7 @@
 #include "machine/tilted_plane.h"
 #include "support/decimal.h"
 #include "ir/groove_model.h"
+#include "ir/stock_model.h"
 #include "ir/thread_model.h"
 
 namespace clpc::gcode {
@@ -83,7 +84,7 @@ class Interp {
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
     // After M30 / M02 the main program is over; what follows (subprograms such as the
     // offset macro) runs only when called.
-    if (!res_.ended) block(l, line_);
+    if (!res_.ended && !(stock_.collecting && collect_profile(l, line_))) block(l, line_);
   }
 
   Result& result() { return res_; }
@@ -167,7 +168,8 @@ class Interp {
     auto has = [&](char c) { return a.count(c) != 0; };
 
     bool g53 = false, g28 = false, g04 = false, g10 = false, g65 = false, g50 = false, new_cycle = false;
-    bool motion_word = false, plane_set = false, plane_cancel = false, g92 = false, g76 = false;
+    bool motion_word = false, plane_set = false, plane_cancel = false, g92 = false, g76 = false, g70 = false;
+    int g71 = 0;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
@@ -197,6 +199,8 @@ class Interp {
       else if (is_g(g, 92) && !lathe) g92 = true;
       else if (is_g(g, 32) && lathe) motion_ = Motion::Thread, motion_word = true;
       else if (is_g(g, 92) && lathe) motion_ = Motion::ThreadBox, motion_word = true;
+      else if ((is_g(g, 71) || is_g(g, 72)) && lathe) g71 = int(std::round(g));
+      else if (is_g(g, 70) && lathe) g70 = true;
       else if (is_g(g, 76) && lathe) g76 = true;  // renames positions (a winding rotary's, by whole turns)  // turns the rotaries to the plane: the program positioned them already
       else if (is_g(g, 254)) dwo_ = true;
       else if (is_g(g, 255)) dwo_ = false;
@@ -286,6 +290,12 @@ class Interp {
     }
     if (g65) {
       macro_call(a, line);
+      return;
+    }
+    if (g71 != 0 || g70) {
+      if (stock_.replaying) problem(line, std::string("G") + (g70 ? "70" : std::to_string(g71)) + " inside a G70's profile: the control alarms");
+      else if (g70) finish_profile(a, line);
+      else stock_cycle(g71, a, line);
       return;
     }
 
@@ -465,6 +475,202 @@ class Interp {
       res_.segments.push_back(s);
       pos_ = st.to;
     }
+  }
+
+  // Stock removal: the profiles read (G70 runs them again by P and Q) and the cycle reading one.
+  static constexpr size_t kMaxProfileBlocks = 100000;
+  struct Profile {
+    int p = -1, q = -1;
+    std::vector<std::pair<int, std::string>> lines;  // G-code line, text
+  };
+  struct StockCycle {
+    double depth = 0, retract = 0;  // G71 U R / G72 W R
+    bool collecting = false;        // the lines after G71 P Q are its profile, up to N(Q)
+    bool replaying = false;         // running a profile's blocks
+    int code = 71, line = 0;
+    Vec3 start = Vec3::Zero();
+    double allow_x = 0, allow_z = 0;  // radius
+    Profile profile;
+  };
+
+  // --- lathe stock removal (stock_model: the control's rules) ---------------------------------
+  // G71/G72, two blocks: "G71 U(Δd) R(e)" sets the depth of cut and the pull-out (G72: W(Δd));
+  // "G71 P(ns) Q(nf) U(Δu) W(Δw) F" names the profile, the blocks N(ns) to N(nf), which must
+  // follow it: they are read, not run; the cycle runs over them, and the program goes on after
+  // N(nf). "G70 P Q" runs a profile read so, then returns to where it started.
+  void stock_cycle(int code, const Words& a, int line) {
+    if (!a.count('P') && !a.count('Q')) {
+      stock_.depth = code == 71 ? (a.count('U') ? a['U'] : stock_.depth) : (a.count('W') ? a['W'] : stock_.depth);
+      if (a.count('R')) stock_.retract = a['R'];
+      return;
+    }
+    if (!a.count('P') || !a.count('Q')) {
+      problem(line, "G" + std::to_string(code) + " with P but no Q, or Q but no P: which blocks are its profile is unknown");
+      return;
+    }
+    if (std::isnan(pos_.x()) || std::isnan(pos_.z())) {
+      problem(line, "G" + std::to_string(code) + " from an unknown position");
+      return;
+    }
+    if (!(feed_ > 0)) problem(line, "stock removal cycle with no feed rate (F)");
+    stock_.collecting = true;
+    stock_.code = code;
+    stock_.line = line;
+    stock_.start = pos_;
+    stock_.allow_x = (a.count('U') ? a['U'] : 0) / m_.format('X').scale;
+    stock_.allow_z = a.count('W') ? a['W'] : 0;
+    // P and Q are sequence numbers, not lengths in increments.
+    stock_.profile = Profile{int(std::lround(a.raw['P' - 'A'])), int(std::lround(a.raw['Q' - 'A'])), {}};
+  }
+
+  // The number of the block's N word, -1 without one; whether it ends the program.
+  static int block_number(std::string_view l) {
+    size_t i = l.find_first_not_of(" \t");
+    if (i == std::string_view::npos || (l[i] != 'N' && l[i] != 'n')) return -1;
+    int n = 0;
+    bool any = false;
+    for (++i; i < l.size() && std::isdigit(static_cast<unsigned char>(l[i])); ++i) n = n * 10 + (l[i] - '0'), any = true;
+    return any && n < 100000000 ? n : -1;
+  }
+  static bool blank(std::string_view l) {
+    for (size_t i = 0; i < l.size(); ++i) {
+      if (l[i] == '(') {
+        i = l.find(')', i);
+        if (i == std::string_view::npos) return false;
+      } else if (l[i] != ' ' && l[i] != '\t' && l[i] != '\r' && l[i] != '%') {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // A line while a G71/G72 reads its profile: kept, not run. False when the line is to run
+  // after all (the profile is not there).
+  bool collect_profile(std::string_view l, int line) {
+    Profile& pr = stock_.profile;
+    const std::string g = "G" + std::to_string(stock_.code) + " P" + std::to_string(pr.p) + " Q" + std::to_string(pr.q);
+    const int n = block_number(l);
+    if (pr.lines.empty() && n < 0 && blank(l)) return true;
+    if (pr.lines.empty() && n != pr.p) {
+      problem(stock_.line, g + ": the block after it is not N" + std::to_string(pr.p) +
+                               ": clpc's reader takes the profile only where it follows its cycle");
+      stock_.collecting = false;
+      return false;
+    }
+    if (l.find("M30") != std::string_view::npos || l.find("M02") != std::string_view::npos ||
+        pr.lines.size() >= kMaxProfileBlocks) {
+      problem(stock_.line, g + ": no block N" + std::to_string(pr.q) + " ends the profile before line " + std::to_string(line));
+      stock_.collecting = false;
+      return false;
+    }
+    pr.lines.emplace_back(line, std::string(l));
+    if (n == pr.q) {
+      stock_.collecting = false;
+      run_stock_cycle();
+    }
+    return true;
+  }
+
+  // The profile's moves from where the cycle starts, as the control reads them (the blocks run
+  // dry: the program's state is as before afterwards).
+  std::vector<stock::Element> read_profile(const Profile& pr, int line, bool& first_rapid) {
+    const Vec3 pos = pos_;
+    const Motion motion = motion_;
+    const double feed = feed_, spindle = spindle_;
+    const bool absolute = absolute_, per_rev = per_rev_, css = css_;
+    const int comp = comp_, plane = plane_, tool = tool_, reg = length_register_, changes = res_.tool_changes;
+    const size_t events = res_.events.size();
+    std::vector<Segment> kept;
+    kept.swap(res_.segments);
+    stock_.replaying = true;
+    for (const auto& [ln, text] : pr.lines) block(text, ln);
+    stock_.replaying = false;
+    std::vector<Segment> moves;
+    moves.swap(res_.segments);
+    res_.segments.swap(kept);
+    res_.events.resize(events);
+    res_.tool_changes = changes;
+    pos_ = pos, motion_ = motion, feed_ = feed, spindle_ = spindle, absolute_ = absolute, per_rev_ = per_rev, css_ = css;
+    comp_ = comp, plane_ = plane, tool_ = tool, length_register_ = reg;
+    std::vector<stock::Element> out;
+    for (const Segment& s : moves) {
+      if (s.kind == Segment::Kind::Arc && !(s.normal == Vec3::UnitY())) {
+        problem(s.line, "an arc of a stock removal profile outside the ZX plane (G18)");
+        return {};
+      }
+      if (s.thread) {
+        problem(s.line, "a thread cut in a stock removal profile");
+        return {};
+      }
+      out.push_back({s.start, s.end, s.kind == Segment::Kind::Arc, s.center, s.ccw, s.line});
+    }
+    if (out.empty()) problem(line, "a stock removal profile with no moves");
+    first_rapid = !moves.empty() && moves.front().kind == Segment::Kind::Rapid;
+    return out;
+  }
+
+  void run_stock_cycle() {
+    Profile& pr = stock_.profile;
+    const int line = stock_.line;
+    const std::string g = "G" + std::to_string(stock_.code);
+    bool first_rapid = true;
+    const std::vector<stock::Element> profile = read_profile(pr, line, first_rapid);
+    profiles_.push_back(std::move(pr));
+    if (profile.empty()) return;
+    stock::Params p;
+    p.facing = stock_.code == 72;
+    p.depth = stock_.depth;
+    p.retract = stock_.retract;
+    p.allow_x = stock_.allow_x;
+    p.allow_z = stock_.allow_z;
+    // The first block's own motion enters each level: G00 at rapid, G01 at feed.
+    p.infeed_rapid = first_rapid;
+    std::string why;
+    const std::vector<stock::Step> steps = stock::expand(stock_.start, profile, p, why);
+    if (steps.empty()) {
+      problem(line, g + ": " + why + "; the control alarms");
+      return;
+    }
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, double(stock_.code)});
+    for (const stock::Step& st : steps) {
+      Segment s = segment(st.kind == stock::Step::Kind::Rapid ? Segment::Kind::Rapid : Segment::Kind::Feed, st.to, rotary_, line);
+      s.from_cycle = true;
+      if (st.kind == stock::Step::Kind::Arc) set_arc(s, st.center, st.ccw);
+      res_.segments.push_back(s);
+      pos_ = st.to;
+    }
+  }
+
+  // G70 P Q: the profile read with its G71/G72, run as written (its F and S), then back to the
+  // start at rapid.
+  void finish_profile(const Words& a, int line) {
+    const int p = a.count('P') ? int(std::lround(a.raw['P' - 'A'])) : -1, q = a.count('Q') ? int(std::lround(a.raw['Q' - 'A'])) : -1;
+    const Profile* pr = nullptr;
+    for (const Profile& x : profiles_)
+      if (x.p == p && x.q == q) pr = &x;
+    if (!pr) {
+      problem(line, "G70 P" + std::to_string(p) + " Q" + std::to_string(q) +
+                        ": no profile of those blocks was read with a G71/G72 before it");
+      return;
+    }
+    if (std::isnan(pos_.x()) || std::isnan(pos_.z())) {
+      problem(line, "G70 from an unknown position");
+      return;
+    }
+    const Vec3 start = pos_;
+    const size_t first = res_.segments.size();
+    const Profile copy = *pr;  // block() may read more profiles
+    stock_.replaying = true;
+    for (const auto& [ln, text] : copy.lines) block(text, ln);
+    stock_.replaying = false;
+    for (size_t i = first; i < res_.segments.size(); ++i) res_.segments[i].from_cycle = true;
+    ++res_.cycles;
+    res_.events.push_back({Event::Kind::CycleStart, line, 70});
+    Segment back = segment(Segment::Kind::Rapid, start, rotary_, line);
+    back.from_cycle = true;
+    res_.segments.push_back(back);
+    pos_ = start;
   }
 
   // --- lathe threading (thread_model: the control's rules) ------------------------------------
@@ -701,6 +907,22 @@ class Interp {
     rotary_ = rot;
   }
 
+  // An arc in the ZX plane (G18) with its centre given: radii and sweep as arc() computes them.
+  void set_arc(Segment& s, const Vec3& center, bool ccw) const {
+    s.kind = Segment::Kind::Arc;
+    s.normal = Vec3::UnitY();
+    s.ccw = ccw;
+    s.center = center;
+    s.start_radius = std::hypot(s.start.z() - center.z(), s.start.x() - center.x());
+    s.end_radius = std::hypot(s.end.z() - center.z(), s.end.x() - center.x());
+    const double a0 = std::atan2(s.start.x() - center.x(), s.start.z() - center.z());
+    const double a1 = std::atan2(s.end.x() - center.x(), s.end.z() - center.z());
+    double d = a1 - a0;
+    while (d < 0) d += 2 * kPi;
+    while (d >= 2 * kPi) d -= 2 * kPi;
+    s.sweep = (ccw ? d : (d == 0 ? 0 : 2 * kPi - d)) * 180 / kPi;
+  }
+
   bool arc(Segment& s, const Words& a, int line) {
     s.kind = Segment::Kind::Arc;
     s.ccw = motion_ == Motion::Ccw;
@@ -801,6 +1023,8 @@ class Interp {
   int cycle_ = 0;
   int groove_ = 0;
   double groove_retract_ = 0;
+  std::vector<Profile> profiles_;
+  StockCycle stock_;
   thread_model::Multi multi_;  // G76's first block
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
