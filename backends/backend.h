@@ -44,6 +44,9 @@ class ProgramWriter : public Backend {
   virtual void write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc);
   virtual void write_thread_mark(const ir::ThreadMark& t, SourceLoc loc);
   virtual void write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc);
+  // A CYCLE/ROUGH section: op.body[at] is its begin mark; the backend writes the section whole
+  // and sets resume_at_ past its end mark.
+  virtual void write_rough(const ir::Operation& op, size_t at, SourceLoc loc);
   virtual void write_rotary_position(const ir::RotaryPosition& r, SourceLoc loc);
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);
@@ -106,6 +109,7 @@ class ProgramWriter : public Backend {
   bool feed_known_ = false;
   SourceLoc feed_loc_;      // the FEDRAT the feed came from
   bool in_cycle_ = false;  // between a CycleOn and its CycleOff
+  size_t resume_at_ = 0;   // the operation's next instruction to write (past a section written whole)
   bool feed_written_ = false;
   ir::SpindleDir spindle_ = ir::SpindleDir::Off;
   double spindle_rpm_ = 0;  // last programmed speed (rpm mode)

@@ -159,16 +159,29 @@ void Emitter::trailing_comment(std::string_view c) {
   if (!t.empty()) comment_ = m_.comments.open + t + m_.comments.close;
 }
 
+bool Emitter::reserve_number(long& n) {
+  if (wrapped_) return false;
+  n = next_n_;
+  const SequenceSettings& s = m_.sequence;
+  next_n_ += s.step;
+  if (next_n_ > s.max) next_n_ = s.wrap_to > 0 ? s.wrap_to : s.start, wrapped_ = true;
+  return true;
+}
+
 void Emitter::end(bool tool_change) {
   if (words_ == 0) return;
   const SequenceSettings& s = m_.sequence;
-  if (s.enabled && (!s.tool_change_only || tool_change)) {
+  if (forced_n_ >= 0 || (s.enabled && (!s.tool_change_only || tool_change))) {
     std::string n = "N";
-    append_int(next_n_, 0, n);
+    append_int(forced_n_ >= 0 ? forced_n_ : next_n_, 0, n);
     out_.write(n);
     out_.write(m_.separator.empty() ? std::string_view() : std::string_view(m_.separator));
-    next_n_ += s.step;
-    if (next_n_ > s.max) next_n_ = s.wrap_to > 0 ? s.wrap_to : s.start;
+    if (forced_n_ >= 0) {
+      forced_n_ = -1;
+    } else {
+      next_n_ += s.step;
+      if (next_n_ > s.max) next_n_ = s.wrap_to > 0 ? s.wrap_to : s.start, wrapped_ = true;
+    }
   }
   out_.write(block_);
   if (!comment_.empty()) {

@@ -39,6 +39,11 @@ class Emitter {
   // sequence number when the machine numbers only tool changes.
   void end(bool tool_change = false);
   bool block_empty() const { return words_ == 0; }
+  // A sequence number another block names (G71's P and Q): the next one, taken whatever the
+  // numbering settings say. False once the numbers have wrapped past sequence.max, when one
+  // could name two blocks. number_next() puts it on the next block written.
+  bool reserve_number(long& n);
+  void number_next(long n) { forced_n_ = n; }
 
   // The value a control holds for `letter` after the blocks written so far.
   bool last(char letter, double& value) const;
@@ -89,6 +94,8 @@ class Emitter {
   std::string comment_;
   int words_ = 0;
   long next_n_;
+  long forced_n_ = -1;
+  bool wrapped_ = false;
   long blocks_ = 0;
   int64_t last_q_[26] = {};
   bool known_[26] = {};

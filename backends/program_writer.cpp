@@ -116,7 +116,8 @@ void ProgramWriter::operation(const ir::Operation& op) {
   // its first record that does something (a tool change writes it after its own retract).
   if (!op.continued && m_.optional_stop == Machine::OptionalStop::Operation && cut_since_stop_) stop_pending_ = true;
   if (!op.continued && !op.name.empty()) e_.comment(op.name);
-  for (const ir::Instr& in : op.body) visit(op, in);
+  resume_at_ = 0;
+  for (size_t i = 0; i < op.body.size(); i = std::max(i + 1, resume_at_)) visit(op, op.body[i]);
 }
 
 void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
@@ -174,6 +175,11 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         }
         if constexpr (std::is_same_v<T, ir::ThreadCycle>) {
           write_thread_cycle(x, loc);
+          return;
+        }
+        if constexpr (std::is_same_v<T, ir::RoughMark>) {
+          cancel_cycle(loc);
+          if (x.begin) write_rough(op, size_t(&in - op.body.data()), loc);
           return;
         }
         if constexpr (std::is_same_v<T, ir::CycleOn> || std::is_same_v<T, ir::CycleOff>) {
@@ -270,6 +276,10 @@ void ProgramWriter::write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) {
 
 void ProgramWriter::write_thread_cycle(const ir::ThreadCycle&, SourceLoc loc) {
   d_.error(loc, "internal: a threading cycle reached the mill backend");
+}
+
+void ProgramWriter::write_rough(const ir::Operation&, size_t, SourceLoc loc) {
+  d_.error(loc, "CYCLE/ROUGH is a lathe's stock-removal cycle: machine '" + m_.name + "' is a mill");
 }
 
 void ProgramWriter::write_hole(const ir::Operation&, const ir::Hole&, SourceLoc loc) {

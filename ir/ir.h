@@ -288,6 +288,26 @@ struct ThreadCycle {
   int finish_passes = 1;
 };
 
+// --- lathe stock removal (G71 turning, G72 facing, G70 finishing; docs/lathe.md) ------------
+
+// CYCLE/ROUGH,TURN|FACE,DEPTH,d,RETRACT,e[,ALLOW,u,w][,FEED,f][,FINISH] ... CYCLE/OFF: the
+// motion inside is the finishing profile, from the start point A (where the tool stands at
+// the CYCLE record) to A' along the level axis, then to B; the control roughs the stock between
+// A and the profile in levels of d (ir/stock_model.h) and, with FINISH, cuts the profile. After
+// the end mark the tool is back at A (the lowering says so with a FROM move).
+struct RoughMark {
+  bool begin = true;
+  bool facing = false;       // G72: levels along Z; else G71: levels along X
+  double depth = 0;          // d, radius, program units
+  double retract = 0;        // e
+  double allow_x = 0;        // u: finishing allowance along X, radius
+  double allow_z = 0;        // w: along Z
+  double feed = 0;           // 0: the feed in force
+  FeedMode feed_mode = FeedMode::PerRev;
+  bool finish = false;       // G70 after the roughing
+  Vec3 start = Vec3::Zero();  // A
+};
+
 // --- five-axis (made by the kinematics pass) ------------------------------------------------
 
 // Position the rotary axes (3+2, or a rotation with the tool retracted), clamped after.
@@ -308,7 +328,7 @@ struct MachineMode {
 
 using Op = std::variant<Move, Arc, ToolChange, ToolPreselect, Spindle, Feed, Coolant, CutterComp,
                         Dwell, Stop, Comment, Insert, Passthrough, SelectOffset, SetFrame, RotaryIndex,
-                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark, ThreadMark, ThreadCycle, RotaryPosition,
+                        CycleOn, CycleOff, Hole, GrooveOn, Groove, GrooveMark, ThreadMark, ThreadCycle, RoughMark, RotaryPosition,
                         MachineMode>;
 
 struct Instr {

@@ -139,6 +139,16 @@ struct Printer {
       o << " height " << num_text(t.height) << " first " << num_text(t.first_depth) << " min " << num_text(t.min_step)
         << " allowance " << num_text(t.allowance) << " finish " << t.finish_passes;
   }
+  void operator()(const RoughMark& m) {
+    if (!m.begin) {
+      o << "rough-off";
+      return;
+    }
+    o << (m.facing ? "rough G72" : "rough G71") << " from " << vec(m.start) << " depth " << num_text(m.depth) << " retract "
+      << num_text(m.retract) << " allow " << num_text(m.allow_x) << " " << num_text(m.allow_z);
+    if (m.feed > 0) o << " feed " << num_text(m.feed);
+    if (m.finish) o << " finish";
+  }
   void operator()(const RotaryIndex& r) {
     o << "rotary-index " << r.axis << " " << num_text(r.angle) << (r.incremental ? " incremental" : " absolute");
     if (r.dir != ArcDir::Unknown) o << " " << dir_name(r.dir);

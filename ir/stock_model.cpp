@@ -18,6 +18,17 @@ std::string at_line(int line) { return line > 0 ? " (G-code line " + std::to_str
 
 }  // namespace
 
+Params params_of(const ir::RoughMark& m, double scale, bool infeed_rapid) {
+  Params p;
+  p.facing = m.facing;
+  p.depth = m.depth * scale;
+  p.retract = m.retract * scale;
+  p.allow_x = m.allow_x * scale;
+  p.allow_z = m.allow_z * scale;
+  p.infeed_rapid = infeed_rapid;
+  return p;
+}
+
 std::vector<Step> expand(const ir::Vec3& start, const std::vector<Element>& profile, const Params& p, std::string& why) {
   // Work in (level, cut) coordinates and map back: G71 steps its levels along x and cuts along
   // z, G72 the other way round. Swapping the axes mirrors the plane, so an arc's sense flips.

@@ -33,6 +33,10 @@ struct Params {
   bool infeed_rapid = true;  // the first profile block is G00 (else G01): how each level is entered
 };
 
+// A CYCLE/ROUGH record's words, `scale` times (program units to output units); the infeed
+// from the profile's first move.
+Params params_of(const ir::RoughMark& m, double scale, bool infeed_rapid);
+
 struct Step {
   enum class Kind : uint8_t { Rapid, Feed, Arc };
   Kind kind = Kind::Feed;

@@ -317,7 +317,14 @@ void Lowerer::lower_insert(const Record& r) {
 }
 
 void Lowerer::make_room() {
-  if (op_.body.size() >= opt_.chunk_size) flush_chunk();
+  // A stock-removal profile stays in one chunk: the cycle is written from the whole of it.
+  if (rough_open_ && op_.body.size() - rough_size_ >= kMaxRoughInstructions) {
+    d_.error(rough_loc_, "CYCLE/ROUGH: no CYCLE/OFF within " + std::to_string(kMaxRoughInstructions) +
+                             " records: a profile that long is not a cycle's");
+    rough_open_ = false;
+    op_.body.push_back(ir::Instr{op_.body.back().loc, ir::RoughMark{false}});
+  }
+  if (op_.body.size() >= opt_.chunk_size && !rough_open_) flush_chunk();
 }
 
 ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
@@ -363,6 +370,12 @@ void Lowerer::close_operation() {
   }
   arc_open_ = false;
   if (!op_open_) return;
+  if (rough_open_) {
+    // Where the profile ends is not known: the cycle cannot be written.
+    d_.error(rough_loc_, "CYCLE/ROUGH without CYCLE/OFF before the end of the operation: where its profile ends is unknown");
+    rough_open_ = false;
+    push(op_.body.empty() ? op_.loc : op_.body.back().loc, ir::RoughMark{false});
+  }
   if (thread_open_) {
     // A thread's cuts never run on into the next operation.
     SourceLoc at = op_.body.empty() ? op_.loc : op_.body.back().loc;

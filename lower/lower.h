@@ -113,6 +113,8 @@ class Lowerer : public RecordSink {
   // lower_cycle.cpp, lower_groove.cpp
   void lower_cycle(const Record& r);
   void lower_groove_cycle(const Record& r);
+  void lower_rough_cycle(const Record& r);  // lower_rough.cpp
+  void end_rough_cycle(const Record& r);
   void lower_thread(const Record& r);  // lower_thread.cpp
   void start_cycle(const ir::CycleSpec& c, SourceLoc loc, const std::string& name);
 
@@ -156,6 +158,11 @@ class Lowerer : public RecordSink {
 
   bool cycle_open_ = false;  // a CYCLE without its CYCLE/OFF yet
   bool thread_open_ = false;  // a THREAD without its THREAD/OFF yet
+  bool rough_open_ = false;   // a CYCLE/ROUGH without its CYCLE/OFF yet
+  static constexpr size_t kMaxRoughInstructions = 10000;
+  SourceLoc rough_loc_;
+  ir::Vec3 rough_start_ = ir::Vec3::Zero();
+  size_t rough_size_ = 0;     // the chunk's size at the CYCLE/ROUGH
   size_t cycle_holes_ = 0;   // GOTOs since it
   SourceLoc cycle_loc_;
   std::string cycle_name_;

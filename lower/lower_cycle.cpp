@@ -36,6 +36,18 @@ void Lowerer::lower_cycle(const Record& r) {
   }
   ensure_operation(r.loc);
   std::string kind = upper(ps[0].text);
+  if (kind == "ROUGH") {
+    lower_rough_cycle(r);
+    return;
+  }
+  if ((kind == "OFF" || kind == "CLEAR") && ps.size() == 1 && rough_open_) {
+    end_rough_cycle(r);
+    return;
+  }
+  if (rough_open_) {
+    d_.error(r.loc, "CYCLE/" + kind + " inside a CYCLE/ROUGH (no CYCLE/OFF before it)");
+    return;
+  }
   if ((kind == "OFF" || kind == "CLEAR") && ps.size() == 1) {
     if (!cycle_open_) d_.warning(r.loc, "CYCLE/" + kind + " with no cycle on", "cycle");
     else if (cycle_holes_ == 0)

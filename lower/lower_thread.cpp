@@ -62,6 +62,10 @@ void Lowerer::lower_thread(const Record& r) {
     }
   }
   t.lead *= scale;
+  if (rough_open_) {
+    d_.error(r.loc, "THREAD inside a CYCLE/ROUGH (no CYCLE/OFF before it)");
+    return;
+  }
   if (thread_open_) {
     d_.warning(r.loc, "THREAD replaces a thread still on (no THREAD/OFF before it)", "cycle");
     push(r.loc, ir::ThreadMark{false, ir::ThreadKind::Turn, 0});  // the first section ends here

@@ -172,6 +172,9 @@ struct Codes {
   // Lathe threading (docs/lathe.md): a synchronised move (G32), the one-pass box cycle (G92),
   // the multiple-pass cycle (G76, two-block form); empty: the machine lacks it.
   CodeTemplate thread, thread_box, thread_multi;
+  // Lathe stock removal (docs/lathe.md): G71 turning, G72 facing (two-block form, type I),
+  // G70 finishing; empty: the machine lacks it (CYCLE/ROUGH is refused).
+  CodeTemplate rough_turn, rough_face, rough_finish;
   CodeTemplate tcp_on, tcp_off;              // tool centre point control: G00 G234 H{offset} / G49
   CodeTemplate dwo_on, dwo_off;              // dynamic work offset (Haas G254 / G255)
   // Tilted working plane (indexed = "plane"): "G68.2 X{x} Y{y} Z{z} I{i} J{j} K{k}" (origin,

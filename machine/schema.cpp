@@ -334,6 +334,8 @@ std::vector<KeySpec> build() {
       {"rigid_tap", &Codes::rigid_tap, bit(Var::Speed)},
       {"groove_face", &Codes::groove_face, none}, {"groove_radial", &Codes::groove_radial, none},
       {"thread", &Codes::thread, none}, {"thread_box", &Codes::thread_box, none}, {"thread_multi", &Codes::thread_multi, none},
+      {"rough_turn", &Codes::rough_turn, none}, {"rough_face", &Codes::rough_face, none},
+      {"rough_finish", &Codes::rough_finish, none},
       {"tcp_on", &Codes::tcp_on, bit(Var::Offset) | bit(Var::Tool)}, {"tcp_off", &Codes::tcp_off, none},
       {"dwo_on", &Codes::dwo_on, none}, {"dwo_off", &Codes::dwo_off, none},
       {"plane_on", &Codes::plane_on, bit(Var::X) | bit(Var::Y) | bit(Var::Z) | bit(Var::I) | bit(Var::J) | bit(Var::K)},

@@ -88,10 +88,15 @@ class GrooveCycles : public Pass {
         ++i;
         continue;
       }
-      // A thread's passes are never a groove (thread-cycles reads them).
-      if (auto* t = std::get_if<ir::ThreadMark>(&in.op); t && t->begin) {
+      // A thread's passes are never a groove (thread-cycles reads them); a stock-removal
+      // profile is the control's to cut (the backend writes G71/G72): both pass as they are.
+      auto* t = std::get_if<ir::ThreadMark>(&in.op);
+      auto* rm = std::get_if<ir::RoughMark>(&in.op);
+      if ((t && t->begin) || (rm && rm->begin)) {
         size_t j = i + 1;
-        while (j < body.size() && !std::holds_alternative<ir::ThreadMark>(body[j].op)) ++j;
+        while (j < body.size() && !(t ? std::holds_alternative<ir::ThreadMark>(body[j].op)
+                                      : std::holds_alternative<ir::RoughMark>(body[j].op)))
+          ++j;
         for (; i < j; ++i) {
           track(body[i]);
           out.push_back(std::move(body[i]));

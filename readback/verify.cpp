@@ -34,6 +34,7 @@
 #include <sstream>
 
 #include "ir/arc_geometry.h"
+#include "ir/stock_model.h"
 #include "support/text.h"
 #include "machine/format.h"
 
@@ -114,6 +115,9 @@ class Comparison : public ProgramSink {
               if (x.kind == ir::MoveKind::From) {
                 prev_ = p;
                 have_prev_ = true;
+              } else if (rough_) {
+                rough_profile_.push_back({x.kind == ir::MoveKind::Rapid ? stock::Step::Kind::Rapid : stock::Step::Kind::Feed, p,
+                                          Vec3::Zero(), false, loc_});
               } else if (thread_on_) {
                 thread_point(p, x.kind == ir::MoveKind::Rapid);
               } else if (cycle_on_ && !groove_) {
@@ -125,8 +129,20 @@ class Comparison : public ProgramSink {
               }
               if (x.kind != ir::MoveKind::From) sample(p);
             } else if constexpr (std::is_same_v<T, ir::Arc>) {
-              arc(x);
-              sample(model(x.end));
+              if (rough_) {
+                rough_arc(x);
+              } else {
+                arc(x);
+                sample(model(x.end));
+              }
+            } else if constexpr (std::is_same_v<T, ir::RoughMark>) {
+              if (x.begin) {
+                rough_ = x;
+                rough_loc_ = loc_;
+                rough_profile_.clear();
+              } else if (rough_) {
+                end_rough();
+              }
             } else if constexpr (std::is_same_v<T, ir::CycleOn>) {
               cycle_ = op.cycles.at(x.spec);  // by value: the cycle's GOTOs may come in later chunks
               cycle_on_ = true;
@@ -718,6 +734,101 @@ class Comparison : public ProgramSink {
     have_prev_ = true;
   }
 
+  // --- lathe stock removal: the control's cycle over the CL's profile, block for block ---------
+  // The reference is the CL's profile and cycle words expanded by the control's rules
+  // (ir/stock_model.h), from verify's own reading of the CL (its arcs' sense by the CAM
+  // convention); the program's G71/G72 and G70 as the reader runs them must make the same moves.
+  struct Want {
+    stock::Step::Kind kind;
+    Vec3 to, center;
+    bool ccw;
+    SourceLoc loc;
+  };
+
+  void rough_arc(const ir::Arc& a0) {
+    ir::Arc a = a0;
+    a.start = model(a0.start);
+    a.end = model(a0.end);
+    a.center = model(a0.center);
+    a.axis = model_dir(a0.axis);
+    const ir::ArcDir dir = arc_sense(a);
+    if (dir == ir::ArcDir::Unknown || std::abs(a.axis.y()) < 1 - 1e-9) {
+      fail(loc_, 0, "a CYCLE/ROUGH profile's arc that turns about no Y axis, or whose sense verify cannot tell", kInf);
+      return;
+    }
+    rough_profile_.push_back({stock::Step::Kind::Arc, a.end, a.center, (dir == ir::ArcDir::Ccw) == (a.axis.y() > 0), loc_});
+  }
+
+  void end_rough() {
+    const ir::RoughMark m = *rough_;
+    rough_.reset();
+    const Vec3 start = model(m.start);
+    std::vector<stock::Element> profile;
+    Vec3 p = start;
+    for (const Want& w : rough_profile_) {
+      profile.push_back({p, w.to, w.kind == stock::Step::Kind::Arc, w.center, w.ccw, 0});
+      p = w.to;
+    }
+    const stock::Params sp =
+        stock::params_of(m, k_, !rough_profile_.empty() && rough_profile_.front().kind == stock::Step::Kind::Rapid);
+    const char* name = m.facing ? "G72" : "G71";
+    std::string why;
+    const std::vector<stock::Step> steps = stock::expand(start, profile, sp, why);
+    if (steps.empty()) {
+      fail(rough_loc_, 0, std::string("CYCLE/ROUGH: the control's ") + name + " cannot cut this profile: " + why, 0);
+      skip_cycle_segments();
+      return;
+    }
+    std::vector<Want> wants;
+    for (const stock::Step& s : steps) wants.push_back({s.kind, s.to, s.center, s.ccw, rough_loc_});
+    if (m.finish) {
+      wants.insert(wants.end(), rough_profile_.begin(), rough_profile_.end());
+      wants.push_back({stock::Step::Kind::Rapid, start, Vec3::Zero(), false, loc_});
+    }
+    size_t j = 0;
+    for (const Want& w : wants) {
+      const TipSegment* s = peek(j);
+      // The profile's named end (N(Q)) is a block of no length.
+      while (s && s->raw.kind != gcode::Segment::Kind::Arc && (s->end - s->start).norm() <= 1e-9) s = peek(++j);
+      ++rep_.cl_points;
+      if (!s) {
+        fail(w.loc, 0, std::string("the program ends before the ") + name + " cycle's move to " + xyz(w.to), kInf);
+        return;
+      }
+      const bool arc = s->raw.kind == gcode::Segment::Kind::Arc;
+      const bool kind_ok = (w.kind == stock::Step::Kind::Rapid) == (s->raw.kind == gcode::Segment::Kind::Rapid) &&
+                           (w.kind == stock::Step::Kind::Arc) == arc &&
+                           (!arc || (s->raw.normal == Vec3::UnitY() && s->raw.ccw == w.ccw));
+      double dev = (s->end - w.to).norm();
+      if (arc && w.kind == stock::Step::Kind::Arc) dev = std::max(dev, (s->center - w.center).norm());
+      if (!kind_ok || !(dev <= tol_)) {
+        auto what = [](bool rapid, bool is_arc) { return rapid ? "rapid" : is_arc ? "arc" : "feed"; };
+        fail(w.loc, s->raw.line,
+             std::string("the ") + name + " cycle's " + what(w.kind == stock::Step::Kind::Rapid, w.kind == stock::Step::Kind::Arc) +
+                 " to " + xyz(w.to) + " is, in the program, a " +
+                 what(s->raw.kind == gcode::Segment::Kind::Rapid, arc) + " to " + xyz(s->end),
+             kind_ok ? dev : kInf);
+        consume(j);
+        skip_cycle_segments();
+        return;
+      }
+      deviate(dev, w.loc, s->raw.line);
+      ++j;
+    }
+    consume(j);
+    prev_ = start;
+    have_prev_ = true;
+    incoming_ = Vec3::Zero();
+  }
+
+  // After a cycle found wrong: the rest of its moves are not compared one by one.
+  void skip_cycle_segments() {
+    while (const TipSegment* s = peek(0)) {
+      if (!s->raw.from_cycle) break;
+      consume(1);
+    }
+  }
+
   // --- lathe grooves: the cycle's order is its own; every CL cut must be on its path --------
 
   void begin_groove() {
@@ -1011,6 +1122,9 @@ class Comparison : public ProgramSink {
   bool groove_ = false;
   size_t groove_reach_ = 0;
   bool thread_on_ = false;
+  std::optional<ir::RoughMark> rough_;  // a CYCLE/ROUGH section being read: its profile is kept
+  SourceLoc rough_loc_;
+  std::vector<Want> rough_profile_;
   ir::ThreadMark thread_;
   std::vector<std::pair<Vec3, Vec3>> thread_cuts_;  // the CL's thread cuts of the section
   std::vector<bool> thread_used_;  // the program's segments (window index) a CL thread cut took

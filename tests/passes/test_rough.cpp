@@ -1,0 +1,111 @@
+// CYCLE/ROUGH (docs/lathe.md, "Stock removal"): the record read, the cycle written as G71/G72
+// with its profile numbered and G70, certified; what the control would refuse is a located
+// error at compile time, and verify catches a program whose cycle is not the CL's.
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+// A metric lathe file: the tool at A = (x 26, z 2), then `cycle` and its profile.
+std::string rough_cl(const std::string& cycle, const std::string& profile) {
+  return "PARTNO / ROUGH\nMACHIN / TURN, 01\nUNITS / MM\nTURRET / 1\nSPINDL / RPM, 800.0, CLW\nFEDRAT / 0.25, MMPR\n"
+         "RAPID\nGOTO / 26.0, 0.0, 2.0\n" +  // lines 1-8
+         cycle + "\n" + profile + "CYCLE / OFF\nRAPID\nGOTO / 60.0, 0.0, 50.0\nFINI\n";
+}
+
+const std::string kTaper =
+    "RAPID\nGOTO / 10.0, 0.0, 2.0\nGOTO / 10.0, 0.0, -15.0\nGOTO / 15.0, 0.0, -25.0\nGOTO / 26.0, 0.0, -25.0\n";
+
+}  // namespace
+
+TEST(Rough, TurningWrittenAsG71WithItsProfileAndG70Certified) {
+  Compiled c = compile_text(rough_cl("CYCLE / ROUGH, TURN, DEPTH, 4, RETRACT, 1, ALLOW, 0.2, 0.1, FINISH", kTaper),
+                            machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  // P and Q are taken from the block numbers before the cycle's blocks are numbered: unique,
+  // out of order (the control searches for them, in any order).
+  EXPECT_THAT(c.output, HasSubstr("N50 G00 X52. Z2.\n"
+                                  "N80 G71 U4. R1.\n"
+                                  "N90 G99 G71 P60 Q70 U0.4 W0.1 F0.25\n"
+                                  "N60 G00 X20.\n"
+                                  "N100 G01 Z-15. F0.25\n"
+                                  "N110 X30. Z-25.\n"
+                                  "N120 X52.\n"
+                                  "N70 X52. Z-25.\n"
+                                  "N130 G70 P60 Q70\n"
+                                  "N140 G00 X120. Z50.\n"));
+}
+
+TEST(Rough, FacingWithoutFinishWritesG72Only) {
+  Compiled c = compile_text(rough_cl("CYCLE / ROUGH, FACE, DEPTH, 1.5, RETRACT, 0.5, MMPR, 0.2",
+                                     "RAPID\nGOTO / 26.0, 0.0, -3.0\nGOTO / 8.0, 0.0, -3.0\nGOTO / 0.0, 0.0, 0.0\n"),
+                            machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G00 X52. Z2.\n"
+                                  "N80 G72 W1.5 R0.5\n"
+                                  "N90 G99 G72 P60 Q70 U0. W0. F0.2\n"
+                                  "N60 G00 Z-3.\n"
+                                  "N100 G01 X16. F0.25\n"
+                                  "N110 X0. Z0.\n"
+                                  "N70 X0. Z0.\n"
+                                  "N120 G00 X120. Z50.\n"));
+  EXPECT_THAT(c.output, ::testing::Not(HasSubstr("G70")));
+}
+
+TEST(Rough, WhatTheControlRefusesIsALocatedError) {
+  auto errors = [](const std::string& cycle, const std::string& profile, const std::string& machine_name = "fanuc-lathe") {
+    Compiled c = compile_text(rough_cl(cycle, profile), machine(machine_name));
+    EXPECT_FALSE(c.ok);
+    return c.diags;
+  };
+  const std::string turn = "CYCLE / ROUGH, TURN, DEPTH, 2, RETRACT, 0.5";
+  // A pocket: the profile dips back towards the axis.
+  EXPECT_THAT(errors(turn, "RAPID\nGOTO / 10.0, 0.0, 2.0\nGOTO / 10.0, 0.0, -10.0\nGOTO / 8.0, 0.0, -15.0\nGOTO / 26.0, 0.0, -20.0\n"),
+              HasSubstr("part.cls:9:1: error: CYCLE/ROUGH: the control's G71 cannot cut this profile: the profile turns back "
+                        "along X: a pocket, which a type I cycle does not cut"));
+  EXPECT_THAT(errors(turn, "RAPID\nGOTO / 10.0, 0.0, 0.0\nGOTO / 26.0, 0.0, -20.0\n"),
+              HasSubstr("9:1: error: CYCLE/ROUGH: the control's G71 cannot cut this profile: its first block moves along Z: "
+                        "a type I cycle's first block moves along X alone"));
+  EXPECT_THAT(errors("CYCLE / ROUGH, TURN, RETRACT, 0.5", kTaper), HasSubstr("9:1: error: CYCLE/ROUGH: missing DEPTH"));
+  EXPECT_THAT(errors("CYCLE / ROUGH, TURN, DEPTH, 0, RETRACT, 0.5", kTaper),
+              HasSubstr("9:29: error: CYCLE/ROUGH: DEPTH must be greater than zero, found 0"));
+  EXPECT_THAT(errors("CYCLE / ROUGH, TURN, DEPTH, 2, RETRACT, 0.5, STEP, 3", kTaper),
+              HasSubstr("9:46: error: CYCLE/ROUGH: unknown word 'STEP'"));
+  EXPECT_THAT(errors("CYCLE / ROUGH, SPIRAL, DEPTH, 2", kTaper),
+              HasSubstr("9:16: error: CYCLE/ROUGH: expected TURN (G71, levels along X) or FACE (G72, levels along Z)"));
+  EXPECT_THAT(errors(turn, "THREAD / TURN, 1.5\n" + kTaper), HasSubstr("10:1: error: THREAD inside a CYCLE/ROUGH"));
+  EXPECT_THAT(errors(turn, "RAPID\nGOTO / 10.0, 0.0, 2.0\nCOOLNT / FLOOD\nGOTO / 10.0, 0.0, -15.0\n"),
+              HasSubstr("12:1: error: inside CYCLE/ROUGH only the profile's motion (and its feeds) may stand"));
+  Machine without = machine("no-g71", "[no-g71]\ninherits = \"fanuc-lathe\"\n[no-g71.codes]\nrough_turn = \"\"\n");
+  Compiled c = compile_text(rough_cl(turn, kTaper), without);
+  EXPECT_THAT(c.diags, HasSubstr("9:1: error: machine 'no-g71' has no G71 (codes.rough_turn): CYCLE/ROUGH cannot be written"));
+}
+
+TEST(Rough, VerifyCatchesACycleThatIsNotTheCls) {
+  const Machine m = machine("fanuc-lathe");
+  TempDir t;
+  write_file(t.path("part.cls"), rough_cl("CYCLE / ROUGH, TURN, DEPTH, 4, RETRACT, 1, ALLOW, 0.2, 0.1, FINISH", kTaper));
+  RunResult good = run_clpc("compile " + t.path("part.cls") + " -t fanuc-lathe -o " + t.path("part.nc"));
+  ASSERT_EQ(good.status, 0) << good.err;
+  const std::string program = read_file(t.path("part.nc"));
+  // Each edit moves the tool off the CL's cycle: a deeper cut, another allowance, a profile
+  // block moved, the finishing pass gone.
+  for (auto [from, to] : std::vector<std::pair<std::string, std::string>>{{"G71 U4.", "G71 U5."},
+                                                                        {"U0.4 W0.1", "U0.2 W0.1"},
+                                                                        {"N110 X30. Z-25.", "N110 X30. Z-24."},
+                                                                        {"N130 G70 P60 Q70", "N130 M01"}}) {
+    SCOPED_TRACE(to);
+    std::string bad = program;
+    ASSERT_NE(bad.find(from), std::string::npos);
+    bad.replace(bad.find(from), from.size(), to);
+    write_file(t.path("bad.nc"), bad);
+    RunResult r = run_clpc("verify " + t.path("part.cls") + " -t fanuc-lathe --program " + t.path("bad.nc"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_THAT(r.err, HasSubstr("error: the G71 cycle's"));
+  }
+  RunResult same = run_clpc("verify " + t.path("part.cls") + " -t fanuc-lathe --program " + t.path("part.nc"));
+  EXPECT_EQ(same.status, 0) << same.err;
+}
