@@ -90,13 +90,7 @@ class GrooveCycles : public Pass {
       }
       // A thread's passes are never a groove (thread-cycles reads them); a stock-removal
       // profile is the control's to cut (the backend writes G71/G72): both pass as they are.
-      auto* t = std::get_if<ir::ThreadMark>(&in.op);
-      auto* rm = std::get_if<ir::RoughMark>(&in.op);
-      if ((t && t->begin) || (rm && rm->begin)) {
-        size_t j = i + 1;
-        while (j < body.size() && !(t ? std::holds_alternative<ir::ThreadMark>(body[j].op)
-                                      : std::holds_alternative<ir::RoughMark>(body[j].op)))
-          ++j;
+      if (const size_t j = marked_section_end(body, i); j != i) {
         for (; i < j; ++i) {
           track(body[i]);
           out.push_back(std::move(body[i]));

@@ -32,4 +32,18 @@ struct MotionState {
   }
 };
 
+// Where a section the lowering marked ends (a THREAD or a CYCLE/ROUGH, whose motion is some
+// other pass's or the backend's): the index of its end mark, or the body's end if it goes on
+// in the next chunk. `i` itself when body[i] begins no such section.
+inline size_t marked_section_end(const std::vector<ir::Instr>& body, size_t i) {
+  const auto* t = std::get_if<ir::ThreadMark>(&body[i].op);
+  const auto* r = std::get_if<ir::RoughMark>(&body[i].op);
+  if (!(t && t->begin) && !(r && r->begin)) return i;
+  size_t j = i + 1;
+  while (j < body.size() &&
+         !(t ? std::holds_alternative<ir::ThreadMark>(body[j].op) : std::holds_alternative<ir::RoughMark>(body[j].op)))
+    ++j;
+  return j;
+}
+
 }  // namespace clpc

@@ -12,6 +12,7 @@ const PassInfo& arc_legalise_pass();
 const PassInfo& drill_cycles_pass();
 const PassInfo& groove_cycles_pass();
 const PassInfo& thread_cycles_pass();
+const PassInfo& rough_cycles_pass();
 const PassInfo& offset_table_pass();
 const PassInfo& kinematics_pass();
 const PassInfo& limits_pass();

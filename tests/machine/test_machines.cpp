@@ -70,7 +70,7 @@ TEST(MachineErrors, BadFormatSpec) {
 TEST(MachineErrors, UnknownPassName) {
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\npipeline = [\"arc-direction\", \"make-it-good\"]\n")),
             "shop.toml:3:30: error: m.pipeline: unknown pass 'make-it-good' (passes: arc-direction, helix, arc-legalise, "
-            "drill-cycles, thread-cycles, groove-cycles, offset-table, kinematics, limits)");
+            "drill-cycles, thread-cycles, rough-cycles, groove-cycles, offset-table, kinematics, limits)");
 }
 
 TEST(MachineErrors, MissingRequiredKey) {

@@ -109,3 +109,93 @@ TEST(Rough, VerifyCatchesACycleThatIsNotTheCls) {
   RunResult same = run_clpc("verify " + t.path("part.cls") + " -t fanuc-lathe --program " + t.path("part.nc"));
   EXPECT_EQ(same.status, 0) << same.err;
 }
+
+// rough-cycles: roughing written as moves.
+namespace {
+
+// A lathe file whose motion after A = (x 26, z 2) is `moves`: "R x z" rapid, "F x z" feed.
+std::string moves_cl(const std::vector<std::string>& moves) {
+  std::string s = "PARTNO / MOVES\nMACHIN / TURN, 01\nUNITS / MM\nTURRET / 1\nSPINDL / RPM, 800.0, CLW\n"
+                  "FEDRAT / 0.25, MMPR\nRAPID\nGOTO / 26.0, 0.0, 2.0\n";
+  for (const std::string& m : moves) {
+    std::istringstream in(m);
+    char k;
+    std::string x, z;
+    in >> k >> x >> z;
+    if (k == 'R') s += "RAPID\n";
+    s += "GOTO / " + x + ", 0.0, " + z + "\n";
+  }
+  return s + "RAPID\nGOTO / 60.0, 0.0, 50.0\nFINI\n";
+}
+
+// Fanuc's G71 from A over the profile x 10 (z 2) -> (10, -15) -> (15, -25) -> (26, -25), depth
+// 4, pull-out 1, allowances 0.2 (x) and 0.1 (z): levels x 22, 18, 14, then the shifted profile.
+const std::vector<std::string> kG71 = {"R 22 2",       "F 22 -24.9",   "F 23 -23.9", "R 23 2",   "R 18 2",
+                                       "F 18 -24.9",   "F 19 -23.9",   "R 19 2",     "R 14 2",   "F 14 -22.5",
+                                       "F 15 -21.5",   "R 15 2",       "R 10.2 2.1", "F 10.2 -14.9", "F 15.2 -24.9",
+                                       "F 26.2 -24.9", "R 26 2"};
+const std::vector<std::string> kFinish = {"R 10 2", "F 10 -15", "F 15 -25", "F 26 -25", "R 26 2"};
+
+}  // namespace
+
+TEST(RoughCycles, RoughingAsMovesThatIsG71BecomesG71AndG70) {
+  std::vector<std::string> all = kG71;
+  all.insert(all.end(), kFinish.begin(), kFinish.end());
+  Compiled c = compile_text(moves_cl(all), machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G00 X52. Z2.\n"
+                                  "N80 G71 U4. R1.\n"
+                                  "N90 G99 G71 P60 Q70 U0.4 W0.1 F0.25\n"
+                                  "N60 G00 X20.\n"
+                                  "N100 G01 Z-15. F0.25\n"
+                                  "N110 X30. Z-25.\n"
+                                  "N120 X52.\n"
+                                  "N70 X52. Z-25.\n"
+                                  "N130 G70 P60 Q70\n"
+                                  "N140 G00 X120. Z50.\n"));
+}
+
+TEST(RoughCycles, WithoutAFinishingPassTheLastCutIsTheProfile) {
+  // Allowances 0: the levels meet the profile itself; x 22 and 18 at z -25, 14 on the taper.
+  const std::vector<std::string> moves = {"R 22 2", "F 22 -25", "F 23 -24", "R 23 2", "R 18 2",   "F 18 -25",
+                                          "F 19 -24", "R 19 2",  "R 14 2",   "F 14 -23", "F 15 -22", "R 15 2",
+                                          "R 10 2",  "F 10 -15", "F 15 -25", "F 26 -25", "R 26 2"};
+  Compiled c = compile_text(moves_cl(moves), machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N80 G71 U4. R1.\n"
+                                  "N90 G99 G71 P60 Q70 U0. W0. F0.25\n"
+                                  "N60 G00 X20.\n"
+                                  "N100 G01 Z-15. F0.25\n"
+                                  "N110 X30. Z-25.\n"
+                                  "N120 X52.\n"
+                                  "N70 X52. Z-25.\n"
+                                  "N130 G00 X120. Z50.\n"));
+}
+
+TEST(RoughCycles, OtherRoughingStaysAsMovesWithANoteThatSaysWhy) {
+  auto compiled = [](const std::vector<std::string>& moves) {
+    Compiled c = compile_text(moves_cl(moves), machine("fanuc-lathe"), {.certify = true});
+    EXPECT_TRUE(c.ok) << c.diags;
+    EXPECT_THAT(c.output, ::testing::Not(HasSubstr("G71")));
+    return c.diags;
+  };
+  // Pulled out along X alone, as Creo's area turning does (nist/turn_op10.ncl.4).
+  EXPECT_THAT(compiled({"R 22 2", "F 22 -25", "F 23 -25", "R 23 2", "R 18 2", "F 18 -25", "F 19 -25", "R 19 2", "R 60 50"}),
+              HasSubstr("part.cls:10:1: note: roughing of 2 levels kept as moves, not G71: level 1 pulls out along X alone (G71 "
+                        "pulls out at 45 degrees)"));
+  // The second level one deeper than the first.
+  std::vector<std::string> uneven = kG71;
+  uneven[4] = "R 17 2";
+  uneven[5] = "F 17 -24.9";
+  uneven[6] = "F 18 -23.9";
+  uneven[7] = "R 18 2";
+  EXPECT_THAT(compiled(uneven), HasSubstr("note: roughing of 3 levels kept as moves, not G71: level 2 is 5 deeper than the one "
+                                          "before it where the first is 4 (G71's levels are evenly deep)"));
+  // The third level stops 0.1 short of the shifted profile: the proof finds the move.
+  std::vector<std::string> off = kG71;
+  off.insert(off.end(), kFinish.begin(), kFinish.end());
+  off[9] = "F 14 -22.4";
+  off[10] = "F 15 -21.4";
+  EXPECT_THAT(compiled(off), HasSubstr("not G71: the cycle's move 10 goes to (x 14, z -22.5) where the CL's goes to (x 14, "
+                                       "z -22.4)"));
+}
