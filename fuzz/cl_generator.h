@@ -81,7 +81,8 @@ class ClGenerator {
         break;
       case 3:
         if (family_ == Family::FiveAxis) arc(c, false);
-        else if (family_ == Family::Lathe) thread(c);
+        else if (family_ == Family::Lathe && c.pick(2) == 0) thread(c);
+        else if (family_ == Family::Lathe) rough(c);
         else cycle(c);
         break;
       default: cycle(c); break;
@@ -162,6 +163,39 @@ class ClGenerator {
       z_ = zs;
     }
     line("THREAD/OFF\n");
+  }
+
+  // A lathe stock-removal cycle (CYCLE/ROUGH): turning outside or inside, or facing, over a
+  // profile that moves one way along both axes, now and then with a pocket (which the compile
+  // must refuse with its location).
+  void rough(Choices& c) {
+    const bool face = c.pick(3) == 0, inside = !face && c.pick(3) == 0, pocket = c.pick(6) == 0;
+    const double depth = c.in(0.5, 3), e = c.in(0.1, 1);
+    const double ax = (inside ? -1 : 1) * (c.pick(2) ? c.in(0, 0.3) : 0), az = c.pick(2) ? c.in(0, 0.2) : 0;
+    const double xa = face ? c.in(40, 60) : inside ? c.in(3, 8) : c.in(40, 60), za = c.in(1, 5);
+    line("RAPID\n");
+    x_ = xa, z_ = za;
+    goto_point(0, 0, 1);
+    line("CYCLE/ROUGH,%s,DEPTH,%.3f,RETRACT,%.3f,ALLOW,%.3f,%.3f%s\n", face ? "FACE" : "TURN", depth, e, ax, az,
+         c.pick(2) ? ",FINISH" : "");
+    if (c.pick(2)) line("RAPID\n");
+    // A': along the level axis alone; then segments towards the stock along it, away along the
+    // other axis.
+    double x = face ? xa : inside ? xa + c.in(8, 25) : xa - c.in(8, 25), z = face ? za - c.in(3, 10) : za;
+    line("GOTO/%.4f,0,%.4f\n", x, z);
+    for (int n = 1 + c.pick(4); n > 0; --n) {
+      const bool back = pocket && n == 1;
+      if (face) {
+        x = std::max(0.5, x - c.in(1, 15));
+        z = std::min(za - 0.5, z + (back ? -c.in(0.5, 2) : c.in(0, 3)));
+      } else {
+        z -= c.in(1, 15);
+        x += (inside ? -1 : 1) * (back ? -c.in(0.5, 2) : c.in(0, 8));
+      }
+      line("GOTO/%.4f,0,%.4f\n", x, z);
+    }
+    line("CYCLE/OFF\n");
+    x_ = xa, z_ = za;  // the control is back at the start point
   }
 
   // Holes: a cycle, a few points at the top, CYCLE/OFF.

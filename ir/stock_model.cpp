@@ -124,7 +124,13 @@ std::vector<Step> expand(const ir::Vec3& start, const std::vector<Element>& prof
   std::vector<Step> out;
   out.reserve(size_t(std::max(0.0, levels)) * 4 + profile.size() + 2);
   const Step::Kind in = p.infeed_rapid ? Step::Kind::Rapid : Step::Kind::Feed;
-  auto push = [&](Step::Kind k, const ir::Vec3& to) { out.push_back({k, to, ir::Vec3::Zero(), false}); };
+  // A move of no length (a level that meets the profile where it starts) is no move.
+  ir::Vec3 last = start;
+  auto push = [&](Step::Kind k, const ir::Vec3& to) {
+    if ((to - last).norm() <= 1e-12) return;
+    out.push_back({k, to, ir::Vec3::Zero(), false});
+    last = to;
+  };
   for (double k = 1; k <= levels; ++k) {
     const double lk = l0 - sl * k * p.depth;
     double ck = cut_end(lk);
@@ -139,8 +145,12 @@ std::vector<Step> expand(const ir::Vec3& start, const std::vector<Element>& prof
   for (size_t i = 1; i < profile.size(); ++i) {
     const Element& e = profile[i];
     const ir::Vec3 shift = at(al, ac);
-    Step s{e.arc ? Step::Kind::Arc : Step::Kind::Feed, e.end + shift, e.arc ? ir::Vec3(e.center + shift) : ir::Vec3::Zero(), e.ccw};
-    out.push_back(s);
+    if (!e.arc) {
+      push(Step::Kind::Feed, e.end + shift);
+      continue;
+    }
+    out.push_back({Step::Kind::Arc, e.end + shift, ir::Vec3(e.center + shift), e.ccw});
+    last = e.end + shift;
   }
   push(Step::Kind::Rapid, start);
   return out;

@@ -318,7 +318,15 @@ class RoughCycles : public Pass {
         why = "its feed changes within the roughing, and the cycle has one F";
         return false;
       }
-    const std::vector<stock::Step> steps = stock::expand(a, c.profile, p, why);
+    // The start and the profile as written too: the levels meet the profile where the control
+    // computes it from the written numbers.
+    auto at = [&](const ir::Vec3& v) { return ir::Vec3(rounded('X', v.x()), v.y(), rounded('Z', v.z())); };
+    for (stock::Element& e : c.profile) {
+      e.start = at(e.start);
+      e.end = at(e.end);
+      if (e.arc) e.center = at(e.center);
+    }
+    const std::vector<stock::Step> steps = stock::expand(at(a), c.profile, p, why);
     if (steps.empty()) return false;
     if (steps.size() != c.cycle_end) {
       why = "the cycle makes " + std::to_string(steps.size()) + " moves where the CL has " + std::to_string(c.cycle_end);

@@ -762,15 +762,31 @@ class Comparison : public ProgramSink {
   void end_rough() {
     const ir::RoughMark m = *rough_;
     rough_.reset();
-    const Vec3 start = model(m.start);
+    // The CL's numbers as the program can give them (the machine's formats): where a level meets
+    // a shallow profile, half an increment in the level moves the cut's end far along the
+    // profile, and the number of levels may turn on it. Along the profile, not off it.
+    auto written = [&](char letter, double v) {
+      int64_t q;
+      return quantize(v, m_.format(letter), q) ? dequantize(q, m_.format(letter)) : v;
+    };
+    auto at = [&](const Vec3& v) { return Vec3(written('X', v.x()), v.y(), written('Z', v.z())); };
+    const Vec3 start = at(model(m.start));
+    for (Want& w : rough_profile_) {
+      w.to = at(w.to);
+      if (w.kind == stock::Step::Kind::Arc) w.center = at(w.center);
+    }
     std::vector<stock::Element> profile;
     Vec3 p = start;
     for (const Want& w : rough_profile_) {
       profile.push_back({p, w.to, w.kind == stock::Step::Kind::Arc, w.center, w.ccw, 0});
       p = w.to;
     }
-    const stock::Params sp =
+    stock::Params sp =
         stock::params_of(m, k_, !rough_profile_.empty() && rough_profile_.front().kind == stock::Step::Kind::Rapid);
+    sp.depth = written('Z', sp.depth);
+    sp.retract = written('Z', sp.retract);
+    sp.allow_x = written('X', sp.allow_x);
+    sp.allow_z = written('Z', sp.allow_z);
     const char* name = m.facing ? "G72" : "G71";
     std::string why;
     const std::vector<stock::Step> steps = stock::expand(start, profile, sp, why);
@@ -782,7 +798,13 @@ class Comparison : public ProgramSink {
     std::vector<Want> wants;
     for (const stock::Step& s : steps) wants.push_back({s.kind, s.to, s.center, s.ccw, rough_loc_});
     if (m.finish) {
-      wants.insert(wants.end(), rough_profile_.begin(), rough_profile_.end());
+      // G70 runs the profile as written: a move to where the tool already is writes no block.
+      Vec3 here = start;
+      for (const Want& w : rough_profile_) {
+        if (w.kind != stock::Step::Kind::Arc && (w.to - here).norm() <= 1e-9) continue;
+        wants.push_back(w);
+        here = w.to;
+      }
       wants.push_back({stock::Step::Kind::Rapid, start, Vec3::Zero(), false, loc_});
     }
     size_t j = 0;

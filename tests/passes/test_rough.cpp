@@ -2,6 +2,7 @@
 // with its profile numbered and G70, certified; what the control would refuse is a located
 // error at compile time, and verify catches a program whose cycle is not the CL's.
 #include "helpers.h"
+#include "readback/gcode_interp.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -198,4 +199,33 @@ TEST(RoughCycles, OtherRoughingStaysAsMovesWithANoteThatSaysWhy) {
   off[10] = "F 15 -21.4";
   EXPECT_THAT(compiled(off), HasSubstr("not G71: the cycle's move 10 goes to (x 14, z -22.5) where the CL's goes to (x 14, "
                                        "z -22.4)"));
+}
+
+TEST(Rough, BoringTheStockInsideSignsTheAllowanceAndCertifies) {
+  // ID turning: A at x 5 inside the bore, levels outwards (x 7, 9, 11, 13), the allowance on
+  // the stock's side (inside: negative), the pull-outs inwards.
+  const std::string cl =
+      "PARTNO / BORE\nMACHIN / TURN, 01\nUNITS / MM\nTURRET / 1\nSPINDL / RPM, 800.0, CLW\nFEDRAT / 0.2, MMPR\n"
+      "RAPID\nGOTO / 5.0, 0.0, 2.0\nCYCLE / ROUGH, TURN, DEPTH, 2, RETRACT, 1, ALLOW, -0.2, 0.1, FINISH\n"
+      "RAPID\nGOTO / 15.0, 0.0, 2.0\nGOTO / 15.0, 0.0, -10.0\nGOTO / 10.0, 0.0, -15.0\nGOTO / 5.0, 0.0, -15.0\n"
+      "CYCLE / OFF\nRAPID\nGOTO / 5.0, 0.0, 50.0\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G00 X10. Z2.\n"
+                                  "N80 G71 U2. R1.\n"
+                                  "N90 G99 G71 P60 Q70 U-0.4 W0.1 F0.2\n"
+                                  "N60 G00 X30.\n"
+                                  "N100 G01 Z-10. F0.2\n"
+                                  "N110 X20. Z-15.\n"
+                                  "N120 X10.\n"
+                                  "N70 X10. Z-15.\n"
+                                  "N130 G70 P60 Q70\n"
+                                  "N140 G00 Z50.\n"));
+  // The reader's expansion: the last level (x 13) meets the taper at z -11.7 and pulls out
+  // inwards to (x 12, z -10.7).
+  gcode::Result r = gcode::interpret(c.output, machine("fanuc-lathe"));
+  bool found = false;
+  for (const gcode::Segment& s : r.segments)
+    if ((s.start - ir::Vec3(13, 0, -11.7)).norm() < 1e-9 && (s.end - ir::Vec3(12, 0, -10.7)).norm() < 1e-9) found = true;
+  EXPECT_TRUE(found);
 }
