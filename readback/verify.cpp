@@ -426,16 +426,23 @@ class Comparison : public ProgramSink {
 
   // Where blocks lie closer together than the tolerance (a five-axis finish in tiny steps),
   // the first block end within it may not be the CL point's own: of the blocks that follow on
-  // the path with their ends within the tolerance, the one whose tool axis agrees, then the
-  // nearest (the earlier on a tie).
+  // the path with their ends within the tolerance (the walk stops at twice it), the one that
+  // is nearest in tip and tool axis together — the larger of the two deviations, each over its
+  // tolerance, so a block whose axis agrees wins over one whose axis does not — the earlier
+  // on a tie.
   template <class OnPath>
   size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
-    const double cos_tol = std::cos(axis_tol_ * arcgeo::kPi / 180);
-    auto axis_off = [&](const TipSegment& t) {
-      return five_axis_ && axis && t.axis.dot(*axis) < cos_tol * t.axis.norm() * axis->norm();
+    auto score = [&](const TipSegment& t, double dist) {
+      double s = dist / tol_;
+      if (five_axis_ && axis && axis_tol_ > 0) {
+        const double n = t.axis.norm() * axis->norm();
+        const double c = n > 0 ? std::clamp(t.axis.dot(*axis) / n, -1.0, 1.0) : 1.0;
+        s = std::max(s, std::acos(c) * 180 / arcgeo::kPi / axis_tol_);
+      }
+      return s;
     };
     size_t best = j;
-    bool best_off = axis_off(*peek(j));
+    double best_score = score(*peek(j), d);
     std::vector<double> devs;  // of the segments after j passed over, in order
     for (size_t k = j + 1; k < kMaxLookahead; ++k) {
       double dev;
@@ -446,15 +453,19 @@ class Comparison : public ProgramSink {
       // cannot place (G53, G28) or after a tool change may come back to the same point, and
       // is then the next CL record's, not this one's.
       if (!t || !finite(t->end) || !finite(t->start) || t->raw.tool != peek(j)->raw.tool) break;
-      double dk = (t->end - p).norm();
-      if (dk > tol_) break;
-      const bool off = axis_off(*t);
-      if ((best_off && !off) || (off == best_off && dk < d)) {
+      // Near a singularity the tip creeps while the rotaries turn (a block of C moves it a
+      // thousandth of a millimetre), and the rounding of the angles, times the tool's length,
+      // shakes it by as much: one block end may sit just outside the tolerance between two
+      // inside it. The walk goes on until the tip has clearly left the point.
+      const double dk = (t->end - p).norm();
+      if (dk > 2 * tol_) break;
+      if (dk > tol_) continue;
+      const double sk = score(*t, dk);
+      if (sk < best_score) {
         passed.insert(passed.end(), devs.begin(), devs.end());
         devs.clear();
         best = k;
-        best_off = off;
-        d = dk;
+        best_score = sk;
       }
     }
     return best;

@@ -315,6 +315,35 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   EXPECT_THAT(r.out, HasSubstr("result: PASS"));
 }
 
+// Found by the differential test (head-table-bc, seed 837): a move to a tool axis 0.43 degrees
+// from the pole. The transform splits it by the turn of C, so its last dozen blocks move the
+// tip some thousandths each, and the angles' rounding times the tool's length shakes the tip
+// by as much: one block end sat just outside the tolerance between block ends inside it. The
+// walk stopped there and took a block whose tool axis was 0.087 degrees off, then lost every
+// point after. It goes on past such a block and takes the end nearest in tip and axis.
+TEST(Certify, NearThePoleTheBlockNearestInTipAndAxisIsThePointsOwn) {
+  TempDir t;
+  write_file(t.path("pole.cls"),
+             "UNITS/MM\nLOADTL/11\nSPINDL/RPM,2800,CLW\nFEDRAT/MMPM,2040\nMULTAX/ON\nRAPID\n"
+             "GOTO/18.6099,77.7087,40.0000,0.0000000,0.0000000,1.0000000\n"
+             "GOTO/39.9281,48.0017,19.5242,0.0182441,0.7241995,0.6893492\n"
+             "GOTO/41.1323,45.6973,20.1919,0.0871286,0.7427815,0.6638405\n"
+             "GOTO/3.5233,77.8759,29.1785,-0.0190441,0.5905282,0.8067923\n"
+             "GOTO/1.1971,78.6723,29.8057,-0.0044230,0.0061184,0.9999715\n"
+             "GOTO/0.0000,81.0977,29.6370,-0.0228153,0.0315964,0.9992403\n"
+             "GOTO/1.6078,79.2325,30.0000,-0.0093416,0.0132029,0.9998692\n"
+             "GOTO/4.2760,78.8607,30.0000,-0.0000000,0.0000000,1.0000000\n"
+             "RAPID\nGOTO/1.6078,79.2325,50.0000,0,0,1\nFINI\n");
+  RunResult r = run_clpc("compile " + t.path("pole.cls") + " -o " + t.path("pole.nc") + " -t head-table-bc --machines " +
+                         source_path("examples/head_table_bc.toml"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("clpc: certified " + t.path("pole.nc") + ": 9 points, 0 arcs, 0 holes checked; max deviation "));
+  // The block that reaches line 11 ends at its tool axis (B 0.433 = 0.4326 rounded, C
+  // 125.863), not at the first block within the tolerance of its tip (B 0.507).
+  EXPECT_THAT(r.err, HasSubstr(", tool axis 0.0005 deg at " + t.path("pole.cls") + ":9 "));
+  EXPECT_THAT(read_file(t.path("pole.nc")), HasSubstr(" C125.863 B0.433\n"));
+}
+
 // Without threads (the browser build, support/threads.h) every stage runs in turn and the
 // program is read back once written: the same programs, the same certificates, and a wrong
 // compile still never written.
