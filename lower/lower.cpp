@@ -176,9 +176,10 @@ void Lowerer::record(const Record& r) {
       if (r.params.size() == 1 && (r.params[0].is("MILL") || r.params[0].is("TURN") || r.params[0].is("LATHE"))) return;
       unknown(r, "not supported by clpc's machines", true);
       return;
-    case MajorId::Head: case MajorId::Origin:
+    case MajorId::Head:
       unknown(r, "not supported by clpc's machines", true);
       return;
+    case MajorId::Origin: lower_origin(r); return;
     case MajorId::Unknown:
       if (motion_word(r.major)) {
         motion_not_read(r, motion_hint(r.major));
@@ -205,6 +206,20 @@ void Lowerer::unknown(const Record& r, std::string_view why, bool warn) {
     d_.warning(r.loc, std::string(why) + " '" + std::string(r.major) + "' (passed through as a comment)",
                why == "unknown record" ? "unknown-record" : "not-supported", upper(r.major));
   passthrough(r);
+}
+
+// ORIGIN/x,y,z: APT's postprocessor word for where the part's origin lies from the machine's.
+// Posts apply it in opposite senses (added to every coordinate, or subtracted: the machine's
+// zero from the part's), and some as a work offset: any shift would move every cut by a
+// guess. No shift (no numbers, or all zero) is nothing to do; any other is refused.
+void Lowerer::lower_origin(const Record& r) {
+  for (const Param& p : r.params) {
+    if (p.is_number() && p.number == 0) continue;
+    d_.error(r.loc, "ORIGIN moves every coordinate after it, and posts apply it in opposite senses: clpc does not guess "
+                    "which; set the part's origin in the CAM system's machine coordinate system (MCS, CSYS) or with "
+                    "the work offset (SET, CAMERA) instead");
+    return;
+  }
 }
 
 // A record without motion that clpc cannot act on: a warning, and the record as a comment.

@@ -92,6 +92,7 @@ class Lowerer : public RecordSink {
   void lower_cutcom(const Record& r);
   void lower_delay(const Record& r);
   void lower_stop(const Record& r);
+  void lower_origin(const Record& r);
   void lower_insert(const Record& r);
   void lower_units(const Record& r);
 

@@ -215,6 +215,13 @@ TEST(CamSystems, RecordsThatMoveAreReadOrRefused) {
   EXPECT_EQ(err("CYCLE/AUTO\n"),
             "1:1: 'CYCLE' moves the tool and clpc does not read it: CYCLE/AUTO leaves the choice of cycle to the post; have "
             "the CAM system write the cycle (DRILL, DEEP, TAP, ...) with its depth");
+  // ORIGIN shifts every coordinate after it, in a sense posts disagree on: none is nothing.
+  EXPECT_EQ(err("ORIGIN/0,0,0\nGOTO/0,0,0\n"), "");
+  EXPECT_EQ(lower_text("ORIGIN/0,0,0\nGOTO/0,0,0\n").diags.size(), 0u);
+  EXPECT_EQ(err("ORIGIN/0,0,-25.4\n"),
+            "1:1: ORIGIN moves every coordinate after it, and posts apply it in opposite senses: clpc does not guess "
+            "which; set the part's origin in the CAM system's machine coordinate system (MCS, CSYS) or with the work "
+            "offset (SET, CAMERA) instead");
   Lowered l = lower_text("AICC/ON,10\nGOTO/0,0,0\n");
   EXPECT_EQ(first_error(l.diags), "");
   ASSERT_EQ(l.diags.size(), 1u);
