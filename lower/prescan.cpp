@@ -82,6 +82,7 @@ class TableBuilder : public RecordSink {
         pending_name_.clear();
         if (tool.name.empty() && first_in_op) tool.name = op_name_;
         if (pending_.any) { attach(tool, pending_); pending_ = {}; }
+        if (t.length > 0) load_lengths_.emplace_back(size_t(&tool - info_.tools.data()), t.length);
         break;
       }
       case MajorId::Tldata: case MajorId::Cutter: {
@@ -174,6 +175,9 @@ class TableBuilder : public RecordSink {
       used.insert(next);
     }
     for (const auto& [line, name] : named_ops_) info_.named_tool_ops.emplace_back(line, info_.tool_number_for_name(name));
+    // A length on the load (LOADTL/n,LENGTH,l) for a tool its data (TLDATA, CUTTER) gave none.
+    for (const auto& [i, length] : load_lengths_)
+      if (info_.tools[i].length == 0) info_.tools[i].length = length;
     for (size_t i : loads_)
       if (info_.tool_changes.empty() || info_.tool_changes.back() != info_.tools[i].number)
         info_.tool_changes.push_back(info_.tools[i].number);
@@ -292,6 +296,7 @@ class TableBuilder : public RecordSink {
   SourceLoc feed_word_loc_[2];  // the first feed in mm, in inches
   std::vector<std::pair<uint32_t, std::string>> named_ops_;
   std::vector<size_t> loads_;  // each tool load, as an index into info_.tools
+  std::vector<std::pair<size_t, double>> load_lengths_;  // LOADTL/n,LENGTH,l: the tool, l
   int pending_set_ = 0;
   SourceLoc pending_set_loc_;
   ir::FrameUse frame_ = base_frame();  // the frame in force

@@ -20,6 +20,7 @@ ir::ProgramInfo prescan_program(SourceFile& src, const PrescanOptions& opt = {})
 struct ToolRecord {
   int number = -1;          // -1: none given
   int length_offset = 0;
+  double length = 0;        // LENGTH,l: the tool's gauge length (0: not given)
   bool preselect = false;   // SELECT/TOOL: names the next tool, does not load it
 };
 struct ToolGeometry {

@@ -44,7 +44,17 @@ ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
   t.number = int(n);
   for (size_t k = i + 1; k < r.params.size(); ++k) {
     const Param& p = r.params[k];
-    if (p.is("OSETNO") || p.is("ADJUST") || p.is("LENGTH")) {
+    if (p.is("LENGTH")) {
+      // APT's LOADTL/n,LENGTH,l: the tool's gauge length, not an offset register.
+      if (k + 1 >= r.params.size() || !r.params[k + 1].is_number() || !(r.params[k + 1].number > 0)) {
+        fail(k + 1 < r.params.size() ? r.params[k + 1].loc : r.end, "LENGTH needs the tool's length, a number above 0");
+        continue;
+      }
+      t.length = r.params[k + 1].number;
+      ++k;
+      continue;
+    }
+    if (p.is("OSETNO") || p.is("ADJUST")) {
       if (k + 1 >= r.params.size() || !r.params[k + 1].is_number() ||
           !whole(r.params[k + 1].number, 0, 9999)) {
         fail(k + 1 < r.params.size() ? r.params[k + 1].loc : r.end,

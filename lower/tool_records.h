@@ -14,7 +14,7 @@ namespace clpc {
 
 // TOOL PATH/op,TOOL,name -> name ("" when absent).
 std::string tool_name_of_tool_path(const Record& r);
-// LOADTL/n[,OSETNO,h], LOAD/TOOL,n[,ADJUST,h], TURRET/n, SELECT/TOOL,n.
+// LOADTL/n[,OSETNO,h][,LENGTH,l], LOAD/TOOL,n[,ADJUST,h], TURRET/n, SELECT/TOOL,n.
 // With `d`, problems are reported; number stays -1 when the record names no tool.
 ToolRecord read_tool_record(const Record& r, Diagnostics* d);
 // TLDATA/kind,d,r,l,... and CUTTER/d[,r,...] ($$-> CUTTER/d in Creo).

@@ -93,6 +93,18 @@ TEST(Lower, ToolRecords) {
               ElementsAre("tool-change T3 H13", "tool-change T4", "tool-change T5 H15", "tool-change T6", "tool-preselect T7"));
 }
 
+// APT's LOADTL/n,LENGTH,l gives the tool's gauge length, never an offset register: the length
+// offset stays the tool's own (H = n); the length counts where TLDATA/CUTTER gives none.
+TEST(Lower, LoadtlLengthIsTheToolsLengthNotAnOffsetRegister) {
+  Lowered l = lower_text("LOADTL/2,LENGTH,100,MILL\nGOTO/0,0,0\nCUTTER/8\nLOADTL/3,LENGTH,120.5\nTLDATA/MILL,6,0,40\n"
+                         "GOTO/0,0,0\nLOADTL/4,LENGTH,90\nGOTO/0,0,0\n");
+  EXPECT_EQ(first_error(l.diags), "");
+  EXPECT_THAT(l.ir, HasSubstr("tool T2 d 8 r 0 l 100\ntool T3 MILL d 6 r 0 l 40\ntool T4 d 0 r 0 l 90\n"));
+  EXPECT_THAT(l.ir, HasSubstr("tool-change T2\n"));
+  EXPECT_THAT(l.ir, Not(HasSubstr(" H100")));
+  EXPECT_EQ(first_error(lower_text("LOADTL/2,LENGTH\n").diags), "1:16: LOADTL: LENGTH needs the tool's length, a number above 0");
+}
+
 TEST(Lower, ToolTableFromTldataCutterAndCreoCutter) {
   Lowered l = lower_text(
       "TOOL PATH/OP1,TOOL,EM10\nTLDATA/MILL,10,1,50,0,0\nLOAD/TOOL,3\nGOTO/0,0,0\nEND-OF-PATH\n"
