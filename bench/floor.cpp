@@ -1,6 +1,7 @@
 // floor: what "as fast as reading the file" means on this machine. It reads a CL file in
-// large blocks, parses every number of every GOTO with std::from_chars and writes one
-// formatted line per GOTO (integer formatting, large output buffer) — no semantics at all.
+// large blocks, parses every number of every GOTO with std::from_chars (`GOTO/` or Creo's
+// `GOTO / `, continued over lines ending in `$`) and writes one formatted line per GOTO
+// (integer formatting, large output buffer) — no semantics at all.
 // clpc's whole compile is measured against it (bench/run.sh).
 //
 //   floor INPUT OUTPUT
@@ -76,6 +77,21 @@ int main(int argc, char** argv) {
   size_t keep = 0;
   long gotos = 0;
   static const char letters[] = "XYZIJK";
+  int k = 0;             // numbers of the GOTO being read
+  bool in_goto = false;  // a GOTO continued on the next line
+  // Every number from p to e (separated by blanks and commas) as the GOTO's next word; stops
+  // at the first thing that is not a number (a '$').
+  auto numbers = [&](const char* p, const char* e) {
+    while (p < e && k < 6) {
+      while (p < e && (*p == ' ' || *p == ',')) ++p;
+      double v;
+      auto [q, ec] = std::from_chars(p, e, v);
+      if (ec != std::errc()) break;
+      out.word(letters[k++], v);
+      p = q;
+    }
+    return p;
+  };
   for (;;) {
     ssize_t n = read(in, buf.data() + keep, kBlock);
     if (n < 0) return 1;
@@ -86,19 +102,27 @@ int main(int argc, char** argv) {
       if (!nl) break;
       const char* p = buf.data() + line;
       const char* e = nl;
-      if (e - p > 5 && std::memcmp(p, "GOTO/", 5) == 0) {
-        p += 5;
-        int k = 0;
-        while (p < e && k < 6) {
-          while (p < e && (*p == ' ' || *p == ',')) ++p;
-          double v;
-          auto [q, ec] = std::from_chars(p, e, v);
-          if (ec != std::errc()) break;
-          out.word(letters[k++], v);
-          p = q;
+      if (in_goto) {
+        // A continuation line of a GOTO (the last ended in '$'): its numbers follow on.
+        p = numbers(p, e);
+      } else if (e - p > 5 && std::memcmp(p, "GOTO", 4) == 0 && (p[4] == '/' || p[4] == ' ')) {
+        p += 4;
+        while (p < e && *p == ' ') ++p;
+        if (p < e && *p == '/') {
+          k = 0;
+          in_goto = true;
+          p = numbers(p + 1, e);
         }
-        out.end_line();
-        ++gotos;
+      }
+      if (in_goto) {
+        // Continued when the line's last character but blanks is '$' (Creo, APT).
+        const char* t = e;
+        while (t > p && (t[-1] == ' ' || t[-1] == '\r')) --t;
+        if (!(t > p && t[-1] == '$')) {
+          out.end_line();
+          ++gotos;
+          in_goto = false;
+        }
       }
       line = size_t(nl - buf.data()) + 1;
     }
