@@ -315,23 +315,29 @@ bool Lexer::simple_record(Simple& s) {
   const unsigned char* p = cur_;
   const unsigned char* nl = static_cast<const unsigned char*>(std::memchr(p, '\n', size_t(lim_ - p)));
   if (!nl || size_t(nl - p) > kMaxToken) return false;
-  // A line that a continuation joined: its columns need loc_of, the grammar's way.
-  if (splice_head_ < splices_.size() && splices_[splice_head_].at <= abs(nl)) return false;
+  // A line that continuations joined (Creo writes every five-axis GOTO over two): its numbers'
+  // columns are found through the splices, as the grammar's are.
+  const bool spliced = splice_head_ < splices_.size() && splices_[splice_head_].at <= abs(nl);
   static constexpr struct {
     const char* word;
     size_t len;
     MajorId id;
-  } kMajors[] = {{"GOTO/", 5, MajorId::Goto}, {"CIRCLE/", 7, MajorId::Circle}, {"FROM/", 5, MajorId::From},
-                 {"GODLTA/", 7, MajorId::Godlta}};
+  } kMajors[] = {{"GOTO", 4, MajorId::Goto}, {"CIRCLE", 6, MajorId::Circle}, {"FROM", 4, MajorId::From},
+                 {"GODLTA", 6, MajorId::Godlta}};
   MajorId id = MajorId::Unknown;
   for (const auto& m : kMajors)
     if (size_t(nl - p) > m.len && std::memcmp(p, m.word, m.len) == 0) {
+      // The word, blanks perhaps (Creo's "GOTO / "), the slash.
+      const unsigned char* q = p + m.len;
+      while (q < nl && is_ws(*q)) ++q;
+      if (q == nl || *q != '/') return false;
       id = m.id;
-      p += m.len;
+      p = q + 1;
       break;
     }
   if (id == MajorId::Unknown) return false;
   s.n = 0;
+  const uint32_t line = line_;
   for (;;) {
     while (p < nl && is_ws(*p)) ++p;
     const unsigned char* e = match_num(p, nl);
@@ -340,7 +346,7 @@ bool Lexer::simple_record(Simple& s) {
     const char* b = reinterpret_cast<const char*>(*p == '+' ? p + 1 : p);
     auto [end, ec] = read_decimal(b, reinterpret_cast<const char*>(e), s.value[s.n]);
     if (ec != std::errc() || end != reinterpret_cast<const char*>(e)) return false;
-    s.col[s.n++] = uint32_t(abs(p) - line_start_ + 1);
+    s.loc[s.n++] = spliced ? loc_of(p) : SourceLoc{line, uint32_t(abs(p) - line_start_ + 1)};
     p = e;
     while (p < nl && is_ws(*p)) ++p;
     if (p == nl) break;

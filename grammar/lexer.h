@@ -25,8 +25,9 @@ class Lexer {
 
   Parser::symbol_type lex();
 
-  // The commonest record — GOTO, CIRCLE, FROM or GODLTA, a slash and numbers on one line,
-  // nothing else — read here without the parser. True with the line consumed and `s` filled;
+  // The commonest record — GOTO, CIRCLE, FROM or GODLTA, a slash (Creo puts blanks before
+  // it) and numbers, on one line or on lines joined by continuations, nothing else — read here
+  // without the parser. True with the line consumed and `s` filled;
   // false with nothing consumed, and the line goes through the grammar as any other. Both
   // give the same record (tests/grammar/test_lexer.cpp compares them on the corpus).
   static constexpr size_t kMaxSimple = 16;
@@ -35,7 +36,7 @@ class Lexer {
     SourceLoc start, end;
     size_t n = 0;
     double value[kMaxSimple];
-    uint32_t col[kMaxSimple];
+    SourceLoc loc[kMaxSimple];
   };
   bool simple_record(Simple& s);
   void set_simple_records(bool on) { simple_on_ = on; }

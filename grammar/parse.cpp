@@ -81,7 +81,7 @@ void ParseState::simple_record(const Lexer::Simple& s) {
   m.id = s.id;
   m.text = major_spelling(s.id);
   begin(m, s.start);
-  for (size_t i = 0; i < s.n; ++i) number(s.value[i], {}, {s.start.line, s.col[i]});
+  for (size_t i = 0; i < s.n; ++i) number(s.value[i], {}, s.loc[i]);
   slash();
   end_statement(s.end);
 }

@@ -351,7 +351,11 @@ TEST(Lexer, SimpleRecordsEqualTheGrammarsOnTheEdges) {
   const std::string text =
       "GOTO/1,2,3\nGOTO/1 , 2 ,3  \r\nGOTO/+1.,-.5,1e3\nGOTO/1,2,3 $$ comment\nGOTO/1,2,$\n3\nGOTO/1,,2\nGOTO/1,2,\n"
       "GOTO/\nGOTO/1.2.3\nGOTO/1e\nGOTO/1,2X\nGOTO/1e999\nGOTO/1e-999\ngoto/1,2,3\nCIRCLE/1,2,3,0,0,1,5,0.01,0.5,10,0\n"
-      "FROM/0,0,50\nGODLTA/0,0,-5\nGOTO/1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17\nGOTO/1\t,2\n  GOTO/1,2,3\nGOTO/1,2,3";
+      "FROM/0,0,50\nGODLTA/0,0,-5\nGOTO/1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17\nGOTO/1\t,2\n  GOTO/1,2,3\n"
+      // Creo: blanks before the slash, records continued over lines.
+      "GOTO / 1.5, -2.25, 3.0\nGOTO / 0.5, 0.25, 0.75,  $\n0.0, -0.6, 0.8\nCIRCLE / 1, 2, 3,  $\n0, 0, 1,  5\n"
+      "GOTO  /1,2,3\nGOTO\t/ 1,2,3\nGOTOX/1\nGOTO 1,2,3\nGOTO / 1, $\n2, $\n3\nGOTO / 1, 2, $\n1e999\n"
+      "GOTO / 1, 2$\n, 3\nGOTO / $\n1,2,3\nFROM / 0.0, 0.0, 50.0,  $\n0.0, 0.0, 1.0\nGOTO/1,2,3";
   std::string d1, d2;
   std::string fast = dump("edges.cls", text, true, d1), slow = dump("edges.cls", text, false, d2);
   EXPECT_EQ(fast, slow);
