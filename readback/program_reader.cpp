@@ -116,6 +116,9 @@ Vec3 ProgramReader::part_point(const gcode::Segment& s, const Vec3& p, const kin
     machine += shift;
     height = reference_height_;
   }
+  // The rotaries at zero (3-axis work, drilling on a five-axis machine): the chain is the
+  // identity, and the reader reads millions of such segments (a peck cycle's every move).
+  if (a == kin::Angles{0, 0}) return machine - Vec3(0, 0, height);
   double pivot = k.pivot;
   if (const ir::ToolInfo* t = info_.tool(s.tool)) pivot += t->length * ir::mm_per_unit(info_.units) / ir::mm_per_unit(m_.units);
   return kin::part_tip(k, a, machine, pivot) - Vec3(0, 0, height);
@@ -232,8 +235,9 @@ bool ProgramReader::read_next(TipSegment& out) {
   out.start = part_point(s, s.start, a0, out.shift);
   out.end = part_point(s, s.end, a1, out.shift);
   out.rotates = a0 != a1;
-  out.axis = setup_turn(s.work_offset) *
-             (m_.kinematics.has_rotaries() ? kin::tool_axis_in_part(m_.kinematics, a1) : Vec3::UnitZ());
+  out.axis = setup_turn(s.work_offset) * (m_.kinematics.has_rotaries() && a1 != kin::Angles{0, 0}
+                                               ? kin::tool_axis_in_part(m_.kinematics, a1)
+                                               : Vec3::UnitZ());
   if (s.kind == gcode::Segment::Kind::Arc) {
     out.center = part_point(s, s.center, a1, out.shift);
     out.normal = s.plane ? Vec3(s.plane->rotation * s.normal)
