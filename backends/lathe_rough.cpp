@@ -74,8 +74,16 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
       return;
     }
   }
+  // Proved with the numbers as written, as verify and the rough-cycles pass take them: the
+  // control computes where each level meets the profile from those.
   std::string why;
-  if (stock::expand(m.start * k_, profile, stock::params_of(m, k_, true), why).empty()) {
+  stock::Params params = stock::params_of(m, k_, true);
+  ir::Vec3 start = m.start * k_;
+  if (!stock::round_as_written(params, start, profile, [&](char letter, double v) { return as_written(v, m_.format(letter)); })) {
+    d_.error(loc, std::string("CYCLE/ROUGH: a word of the ") + name + " cycle or its profile cannot be written");
+    return;
+  }
+  if (stock::expand(start, profile, params, why).empty()) {
     d_.error(loc, std::string("CYCLE/ROUGH: the control's ") + name + " cannot cut this profile: " + why);
     return;
   }

@@ -37,6 +37,30 @@ struct Params {
 // from the profile's first move.
 Params params_of(const ir::RoughMark& m, double scale, bool infeed_rapid);
 
+// The cycle as the control reads it once written: its words, its start A and its profile put
+// through `written(letter, v)` — the value the program's word X or Z gives for v, NaN when v
+// cannot be written. Where a level meets a shallow profile, half an increment moves the cut's
+// end far along the profile, and the number of levels may turn on it: the backend's proof, the
+// rough-cycles pass and verify all expand these numbers. False when a word cannot be written.
+template <class Written>
+bool round_as_written(Params& p, ir::Vec3& start, std::vector<Element>& profile, Written written) {
+  auto at = [&](const ir::Vec3& v) { return ir::Vec3(written('X', v.x()), v.y(), written('Z', v.z())); };
+  p.depth = written('Z', p.depth);
+  p.retract = written('Z', p.retract);
+  p.allow_x = written('X', p.allow_x);
+  p.allow_z = written('Z', p.allow_z);
+  start = at(start);
+  bool ok = p.depth == p.depth && p.retract == p.retract && p.allow_x == p.allow_x && p.allow_z == p.allow_z &&
+            start.allFinite();
+  for (Element& e : profile) {
+    e.start = at(e.start);
+    e.end = at(e.end);
+    if (e.arc) e.center = at(e.center);
+    ok = ok && e.start.allFinite() && e.end.allFinite() && e.center.allFinite();
+  }
+  return ok;
+}
+
 struct Step {
   enum class Kind : uint8_t { Rapid, Feed, Arc };
   Kind kind = Kind::Feed;

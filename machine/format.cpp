@@ -23,6 +23,11 @@ char* digits(uint64_t u, char* end) {
 
 double dequantize(int64_t q, const AddressFormat& f) { return double(q) / double(kPow10[f.decimals]) / f.scale; }
 
+double as_written(double value, const AddressFormat& f) {
+  int64_t q;
+  return quantize(value, f, q) ? dequantize(q, f) : std::nan("");
+}
+
 void append_int(int64_t n, int width, std::string& out) {
   char buf[24];
   uint64_t u = n < 0 ? uint64_t(-(n + 1)) + 1 : uint64_t(n);

@@ -27,6 +27,9 @@ inline bool quantize(double value, const AddressFormat& f, int64_t& q) {
 }
 // The value a control will take for the increments `q` (in unscaled units).
 double dequantize(int64_t q, const AddressFormat& f);
+// The value a control reads for `value` once written in format `f` (rounded to its
+// increments); NaN when it cannot be written.
+double as_written(double value, const AddressFormat& f);
 // Appends the text for `q` increments.
 void append_quantized(int64_t q, const AddressFormat& f, std::string& out);
 // Appends `n` as a whole number, zero-padded to `width` digits.

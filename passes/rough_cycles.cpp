@@ -298,18 +298,12 @@ class RoughCycles : public Pass {
   bool prove(const std::vector<Motion>& ms, const ir::Vec3& a, Candidate& c, PassContext& ctx, std::string& why) const {
     const Machine& m = ctx.machine;
     const double to_out = 1 / ctx.from_output();
-    auto rounded = [&](char letter, double v) {
-      int64_t q;
-      if (!quantize(v * to_out, m.format(letter), q)) return std::nan("");
-      return dequantize(q, m.format(letter)) / to_out;
-    };
     stock::Params& p = c.params;
-    p.depth = rounded('Z', p.depth);
-    p.retract = rounded('Z', p.retract);
-    p.allow_x = rounded('X', p.allow_x);
-    p.allow_z = rounded('Z', p.allow_z);
-    if (!(p.depth > 0) || !(p.retract >= 0) || std::isnan(p.allow_x) || std::isnan(p.allow_z)) {
-      why = "its depth of cut, pull-out or allowances cannot be written";
+    ir::Vec3 start = a;
+    if (!stock::round_as_written(p, start, c.profile,
+                                 [&](char letter, double v) { return as_written(v * to_out, m.format(letter)) / to_out; }) ||
+        !(p.depth > 0) || !(p.retract >= 0)) {
+      why = "its depth of cut, pull-out, allowances or profile cannot be written";
       return false;
     }
     const ir::Feed& f = ms[1].feed;
@@ -318,15 +312,7 @@ class RoughCycles : public Pass {
         why = "its feed changes within the roughing, and the cycle has one F";
         return false;
       }
-    // The start and the profile as written too: the levels meet the profile where the control
-    // computes it from the written numbers.
-    auto at = [&](const ir::Vec3& v) { return ir::Vec3(rounded('X', v.x()), v.y(), rounded('Z', v.z())); };
-    for (stock::Element& e : c.profile) {
-      e.start = at(e.start);
-      e.end = at(e.end);
-      if (e.arc) e.center = at(e.center);
-    }
-    const std::vector<stock::Step> steps = stock::expand(at(a), c.profile, p, why);
+    const std::vector<stock::Step> steps = stock::expand(start, c.profile, p, why);
     if (steps.empty()) return false;
     if (steps.size() != c.cycle_end) {
       why = "the cycle makes " + std::to_string(steps.size()) + " moves where the CL has " + std::to_string(c.cycle_end);

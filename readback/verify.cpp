@@ -773,19 +773,13 @@ class Comparison : public ProgramSink {
   void end_rough() {
     const ir::RoughMark m = *rough_;
     rough_.reset();
-    // The CL's numbers as the program can give them (the machine's formats): where a level meets
-    // a shallow profile, half an increment in the level moves the cut's end far along the
-    // profile, and the number of levels may turn on it. Along the profile, not off it.
+    // The CL's numbers as the program can give them (the machine's formats; a number it cannot
+    // write stays as it is, and the comparison finds the block that differs).
     auto written = [&](char letter, double v) {
-      int64_t q;
-      return quantize(v, m_.format(letter), q) ? dequantize(q, m_.format(letter)) : v;
+      const double w = as_written(v, m_.format(letter));
+      return w == w ? w : v;
     };
-    auto at = [&](const Vec3& v) { return Vec3(written('X', v.x()), v.y(), written('Z', v.z())); };
-    const Vec3 start = at(model(m.start));
-    for (Want& w : rough_profile_) {
-      w.to = at(w.to);
-      if (w.kind == stock::Step::Kind::Arc) w.center = at(w.center);
-    }
+    Vec3 start = model(m.start);
     std::vector<stock::Element> profile;
     Vec3 p = start;
     for (const Want& w : rough_profile_) {
@@ -794,10 +788,11 @@ class Comparison : public ProgramSink {
     }
     stock::Params sp =
         stock::params_of(m, k_, !rough_profile_.empty() && rough_profile_.front().kind == stock::Step::Kind::Rapid);
-    sp.depth = written('Z', sp.depth);
-    sp.retract = written('Z', sp.retract);
-    sp.allow_x = written('X', sp.allow_x);
-    sp.allow_z = written('Z', sp.allow_z);
+    stock::round_as_written(sp, start, profile, written);
+    for (size_t i = 0; i < profile.size(); ++i) {
+      rough_profile_[i].to = profile[i].end;
+      rough_profile_[i].center = profile[i].center;
+    }
     const char* name = m.facing ? "G72" : "G71";
     std::string why;
     const std::vector<stock::Step> steps = stock::expand(start, profile, sp, why);
