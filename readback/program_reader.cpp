@@ -297,11 +297,10 @@ void ProgramReader::ahead() {
     std::vector<Item> batch;
     batch.reserve(kBatch);
     while (batch.size() < kBatch && !end) {
-      Item it;
+      Item& it = batch.emplace_back();  // read in place: a segment is some hundreds of bytes
       end = !read_next(it.segment);
       it.end = end;
       it.problems = take_reader_problems();
-      batch.push_back(std::move(it));
     }
     std::unique_lock<std::mutex> g(lock_);
     changed_.wait(g, [&] { return stop_ || batches_.size() < kBatches; });

@@ -27,7 +27,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <deque>
 #include <iomanip>
 #include <limits>
 #include <optional>
@@ -35,6 +34,7 @@
 
 #include "ir/arc_geometry.h"
 #include "ir/stock_model.h"
+#include "support/ring.h"
 #include "support/text.h"
 #include "machine/format.h"
 
@@ -184,13 +184,12 @@ class Comparison : public ProgramSink {
 
   const TipSegment* peek(size_t i) {
     while (win_.size() <= i) {
-      TipSegment t;
-      if (!rd_.next(t)) {
+      if (!rd_.next(win_.push_back_slot())) {
+        win_.pop_back();
         take_reader_problems();
         return nullptr;
       }
       take_reader_problems();
-      win_.push_back(std::move(t));
     }
     return &win_[i];
   }
@@ -1116,7 +1115,7 @@ class Comparison : public ProgramSink {
   const double tol_, axis_tol_;
   double k_ = 1;
   bool five_axis_ = false, table_ = false;
-  std::deque<TipSegment> win_;
+  Ring<TipSegment> win_;
   std::vector<double> passed_;
   SourceLoc loc_;
   Vec3 prev_ = Vec3::Zero();  // the last CL point
