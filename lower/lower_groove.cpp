@@ -31,12 +31,7 @@ void Lowerer::lower_groove_cycle(const Record& r) {
     double v = ps[i + 1].number;
     SourceLoc vloc = ps[i + 1].loc;
     ++i;
-    auto positive = [&](const char* what, bool zero_ok) {
-      if (v > 0 || (zero_ok && v == 0)) return true;
-      d_.error(vloc, std::string("CYCLE: ") + what + " must be " + (zero_ok ? "zero or more" : "greater than zero") +
-                         ", found " + num_text(v));
-      return false;
-    };
+    auto positive = [&](const char* what, bool zero_ok) { return positive_value(d_, "CYCLE", what, v, vloc, zero_ok); };
     if (p.is("RETRACT")) {
       if (!positive("RETRACT", true)) return;
       g.retract = v;
@@ -52,13 +47,9 @@ void Lowerer::lower_groove_cycle(const Record& r) {
     } else if (p.is("RELIEF")) {
       if (!positive("RELIEF", true)) return;
       g.relief = v;
-    } else if (p.is("FEED") || p.is("IPR") || p.is("MMPR") || p.is("IPM") || p.is("MMPM")) {
+    } else if (is_feed_word(p)) {
       if (!positive("the feed", false)) return;
-      bool per_min = p.is("IPM") || p.is("MMPM");
-      bool inch = p.is("IPR") || p.is("IPM");
-      bool metric = p.is("MMPR") || p.is("MMPM");
-      g.feed = v * (inch ? 25.4 / ir::mm_per_unit(info_.units) : metric ? 1 / ir::mm_per_unit(info_.units) : 1.0);
-      g.feed_mode = per_min ? ir::FeedMode::PerMinute : ir::FeedMode::PerRev;
+      read_feed_word(p, v, info_.units, g.feed, g.feed_mode);
     } else {
       d_.error(p.loc, "CYCLE: unknown word '" + std::string(p.text) + "' in a groove cycle");
       return;

@@ -39,12 +39,7 @@ void Lowerer::lower_rough_cycle(const Record& r) {
       }
     const double v = ps[i + 1].number;
     const SourceLoc vloc = ps[i + 1].loc;
-    auto positive = [&](const char* what, bool zero_ok) {
-      if (v > 0 || (zero_ok && v == 0)) return true;
-      d_.error(vloc, std::string("CYCLE/ROUGH: ") + what + " must be " + (zero_ok ? "zero or more" : "greater than zero") +
-                         ", found " + num_text(v));
-      return false;
-    };
+    auto positive = [&](const char* what, bool zero_ok) { return positive_value(d_, "CYCLE/ROUGH", what, v, vloc, zero_ok); };
     if (p.is("DEPTH")) {
       if (!positive("DEPTH", false)) return;
       m.depth = v;
@@ -56,13 +51,9 @@ void Lowerer::lower_rough_cycle(const Record& r) {
     } else if (p.is("ALLOW")) {
       m.allow_x = v;  // signed: the side of the profile the stock is on
       m.allow_z = ps[i + 2].number;
-    } else if (p.is("FEED") || p.is("IPR") || p.is("MMPR") || p.is("IPM") || p.is("MMPM")) {
+    } else if (is_feed_word(p)) {
       if (!positive("the feed", false)) return;
-      const bool per_min = p.is("IPM") || p.is("MMPM");
-      const bool inch = p.is("IPR") || p.is("IPM");
-      const bool metric = p.is("MMPR") || p.is("MMPM");
-      m.feed = v * (inch ? 25.4 / ir::mm_per_unit(info_.units) : metric ? 1 / ir::mm_per_unit(info_.units) : 1.0);
-      m.feed_mode = per_min ? ir::FeedMode::PerMinute : ir::FeedMode::PerRev;
+      read_feed_word(p, v, info_.units, m.feed, m.feed_mode);
     } else {
       d_.error(p.loc, "CYCLE/ROUGH: unknown word '" + std::string(p.text) +
                           "' (read: TURN, FACE, DEPTH, RETRACT, ALLOW, FEED, MMPR, IPR, MMPM, IPM, FINISH)");

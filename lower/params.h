@@ -7,6 +7,7 @@
 #include <string>
 
 #include "grammar/record.h"
+#include "ir/ir.h"
 #include "support/diagnostics.h"
 #include "support/text.h"
 
@@ -69,5 +70,26 @@ class ParamReader {
   std::span<const Param> p_;
   Diagnostics& d_;
 };
+
+// The words of a cycle record (CYCLE/ROUGH, the groove cycles: `KEYWORD,number` in any
+// order) ----------------------------------------------------------------------------------
+
+// A value that must be above zero (or zero, where `zero_ok`); reported with the record's name.
+inline bool positive_value(Diagnostics& d, const char* record, const char* what, double v, SourceLoc at, bool zero_ok) {
+  if (v > 0 || (zero_ok && v == 0)) return true;
+  d.error(at, std::string(record) + ": " + what + " must be " + (zero_ok ? "zero or more" : "greater than zero") + ", found " +
+                  num_text(v));
+  return false;
+}
+
+// FEED (per revolution, program units), MMPR, IPR, MMPM, IPM.
+inline bool is_feed_word(const Param& p) { return p.is("FEED") || p.is("IPR") || p.is("MMPR") || p.is("IPM") || p.is("MMPM"); }
+
+// The feed `v` given after feed word `p`, in program units, and its mode.
+inline void read_feed_word(const Param& p, double v, ir::Units program, double& feed, ir::FeedMode& mode) {
+  const bool inch = p.is("IPR") || p.is("IPM"), metric = p.is("MMPR") || p.is("MMPM");
+  feed = v * (inch ? 25.4 / ir::mm_per_unit(program) : metric ? 1 / ir::mm_per_unit(program) : 1.0);
+  mode = p.is("IPM") || p.is("MMPM") ? ir::FeedMode::PerMinute : ir::FeedMode::PerRev;
+}
 
 }  // namespace clpc
