@@ -101,7 +101,9 @@ bool write_all(int fd, const char* p, size_t n) {
 void install_output_cleanup_handlers() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+    // SIGPIPE too: diagnostics piped into `head` that has gone (clpc compile ... 2>&1 | head)
+    // end the run as they would any program's, but not with a temporary file left behind.
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
       struct sigaction sa {};
       sa.sa_handler = on_signal;
       sigemptyset(&sa.sa_mask);

@@ -71,8 +71,8 @@ class OutputFile {
   std::thread thread_;
 };
 
-// Removes, on SIGINT/SIGTERM/SIGHUP, every temporary output still open, then dies of the
-// signal. Installed once by the command line.
+// Removes, on SIGINT/SIGTERM/SIGHUP/SIGPIPE, every temporary output still open, then dies of
+// the signal. Installed once by the command line.
 void install_output_cleanup_handlers();
 
 }  // namespace clpc

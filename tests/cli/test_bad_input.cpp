@@ -1,17 +1,20 @@
 // Bad input, run through the real binary: every case gets a compiler-style diagnostic with its
 // location, exit status 1, and no output file — never a crash, a hang or a half-written
 // program. And the output is safe: a compile killed while it writes leaves the old program
-// intact, its temporary file removed at once (SIGTERM) or by the next run (SIGKILL).
+// intact, its temporary file removed at once (SIGTERM, SIGPIPE) or by the next run (SIGKILL).
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <random>
 #include <regex>
 #include <thread>
+#include <vector>
 
 #include "helpers.h"
 
@@ -258,6 +261,26 @@ TEST(OutputSafety, RefusesToOverwriteItsInput) {
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.err, HasSubstr("is the input file; refusing to overwrite it"));
   EXPECT_EQ(read_file(t.path("part.cls")), kHead + "RAPID\nGOTO/1,2,3\n");
+}
+
+// Diagnostics piped into a reader that goes away (clpc compile ... 2>&1 | head -1): the run
+// dies of SIGPIPE as any program would, and leaves no temporary file beside the target; an
+// older program there stays as it was.
+TEST(OutputSafety, ASigpipeOnTheDiagnosticsLeavesNoTemporaryFile) {
+  TempDir t;
+  std::string cl = kHead;
+  for (int i = 0; i < 20000; ++i) cl += "FOOBAR/" + std::to_string(i) + "\nGOTO/" + std::to_string(i % 50) + ",0,0\n";
+  write_file(t.path("big.cls"), cl + "FINI\n");
+  write_file(t.path("big.nc"), "the older program\n");
+  RunResult r = run_shell("bash -c '" + std::string(CLPC_BINARY) + " compile " + t.path("big.cls") + " -t fanuc-mill -o " +
+                          t.path("big.nc") + " 2>&1 | head -1 >/dev/null; echo ${PIPESTATUS[0]}'");
+  EXPECT_EQ(r.out, "141\n") << r.err;  // 128 + SIGPIPE
+  EXPECT_EQ(read_file(t.path("big.nc")), "the older program\n");
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::directory_iterator(t.path("")))
+    left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"big.cls", "big.nc"}));
 }
 
 // A pipe or a device (-o /dev/null) is written to, never renamed over: a rename would put a
