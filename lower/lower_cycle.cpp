@@ -2,7 +2,8 @@
 // read into one model (ir::CycleSpec). Distances are along the tool axis from each hole's GOTO
 // point. The table of forms, with the files that show them, is in docs/cl-input.md ("Cycles").
 //
-//   NX          CYCLE/DRILL,RAPTO,r,FEDTO,d,MMPM,f[,RTRCTO,t]
+//   NX          CYCLE/DRILL,RAPTO,r,FEDTO,d,MMPM,f[,RTRCTO,t|AUTO]
+//               CYCLE/DRILL,DEEP|BRKCHP,FEDTO,d,INCR,s,...   CYCLE/DRILL,DWELL,t,...
 //   Creo        CYCLE/DRILL,DEPTH,d,IPM,f,CLEAR,c     CYCLE/DEEP,DEPTH,d,STEP,s,MMPM,f,CLEAR,c
 //               CYCLE/TAP,DEPTH,d,TPI,n,CLEAR,c
 //   CATIA       CYCLE/DRILL,DEPTH,d,MMPR,f,CLEAR,c,RETURN,t   (ICAM PP table: keywords)
@@ -144,6 +145,18 @@ void Lowerer::lower_cycle(const Record& r) {
       if (w == "DRAG") { drag = true; continue; }
       if (w == "BACK") { back = true; continue; }
       if (w == "RIGID" || w == "FLOAT" || w == "NODRAG" || w == "AUTO" || w == "CLW" || w == "CCLW") continue;
+      // NX names the kind of a drilling cycle in a second word: CYCLE/DRILL,DEEP,... and
+      // CYCLE/DRILL,BRKCHP,... are the peck and chip-break cycles.
+      if (i == 1 && c.kind == ir::CycleKind::Drill && (w == "DEEP" || w == "BRKCHP")) {
+        c.kind = w == "DEEP" ? ir::CycleKind::Peck : ir::CycleKind::ChipBreak;
+        kind += "," + w;
+        continue;
+      }
+      // NX's RTRCTO,AUTO: back to where the tool was when the cycle began, as with no RTRCTO.
+      if ((w == "RTRCTO" || w == "RETURN") && i + 1 < ps.size() && ps[i + 1].is_word() && upper(ps[i + 1].text) == "AUTO") {
+        ++i;
+        continue;
+      }
       if (w == "DWELL" && (i + 1 >= ps.size() || !ps[i + 1].is_number())) continue;  // bare DWELL: a modifier
       if (i + 1 >= ps.size() || !ps[i + 1].is_number()) {
         d_.error(i + 1 < ps.size() ? ps[i + 1].loc : r.end, "CYCLE: a number must follow " + std::string(p.text));

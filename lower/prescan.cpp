@@ -103,6 +103,7 @@ class TableBuilder : public RecordSink {
         }
         break;
       case MajorId::Fedrat:
+      case MajorId::Cycle:  // a cycle's own feed (NX's CYCLE/DRILL,...,MMPM,f) names the unit too
         for (const Param& p : r.params) {
           std::optional<ir::Units> u;
           if (p.is("MMPM") || p.is("MMPR")) u = ir::Units::Mm;
@@ -350,7 +351,7 @@ ir::ProgramInfo prescan_program(SourceFile& src, const PrescanOptions& opt) {
   MajorSet want;
   for (MajorId id : {MajorId::ToolPath, MajorId::Featno, MajorId::EndOfPath, MajorId::End,
                      MajorId::Loadtl, MajorId::Load, MajorId::Turret, MajorId::Tldata,
-                     MajorId::Cutter, MajorId::Units, MajorId::Unit, MajorId::Fedrat,
+                     MajorId::Cutter, MajorId::Units, MajorId::Unit, MajorId::Fedrat, MajorId::Cycle,
                      MajorId::Partno, MajorId::Tprint, MajorId::Machin, MajorId::Mode, MajorId::Toolno, MajorId::Msys, MajorId::Csys, MajorId::Camera,
                      MajorId::Set, MajorId::Select})
     want.add(id);

@@ -57,6 +57,22 @@ TEST(Cycles, PeckAndChipBreak) {
   EXPECT_EQ(cycle_blocks("CYCLE/BRKCHP,FEDTO,12,STEP,2,RAPTO,1"), "N70 G94 G98 G73 X10. Y10. Z-12. R1. Q2. F100.\nN80 X30.\nN90 G80");
 }
 
+// NX names the kind in a second word (CYCLE/DRILL,DEEP|BRKCHP|DWELL,...) and writes RTRCTO,AUTO
+// for "back where the cycle began": the same cycles as Creo's and APT's words.
+TEST(Cycles, NxKindInTheSecondWordAndRetractAuto) {
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEEP,FEDTO,12,INCR,3,RAPTO,1,RTRCTO,AUTO,MMPM,50"),
+            "N70 G94 G98 G83 X10. Y10. Z-12. R1. Q3. F50.\nN80 X30.\nN90 G80");
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,BRKCHP,FEDTO,12,INCR,2,RAPTO,1,RTRCTO,AUTO"),
+            "N70 G94 G98 G73 X10. Y10. Z-12. R1. Q2. F100.\nN80 X30.\nN90 G80");
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DWELL,0.5,FEDTO,1,RAPTO,2,RTRCTO,AUTO"),
+            "N70 G94 G98 G82 X10. Y10. Z-1. R2. P500 F100.\nN80 X30.\nN90 G80");
+  // A deep drill without its increment is still refused, at the record.
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DRILL,BRKCHP,FEDTO,12,RAPTO,1\nGOTO/10,10,0\nCYCLE/OFF\n",
+                            machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":7:1: error: CYCLE/DRILL,BRKCHP: a peck cycle needs a peck depth"));
+}
+
 TEST(Cycles, TapRigidWithPitchTimesSpeed) {
   // M6 x 1: F = 1 mm x 1000 rpm.
   EXPECT_EQ(cycle_blocks("CYCLE/TAP,DEPTH,10,PITCH,1.0,CLEAR,3"),
