@@ -253,9 +253,15 @@ void Lowerer::lower_cycle(const Record& r) {
   }
   if (c.kind == ir::CycleKind::Tap) {
     if (!pitch_given) {
+      // The pitch from the cycle's own feed: per revolution it is the pitch; per minute
+      // (NX's CYCLE/TAP,...,MMPM,f) it is the feed over the spindle speed in force, which is
+      // how the CAM system made it and how the control's G84 in G94 reads F and S.
+      const bool rpm = last_spindle_ && last_spindle_->mode == ir::SpindleMode::Rpm && last_spindle_->speed > 0;
       if (c.feed_mode == ir::FeedMode::PerRev && c.feed > 0) c.pitch = c.feed;
+      else if (c.feed_mode == ir::FeedMode::PerMinute && c.feed > 0 && rpm) c.pitch = c.feed / last_spindle_->speed;
       else {
-        d_.error(r.loc, "CYCLE/TAP: no thread pitch (TPI, PITCH, or a feed per revolution)");
+        d_.error(r.loc, "CYCLE/TAP: no thread pitch (TPI, PITCH, a feed per revolution, or a feed per minute "
+                        "with the spindle's rpm before the cycle)");
         return;
       }
     }

@@ -22,7 +22,7 @@ inline const std::vector<CorpusCase>& corpus_cases() {
   static const std::vector<CorpusCase> cases = {
       // CATIA V5 APT
       {"catia/karlo_DEMO1.aptsource", "fanuc-lathe", "", "turning, constant surface speed"},
-      {"catia/karlo_DEMO2.aptsource", "fanuc-mill", ":32:1: error: CYCLE/TAP: no thread pitch (TPI, PITCH, or a feed per revolution)",
+      {"catia/karlo_DEMO2.aptsource", "fanuc-mill", ":32:1: error: CYCLE/TAP: no thread pitch (TPI, PITCH, a feed per revolution, or a feed per minute with the spindle's rpm before the cycle)",
        "a tap with no pitch, no feed and 0.398 rpm: nothing says how far it advances per turn"},
       {"catia/karlo_DEMO3.aptsource", "fanuc-lathe", "", "turning, centre drilling, grooving; ROTABL to 0"},
       {"catia/karlo_DEMO4.aptsource", "fanuc-mill", "", "peck drilling written as moves"},

@@ -81,6 +81,21 @@ TEST(Cycles, TapRigidWithPitchTimesSpeed) {
   EXPECT_THAT(cycle_blocks("CYCLE / TAP, DEPTH, 10, TPI, 20.0, CLEAR, 3"), HasSubstr("G84 X10. Y10. Z-10. R3. F1270."));
 }
 
+// A tap's feed per minute over the spindle's rpm is its pitch (NX writes the tap's feed so):
+// 1250 mm/min at 1000 rpm is M8 x 1.25, written back as the same F at the same S.
+TEST(Cycles, TapPitchFromAFeedPerMinuteAndTheSpindleSpeed) {
+  EXPECT_EQ(cycle_blocks("CYCLE/TAP,FEDTO,10,RAPTO,3,RTRCTO,AUTO,MMPM,1250"),
+            "N70 M29 S1000\nN80 G94 G98 G84 X10. Y10. Z-10. R3. F1250.\nN90 X30.\nN100 G80");
+  Lowered l = lower_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nCYCLE/TAP,FEDTO,10,RAPTO,3,MMPM,1000\nGOTO/0,0,0\nCYCLE/OFF\n");
+  ASSERT_EQ(first_error(l.diags), "");
+  ASSERT_EQ(l.ops.size(), 1u);
+  ASSERT_EQ(l.ops[0].cycles.size(), 1u);
+  EXPECT_DOUBLE_EQ(l.ops[0].cycles[0].pitch, 1.25);
+  // Surface speed gives no rpm to divide by: refused at the record.
+  Lowered css = lower_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/SMM,100,CLW\nCYCLE/TAP,FEDTO,10,RAPTO,3,MMPM,1000\nGOTO/0,0,0\nCYCLE/OFF\n");
+  EXPECT_THAT(first_error(css.diags), HasSubstr("4:1: CYCLE/TAP: no thread pitch"));
+}
+
 TEST(Cycles, LeftHandTapWithTheSpindleCounterClockwise) {
   Machine m = machine("fanuc-mill");
   Compiled c = compile_text(
