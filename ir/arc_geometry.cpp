@@ -27,16 +27,28 @@ double sweep_deg(const Arc& a, ir::ArcDir dir, double close_tol) {
   return (dir == ir::ArcDir::Cw ? 360.0 - ccw : ccw) + turns;
 }
 
-Vec3 point_at(const Arc& a, double t) {
-  Vec3 rs = radial(a, a.start), re = radial(a, a.end);
-  double r0 = rs.norm(), r1 = re.norm();
-  double phi = sense(a.dir) * a.sweep * t * kPi / 180;
-  Vec3 u = r0 > 0 ? Vec3(rs / r0) : Vec3(a.axis.unitOrthogonal());
-  Vec3 w = a.axis.cross(u);
-  double r = r0 + (r1 - r0) * t;
-  double h = axial(a, a.start) + (axial(a, a.end) - axial(a, a.start)) * t;
-  return a.center + h * a.axis + r * (std::cos(phi) * u + std::sin(phi) * w);
+ArcProbe::ArcProbe(const Arc& a)
+    : start_(a.start), end_(a.end), center_(a.center), axis_(a.axis), rs_(radial(a, a.start)) {
+  const Vec3 re = radial(a, a.end);
+  r0_ = rs_.norm();
+  r1_ = re.norm();
+  u_ = r0_ > 0 ? Vec3(rs_ / r0_) : Vec3(a.axis.unitOrthogonal());
+  w_ = a.axis.cross(u_);
+  h0_ = axial(a, a.start);
+  h1_ = axial(a, a.end);
+  sweep_deg_ = a.sweep;
+  phi_total_ = sense(a.dir) * a.sweep * kPi / 180;
+  cw_ = a.dir == ir::ArcDir::Cw;
 }
+
+Vec3 ArcProbe::point(double t) const {
+  const double phi = phi_total_ * t;
+  const double r = r0_ + (r1_ - r0_) * t;
+  const double h = h0_ + (h1_ - h0_) * t;
+  return center_ + h * axis_ + r * (std::cos(phi) * u_ + std::sin(phi) * w_);
+}
+
+Vec3 point_at(const Arc& a, double t) { return ArcProbe(a).point(t); }
 
 Vec3 tangent_at(const Arc& a, double t) {
   Vec3 p = point_at(a, t);
@@ -46,26 +58,31 @@ Vec3 tangent_at(const Arc& a, double t) {
   return n > 0 ? Vec3(tan / n) : Vec3::Zero();
 }
 
-double distance_to_arc(const Arc& a, const Vec3& p) {
-  const Vec3 rs = radial(a, a.start), rp = radial(a, p);
-  double phi = ccw_angle(rs, rp, a.axis) * 180 / kPi;
-  if (a.dir == ir::ArcDir::Cw && phi > 0) phi = 360 - phi;
-  double best = std::min((p - a.start).norm(), (p - a.end).norm());
-  const double r0 = rs.norm(), r1 = radial(a, a.end).norm();
-  const double h0 = axial(a, a.start), h1 = axial(a, a.end), hp = axial(a, p), rpn = rp.norm();
+double ArcProbe::distance(const Vec3& p) const {
+  const Vec3 v = p - center_;
+  const double hp = v.dot(axis_);
+  const Vec3 rp = v - hp * axis_;
+  double phi = std::atan2(axis_.dot(rs_.cross(rp)), rs_.dot(rp));
+  if (phi < 0) phi += 2 * kPi;
+  phi *= 180 / kPi;
+  if (cw_ && phi > 0) phi = 360 - phi;
+  double best = std::min((p - start_).norm(), (p - end_).norm());
+  const double rpn = rp.norm();
   // On a helix the nearest point is not at p's own angle: a steep one rises so fast that a
   // point a hair round the turn is nearer. Searched for around that angle, within the
   // parameter span the distance found there allows.
-  const double rise = std::abs(h1 - h0);
-  const double length = std::hypot(r0 * a.sweep * kPi / 180, rise);
-  auto at = [&](double t) { return (point_at(a, std::clamp(t, 0.0, 1.0)) - p).norm(); };
+  const double rise = std::abs(h1_ - h0_);
+  const double run = r0_ * sweep_deg_ * kPi / 180;
+  const double length = std::sqrt(run * run + rise * rise);
+  auto at = [&](double t) { return (point(std::clamp(t, 0.0, 1.0)) - p).norm(); };
   // The angle may be reached on any turn of a multi-turn arc.
-  for (double turn = 0; turn * 360 <= a.sweep + 1e-9; ++turn) {
-    double t = (phi + 360 * turn) / a.sweep;
+  for (double turn = 0; turn * 360 <= sweep_deg_ + 1e-9; ++turn) {
+    double t = (phi + 360 * turn) / sweep_deg_;
     if (t < -1e-9 || t > 1 + 1e-9) continue;
     // The arc's point at p's own angle lies in p's half-plane through the axis: no sine needed.
     const double tc = std::clamp(t, 0.0, 1.0);
-    double d = std::hypot(rpn - (r0 + (r1 - r0) * tc), hp - (h0 + (h1 - h0) * tc));
+    const double dr = rpn - (r0_ + (r1_ - r0_) * tc), dh = hp - (h0_ + (h1_ - h0_) * tc);
+    double d = std::sqrt(dr * dr + dh * dh);
     if (rise > 1e-12 && length > 0 && d > 0) {
       // Golden-section search (the distance is unimodal this near the curve), until the span
       // left is a thousandth of the distance: the minimum is then known to a millionth of it.
@@ -94,6 +111,8 @@ double distance_to_arc(const Arc& a, const Vec3& p) {
   }
   return best;
 }
+
+double distance_to_arc(const Arc& a, const Vec3& p) { return ArcProbe(a).distance(p); }
 
 double sweep_for_chord_error(double r, double tol) {
   if (r <= tol) return 360;

@@ -22,6 +22,23 @@ bool closes(const Arc& a, double tol);
 double sweep_deg(const Arc& a, ir::ArcDir dir, double close_tol);
 // Sign of rotation about a.axis: +1 for Ccw, -1 for Cw.
 inline double sense(ir::ArcDir d) { return d == ir::ArcDir::Cw ? -1.0 : 1.0; }
+// A decided arc with what every point and distance query needs worked out once: the
+// verifier asks a program arc for the distance of a dozen points, and a CL arc for as many
+// points, so each query costs a sine and cosine or one arc tangent, no more.
+class ArcProbe {
+ public:
+  explicit ArcProbe(const Arc& a);
+  // The point a fraction t in [0, 1] along the arc.
+  Vec3 point(double t) const;
+  // Distance from p to the arc (helix), within its sweep.
+  double distance(const Vec3& p) const;
+
+ private:
+  Vec3 start_, end_, center_, axis_, rs_, u_, w_;
+  double r0_, r1_, h0_, h1_, sweep_deg_, phi_total_;
+  bool cw_;
+};
+
 // The point a fraction t in [0, 1] along a decided arc (helices rise linearly with angle;
 // the radius moves linearly from the start's to the end's).
 Vec3 point_at(const Arc& a, double t);

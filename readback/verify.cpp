@@ -607,7 +607,8 @@ class Comparison : public ProgramSink {
       return;
     }
     if (!(a.sweep > 0)) a.sweep = arcgeo::sweep_deg(a, a.dir, 1e-7);
-    auto on_arc = [&](const Vec3& q) { return arcgeo::distance_to_arc(a, q); };
+    const arcgeo::ArcProbe cl(a);
+    auto on_arc = [&](const Vec3& q) { return cl.distance(q); };
     double nearest;
     size_t at;
     const double length = a.radius * a.sweep * arcgeo::kPi / 180;
@@ -625,15 +626,21 @@ class Comparison : public ProgramSink {
       // (a linearised circle run the wrong way) turns the other way as surely as G02 for G03.
       int backwards = 0;
       size_t last_piece = 0;
+      probes_.clear();  // the program's arcs, in the window's order
+      for (size_t s = 0; s <= *j; ++s)
+        if (win_[s].raw.kind == gcode::Segment::Kind::Arc) probes_.emplace_back(arc_of(win_[s]));
       for (int i = 1; i < n; ++i) {
-        Vec3 q = arcgeo::point_at(a, double(i) / n);
+        Vec3 q = cl.point(double(i) / n);
         double best = kInf;
         int line = 0;
         size_t piece = 0;
+        size_t k = 0;
         for (size_t s = 0; s <= *j; ++s) {
           const TipSegment& g = win_[s];
+          const bool is_arc = g.raw.kind == gcode::Segment::Kind::Arc;
+          const arcgeo::ArcProbe* probe = is_arc ? &probes_[k++] : nullptr;
           if (!finite(g.start) || !finite(g.end)) continue;
-          double d = g.raw.kind == gcode::Segment::Kind::Arc ? arcgeo::distance_to_arc(arc_of(g), q) : point_segment(q, g.start, g.end);
+          double d = is_arc ? probe->distance(q) : point_segment(q, g.start, g.end);
           if (d < best) {
             best = d;
             line = g.raw.line;
@@ -676,10 +683,13 @@ class Comparison : public ProgramSink {
         return;
       }
       no_rapid_cut(*j, on_arc);
+      size_t k = 0;
       for (size_t s = 0; s <= *j; ++s) {
         const TipSegment& g = win_[s];
-        if (g.raw.kind != gcode::Segment::Kind::Arc || !finite(g.start)) continue;
-        double d = arcgeo::distance_to_arc(a, arcgeo::point_at(arc_of(g), 0.5));
+        if (g.raw.kind != gcode::Segment::Kind::Arc) continue;
+        const arcgeo::ArcProbe& probe = probes_[k++];
+        if (!finite(g.start)) continue;
+        double d = cl.distance(probe.point(0.5));
         if (d > worst) {
           worst = d;
           worst_line = g.raw.line;
@@ -1116,6 +1126,7 @@ class Comparison : public ProgramSink {
   double k_ = 1;
   bool five_axis_ = false, table_ = false;
   Ring<TipSegment> win_;
+  std::vector<arcgeo::ArcProbe> probes_;  // the program arcs of the window a CL arc is checked against (reused)
   std::vector<double> passed_;
   SourceLoc loc_;
   Vec3 prev_ = Vec3::Zero();  // the last CL point
