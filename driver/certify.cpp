@@ -6,6 +6,7 @@
 
 #include "driver/pipeline.h"
 #include "readback/program_reader.h"
+#include "support/text.h"
 #include "support/threads.h"
 
 namespace clpc {
@@ -139,12 +140,6 @@ VerifyReport CertifyBeside::finish(Diagnostics& d) {
 
 namespace {
 
-std::string fixed(double v, int decimals) {
-  char b[48];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
-}
-
 std::string where(const VerifyReport& r, SourceLoc loc, int gcode_line) {
   std::string s;
   if (loc.valid()) s += " at " + r.input + ":" + std::to_string(loc.line);
@@ -163,11 +158,11 @@ std::string certificate_line(const VerifyReport& r, const std::string& program_n
   if (r.cl_groove_points) s += ", " + std::to_string(r.cl_groove_points) + " groove cuts";
   if (r.cl_thread_cuts) s += ", " + std::to_string(r.cl_thread_cuts) + " thread cuts";
   s += " checked; max deviation ";
-  s += std::isinf(r.max_deviation) ? std::string("unbounded") : fixed(r.max_deviation, dec) + " " + u;
+  s += std::isinf(r.max_deviation) ? std::string("unbounded") : fixed_text(r.max_deviation, dec) + " " + u;
   s += where(r, r.max_loc, r.max_gcode_line);
-  if (r.five_axis) s += ", tool axis " + fixed(r.max_axis_deviation, 4) + " deg" + where(r, r.max_axis_loc, r.max_axis_gcode_line);
-  s += "; tolerance " + fixed(r.tolerance, dec) + " " + u;
-  if (r.five_axis) s += ", " + fixed(r.axis_tolerance, 4) + " deg";
+  if (r.five_axis) s += ", tool axis " + fixed_text(r.max_axis_deviation, 4) + " deg" + where(r, r.max_axis_loc, r.max_axis_gcode_line);
+  s += "; tolerance " + fixed_text(r.tolerance, dec) + " " + u;
+  if (r.five_axis) s += ", " + fixed_text(r.axis_tolerance, 4) + " deg";
   if (r.ambiguous_arcs)
     s += "; " + std::to_string(r.ambiguous_arcs) + " arc" + (r.ambiguous_arcs == 1 ? "" : "s") +
          " where the CL's convention and its geometry disagree (first at " + r.input + ":" +

@@ -14,9 +14,7 @@ namespace {
 
 std::string fixed(double v, int decimals) {
   if (std::isinf(v)) return "never reached";
-  char b[48];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
+  return fixed_text(v, decimals);
 }
 
 // Within half the tolerance, within it, beyond it.

@@ -71,12 +71,6 @@ std::string xyz(const Vec3& v) {
   return b;
 }
 
-std::string fixed(double v, int decimals) {
-  char b[48];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
-}
-
 class Comparison : public ProgramSink {
  public:
   Comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
@@ -392,8 +386,8 @@ class Comparison : public ProgramSink {
       want *= gcode::combined_length(s.raw, m_.kinematics) / tip;
       if (std::abs(s.raw.feed - want) > m_.feeds.max_rounding * want + 1e-12)
         fail(loc_, s.raw.line,
-             "the block's F is " + fixed(s.raw.feed, 4) + " (degrees per minute: over X Y Z and the rotaries); the CL's feed " +
-                 "along the tip's path makes it " + fixed(want, 4),
+             "the block's F is " + fixed_text(s.raw.feed, 4) + " (degrees per minute: over X Y Z and the rotaries); the CL's feed " +
+                 "along the tip's path makes it " + fixed_text(want, 4),
              0);
       return;
     }
@@ -407,7 +401,7 @@ class Comparison : public ProgramSink {
       return;
     }
     if (std::abs(s.raw.feed - want) > m_.feeds.max_rounding * want + 1e-12)
-      fail(loc_, s.raw.line, "the block's feed is " + fixed(s.raw.feed, 4) + " " + unit + ", the CL's " + fixed(want, 4) + " " + unit,
+      fail(loc_, s.raw.line, "the block's feed is " + fixed_text(s.raw.feed, 4) + " " + unit + ", the CL's " + fixed_text(want, 4) + " " + unit,
            0);
   }
 
@@ -418,8 +412,8 @@ class Comparison : public ProgramSink {
     const double lead = s.raw.per_rev ? s.raw.feed : (s.raw.rpm > 0 ? s.raw.feed / s.raw.rpm : 0);
     const double drift = std::abs(lead - pitch) * (spec.depth * k_) / pitch;
     if (drift >= 0.5 * increment_)
-      fail(loc_, s.raw.line, "the tap advances " + fixed(lead, 6) + " a turn, its thread's pitch is " + fixed(pitch, 6) + ": " +
-                                 fixed(drift, 5) + " off at the bottom",
+      fail(loc_, s.raw.line, "the tap advances " + fixed_text(lead, 6) + " a turn, its thread's pitch is " + fixed_text(pitch, 6) + ": " +
+                                 fixed_text(drift, 5) + " off at the bottom",
            drift);
   }
 
@@ -476,7 +470,7 @@ class Comparison : public ProgramSink {
   void missed(const Vec3& p, double nearest, size_t nearest_at, const char* what) {
     const TipSegment* s = std::isfinite(nearest) ? peek(nearest_at) : nullptr;
     std::string msg = std::string(what) + " " + xyz(p) + " is never reached";
-    if (s) msg += ": the program comes within " + fixed(nearest, 5) + " of it";
+    if (s) msg += ": the program comes within " + fixed_text(nearest, 5) + " of it";
     fail(loc_, s ? s->raw.line : 0, msg, std::isfinite(nearest) ? nearest : kInf);
     if (s && nearest <= std::max(20 * tol_, 0.1 / ir::mm_per_unit(m_.units))) consume(nearest_at + 1);
   }
@@ -522,7 +516,7 @@ class Comparison : public ProgramSink {
     deviate(d, loc_, s.raw.line);
     if (!axis_ok(s, axis))
       fail(loc_, s.raw.line,
-           "the tool axis at this CL point is off by " + fixed(kin::angle_between(s.axis, axis.normalized()), 4) + " degrees",
+           "the tool axis at this CL point is off by " + fixed_text(kin::angle_between(s.axis, axis.normalized()), 4) + " degrees",
            0);
     // (A canned cycle's own return may bring the tool there: the CL's feed up from the last
     // hole to where the cycle returned it is made by the cycle, at rapid, away from the part.)
@@ -547,7 +541,7 @@ class Comparison : public ProgramSink {
       double dev = worst_while_turning(s, LineDistance{prev_, p, true});
       deviate(dev, loc_, s.raw.line);
       if (dev > tol_)
-        fail(loc_, s.raw.line, "while the rotaries turn the tool tip leaves the CL line by " + fixed(dev, 5) + " at its worst point", dev);
+        fail(loc_, s.raw.line, "while the rotaries turn the tool tip leaves the CL line by " + fixed_text(dev, 5) + " at its worst point", dev);
     }
     consume(j + 1);
   }
@@ -697,7 +691,7 @@ class Comparison : public ProgramSink {
       }
       if (worst > tol_) {
         fail(loc_, worst_line,
-             "the CL arc is not followed: the program's path is " + fixed(worst, 5) + " from it (does it turn the other way?)",
+             "the CL arc is not followed: the program's path is " + fixed_text(worst, 5) + " from it (does it turn the other way?)",
              worst);
         consume(*j + 1);
       } else {
@@ -916,7 +910,7 @@ class Comparison : public ProgramSink {
       fail(loc_, rapid_line, "groove cut to " + xyz(p) + " is made at rapid traverse (G00)", 0);
     } else {
       fail(loc_, std::isfinite(best) ? win_[best_at].raw.line : 0,
-           "groove cut to " + xyz(p) + " is not made: the program's path passes " + fixed(best, 5) + " from " +
+           "groove cut to " + xyz(p) + " is not made: the program's path passes " + fixed_text(best, 5) + " from " +
                (q == p ? "it" : "its middle"),
            best);
     }
@@ -1020,15 +1014,15 @@ class Comparison : public ProgramSink {
       const double length = (p - from).norm();
       const double drift = lead > 0 ? std::abs(s.raw.feed - lead) * length / lead : kInf;
       if (drift > tol_)
-        fail(loc_, s.raw.line, "thread cut to " + xyz(p) + " at a lead of F" + fixed(s.raw.feed, 6) + " where the CL's is " +
-                                   fixed(lead, 6) + ": the thread ends " + fixed(drift, 5) + " off", drift);
+        fail(loc_, s.raw.line, "thread cut to " + xyz(p) + " at a lead of F" + fixed_text(s.raw.feed, 6) + " where the CL's is " +
+                                   fixed_text(lead, 6) + ": the thread ends " + fixed_text(drift, 5) + " off", drift);
       return;
     }
     if (plain_line) {
       fail(loc_, plain_line, "thread cut to " + xyz(p) + " is made by a block not synchronised with the spindle (not G32/G92/G76)", 0);
     } else {
       fail(loc_, std::isfinite(best) ? win_[best_at].raw.line : 0,
-           "thread cut to " + xyz(p) + " is not made: the program's nearest thread cut passes " + fixed(best, 5) + " from it",
+           "thread cut to " + xyz(p) + " is not made: the program's nearest thread cut passes " + fixed_text(best, 5) + " from it",
            best);
     }
   }
@@ -1054,7 +1048,7 @@ class Comparison : public ProgramSink {
       if (!s || !s->raw.thread || !finite(s->start) || !finite(s->end)) continue;
       const double d = std::max(on_cl(s->end), on_cl((s->start + s->end) / 2));
       if (d > tol_) {
-        fail(loc_, s->raw.line, "the program cuts a thread pass to " + xyz(s->end) + " that the CL does not: " + fixed(d, 5) +
+        fail(loc_, s->raw.line, "the program cuts a thread pass to " + xyz(s->end) + " that the CL does not: " + fixed_text(d, 5) +
                                     " from the CL's thread cuts", d);
         break;
       }
@@ -1076,7 +1070,7 @@ class Comparison : public ProgramSink {
       double slack = std::abs(dequantize(1, m_.format(r.name[0])));
       if (v < r.min - slack || v > r.max + slack) {
         if (!limit_reported_[size_t(r.name[0] - 'A')]++)
-          fail(loc_, s.raw.line, r.name + fixed(v, 3) + " is beyond the " + r.name + " axis's limits (" + num_text(r.min) + " to " +
+          fail(loc_, s.raw.line, r.name + fixed_text(v, 3) + " is beyond the " + r.name + " axis's limits (" + num_text(r.min) + " to " +
                                      num_text(r.max) + ")",
                0);
       }
@@ -1105,13 +1099,13 @@ class Comparison : public ProgramSink {
       if (m_.kinematics.work_zero_set) {
         double zero = m_.kinematics.work_zero[i];
         if (zero + lo_[i] < tmin - slack)
-          fail(lo_loc_[i], lo_line_[i], std::string(1, axis) + " goes to " + fixed(zero + lo_[i], 4) + " in machine coordinates, beyond its travel (" +
+          fail(lo_loc_[i], lo_line_[i], std::string(1, axis) + " goes to " + fixed_text(zero + lo_[i], 4) + " in machine coordinates, beyond its travel (" +
                                             num_text(tmin) + " to " + num_text(tmax) + ")", 0);
         if (zero + hi_[i] > tmax + slack)
-          fail(hi_loc_[i], hi_line_[i], std::string(1, axis) + " goes to " + fixed(zero + hi_[i], 4) + " in machine coordinates, beyond its travel (" +
+          fail(hi_loc_[i], hi_line_[i], std::string(1, axis) + " goes to " + fixed_text(zero + hi_[i], 4) + " in machine coordinates, beyond its travel (" +
                                             num_text(tmin) + " to " + num_text(tmax) + ")", 0);
       } else if (hi_[i] - lo_[i] > tmax - tmin + slack) {
-        fail(hi_loc_[i], hi_line_[i], "the program spans " + fixed(hi_[i] - lo_[i], 4) + " in " + axis + ", more than the machine's travel of " +
+        fail(hi_loc_[i], hi_line_[i], "the program spans " + fixed_text(hi_[i] - lo_[i], 4) + " in " + axis + ", more than the machine's travel of " +
                                           num_text(tmax - tmin), 0);
       }
     }
@@ -1186,108 +1180,6 @@ double default_tolerance(const Machine& m) {
 std::unique_ptr<ProgramSink> make_comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d,
                                              VerifyReport& rep) {
   return std::make_unique<Comparison>(m, info, rd, d, rep);
-}
-
-namespace {
-
-std::string minutes_text(double min) {
-  long s = std::lround(min * 60);
-  char b[48];
-  if (s >= 3600) std::snprintf(b, sizeof b, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
-  else std::snprintf(b, sizeof b, "%ld:%02ld", s / 60, s % 60);
-  return b;
-}
-
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[48];
-  std::snprintf(b, sizeof b, "%.6g", v);
-  return b;
-}
-
-}  // namespace
-
-void print_report(std::ostream& o, const VerifyReport& r) {
-  const char* u = r.units == ir::Units::Inch ? "in" : "mm";
-  const int dec = r.units == ir::Units::Inch ? 5 : 4;
-  o << "clpc verify: " << r.input << " on " << r.machine << ", tolerance " << fixed(r.tolerance, dec) << " " << u;
-  if (r.five_axis) o << ", tool axis " << r.axis_tolerance << " deg";
-  o << "\n";
-  if (!r.compiled) {
-    o << "  result: FAIL (the CL file does not compile)\n";
-    return;
-  }
-  const ProgramTotals& p = r.program;
-  o << "  CL path:    " << r.cl_points << " points, " << r.cl_arcs << " arcs, " << r.cl_holes << " holes";
-  if (r.cl_groove_points) o << ", " << r.cl_groove_points << " groove cuts";
-  if (r.cl_thread_cuts) o << ", " << r.cl_thread_cuts << " thread cuts";
-  o << "\n";
-  o << "  program:    " << p.lines << " lines (" << p.bytes << " bytes), " << p.blocks << " blocks; " << p.rapids << " rapids, "
-    << p.feeds << " feeds, " << p.arcs << " arcs, " << p.cycle_holes << " cycles, " << p.tool_changes << " tool changes\n";
-  o << "  path:       " << fixed(p.feed_length, 1) << " " << u << " cutting, " << fixed(p.rapid_length, 1) << " " << u << " rapid\n";
-  o << "  cycle time: " << minutes_text(p.total_minutes()) << (p.time_complete() ? "" : "+") << " (cutting "
-    << minutes_text(p.feed_minutes) << (p.feed_time_known ? "" : "+, some feeds unknown") << ", rapids "
-    << minutes_text(p.rapid_minutes) << (p.rapid_time_known ? "" : "+, rapid rate unknown") << ", dwells "
-    << minutes_text(p.dwell_minutes) << ", tool changes " << minutes_text(p.tool_change_minutes)
-    << (p.tool_change_time_known ? "" : "+, tool change time unknown") << ")\n";
-  if (p.dynamic_known)
-    o << "  dynamic:    " << minutes_text(p.dynamic_minutes) << (p.tool_change_time_known ? "" : "+")
-      << " (each axis's velocity and acceleration, corners slowed; the cycle time above is its lower bound)\n";
-  else
-    o << "  dynamic:    unknown (the machine's [motion] table gives no velocities and accelerations)\n";
-  o << "  deviation:  max ";
-  if (std::isinf(r.max_deviation)) o << "unbounded (a CL point never reached)";
-  else o << fixed(r.max_deviation, dec) << " " << u;
-  if (r.max_loc.valid()) o << " at " << r.input << ":" << r.max_loc.line << ":" << r.max_loc.col;
-  if (r.max_gcode_line) o << " (G-code line " << r.max_gcode_line << ")";
-  if (r.max_axis_deviation > 0) {
-    o << "; tool axis max " << fixed(r.max_axis_deviation, 4) << " deg";
-    if (r.max_axis_loc.valid()) o << " at " << r.input << ":" << r.max_axis_loc.line << ":" << r.max_axis_loc.col;
-    if (r.max_axis_gcode_line) o << " (G-code line " << r.max_axis_gcode_line << ")";
-  }
-  o << "\n";
-  if (r.ambiguous_arcs)
-    o << "  CL:         " << r.ambiguous_arcs << " arc" << (r.ambiguous_arcs == 1 ? "" : "s")
-      << " where the CAM system's convention and the CL's geometry disagree (first at " << r.input << ":"
-      << r.ambiguous_loc.line << "); the convention was followed\n";
-  if (r.ok) o << "  result: PASS\n";
-  else o << "  result: FAIL (" << r.problem_count << " problem" << (r.problem_count == 1 ? "" : "s") << ")\n";
-}
-
-void print_report_json(std::ostream& o, const VerifyReport& r) {
-  const ProgramTotals& p = r.program;
-  o << "{\n";
-  o << "  \"input\": " << json_text(r.input) << ",\n";
-  o << "  \"machine\": " << json_text(r.machine) << ",\n";
-  o << "  \"units\": \"" << (r.units == ir::Units::Inch ? "inch" : "mm") << "\",\n";
-  o << "  \"tolerance\": " << json_number(r.tolerance) << ",\n";
-  o << "  \"axis_tolerance_deg\": " << json_number(r.axis_tolerance) << ",\n";
-  o << "  \"compiled\": " << (r.compiled ? "true" : "false") << ",\n";
-  o << "  \"ok\": " << (r.ok ? "true" : "false") << ",\n";
-  o << "  \"max_deviation\": {\"value\": " << json_number(r.max_deviation) << ", \"line\": " << r.max_loc.line
-    << ", \"column\": " << r.max_loc.col << ", \"gcode_line\": " << r.max_gcode_line << "},\n";
-  o << "  \"max_axis_deviation_deg\": {\"value\": " << json_number(r.max_axis_deviation) << ", \"line\": " << r.max_axis_loc.line
-    << ", \"column\": " << r.max_axis_loc.col << ", \"gcode_line\": " << r.max_axis_gcode_line << "},\n";
-  o << "  \"ambiguous_arcs\": {\"count\": " << r.ambiguous_arcs << ", \"first_line\": " << r.ambiguous_loc.line << "},\n";
-  o << "  \"cl\": {\"points\": " << r.cl_points << ", \"arcs\": " << r.cl_arcs << ", \"holes\": " << r.cl_holes
-    << ", \"groove_cuts\": " << r.cl_groove_points << ", \"thread_cuts\": " << r.cl_thread_cuts << "},\n";
-  o << "  \"program\": {\"lines\": " << p.lines << ", \"bytes\": " << p.bytes << ", \"blocks\": " << p.blocks
-    << ", \"rapids\": " << p.rapids << ", \"feeds\": " << p.feeds << ", \"arcs\": " << p.arcs << ", \"cycles\": " << p.cycle_holes
-    << ", \"tool_changes\": " << p.tool_changes << ", \"feed_length\": " << json_number(p.feed_length)
-    << ", \"rapid_length\": " << json_number(p.rapid_length) << "},\n";
-  o << "  \"cycle_time_s\": {\"total\": " << json_number(p.total_minutes() * 60)
-    << ", \"cutting\": " << json_number(p.feed_minutes * 60) << ", \"rapid\": " << json_number(p.rapid_minutes * 60)
-    << ", \"dwell\": " << json_number(p.dwell_minutes * 60) << ", \"tool_change\": " << json_number(p.tool_change_minutes * 60)
-    << ", \"complete\": " << (p.time_complete() ? "true" : "false")
-    << ", \"dynamic\": " << (p.dynamic_known ? json_number(p.dynamic_minutes * 60) : std::string("null")) << "},\n";
-  o << "  \"problem_count\": " << r.problem_count << ",\n";
-  o << "  \"problems\": [";
-  for (size_t i = 0; i < r.problems.size(); ++i) {
-    const VerifyProblem& q = r.problems[i];
-    o << (i ? ",\n    " : "\n    ") << "{\"line\": " << q.loc.line << ", \"column\": " << q.loc.col << ", \"gcode_line\": " << q.gcode_line
-      << ", \"message\": " << json_text(q.message) << ", \"deviation\": " << json_number(q.deviation) << "}";
-  }
-  o << (r.problems.empty() ? "]\n" : "\n  ]\n") << "}\n";
 }
 
 }  // namespace clpc

@@ -44,6 +44,12 @@ std::string json_text(std::string_view s) {
   return o + "\"";
 }
 
+std::string fixed_text(double v, int decimals) {
+  char b[48];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
 std::string num_text(double v) {
   if (v == 0) return "0";  // also folds -0
   if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(int64_t(v));

@@ -9,6 +9,8 @@ namespace clpc {
 
 // Shortest round-trip text of a number, for messages and the IR printer ("0", "12", "0.004").
 std::string num_text(double v);
+// A number with a fixed count of decimals, for reports and messages ("0.00040").
+std::string fixed_text(double v, int decimals);
 std::string upper(std::string_view s);  // ASCII upper case
 // Text for an XML or HTML page (the backplot, the verify report): < > & " escaped, control
 // characters dropped.

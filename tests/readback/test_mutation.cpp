@@ -16,6 +16,7 @@
 #include "driver/certify.h"
 #include "driver/driver.h"
 #include "helpers.h"
+#include "support/text.h"
 #include "thread_cl.h"
 #include "ir/arc_geometry.h"
 #include "machine/format.h"
@@ -102,11 +103,7 @@ bool cycle(const std::vector<WordAt>& w) {
 std::string with_number(const std::string& line, const WordAt& w, const std::string& number) {
   return line.substr(0, w.at) + number + line.substr(w.at + w.len);
 }
-std::string num(double v, int decimals) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*f", decimals, v);
-  return b;
-}
+std::string num(double v, int decimals) { return fixed_text(v, decimals); }
 
 // --- the program read back, as samples along each segment --------------------------------
 
