@@ -34,7 +34,7 @@ class OperationSink {
 struct LowerOptions {
   // Instructions per operation chunk; longer operations are handed on in pieces so memory
   // stays bounded whatever the file looks like.
-  size_t chunk_size = 1u << 14;
+  size_t chunk_size = 1u << 10;
 };
 
 class Lowerer : public RecordSink {
