@@ -11,17 +11,23 @@ namespace clpc {
 
 bool PieceQueue::push(Piece&& p) {
   std::unique_lock<std::mutex> g(lock_);
-  changed_.wait(g, [&] { return stopped_ || queue_.size() < kDepth; });
+  handoff_.wait_for_room(g, [&] { return queue_.size(); }, [&] { return stopped_; });
   if (stopped_) return false;
+  const bool end = p.end;
   queue_.push_back(std::move(p));
-  g.unlock();
-  changed_.notify_all();
+  if (end) {
+    ended_ = true;
+    g.unlock();
+    handoff_.wake_both();
+    return true;
+  }
+  handoff_.added(g, queue_.size());
   return true;
 }
 
 Piece PieceQueue::pop() {
   std::unique_lock<std::mutex> g(lock_);
-  changed_.wait(g, [&] { return stopped_ || !queue_.empty(); });
+  handoff_.wait_for_items(g, [&] { return queue_.size(); }, [&] { return stopped_ || ended_; });
   Piece p;
   if (queue_.empty()) {
     p.end = true;
@@ -29,8 +35,7 @@ Piece PieceQueue::pop() {
   }
   p = std::move(queue_.front());
   queue_.pop_front();
-  g.unlock();
-  changed_.notify_all();
+  handoff_.taken(g, queue_.size());
   return p;
 }
 
@@ -39,7 +44,7 @@ void PieceQueue::stop() {
     std::lock_guard<std::mutex> g(lock_);
     stopped_ = true;
   }
-  changed_.notify_all();
+  handoff_.wake_both();
 }
 
 void PieceQueue::give_spare(ir::Operation&& op) {

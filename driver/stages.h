@@ -7,13 +7,13 @@
 // one-thread compile, byte for byte.
 #pragma once
 
-#include <condition_variable>
 #include <deque>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 #include "support/diagnostics.h"
+#include "support/handoff.h"
 #include "ir/ir.h"
 #include "lower/lower.h"
 #include "support/source.h"
@@ -41,10 +41,11 @@ class PieceQueue {
   static constexpr size_t kDepth = 4;
   static constexpr size_t kSpares = 12;  // every operation in flight comes back: no fresh memory per chunk
   std::mutex lock_;
-  std::condition_variable changed_;
+  Handoff handoff_{kDepth};
   std::deque<Piece> queue_;
   std::vector<ir::Operation> spare_;
   bool stopped_ = false;
+  bool ended_ = false;  // the end piece is in the queue
 };
 
 // Lowers `src` on its own thread into `out`.

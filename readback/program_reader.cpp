@@ -268,12 +268,11 @@ bool ProgramReader::next(TipSegment& out) {
   if (ended_) return false;
   if (current_at_ == current_.size()) {
     std::unique_lock<std::mutex> g(lock_);
-    changed_.wait(g, [&] { return !batches_.empty(); });
-    current_ = std::move(batches_.front());
+    handoff_.wait_for_items(g, [&] { return batches_.size(); }, [&] { return last_batch_in_; });
+    current_ = std::move(batches_.front());  // (the last batch holds the end: never empty before)
     batches_.pop_front();
     current_at_ = 0;
-    g.unlock();
-    changed_.notify_all();
+    handoff_.taken(g, batches_.size());
   }
   Item& it = current_[current_at_++];
   for (gcode::Problem& p : it.problems) problems_.push_back(std::move(p));
@@ -303,11 +302,16 @@ void ProgramReader::ahead() {
       it.problems = take_reader_problems();
     }
     std::unique_lock<std::mutex> g(lock_);
-    changed_.wait(g, [&] { return stop_ || batches_.size() < kBatches; });
+    handoff_.wait_for_room(g, [&] { return batches_.size(); }, [&] { return stop_; });
     if (stop_) return;
     batches_.push_back(std::move(batch));
-    g.unlock();
-    changed_.notify_all();
+    if (end) {
+      last_batch_in_ = true;
+      g.unlock();
+      handoff_.wake_both();
+    } else {
+      handoff_.added(g, batches_.size());
+    }
   }
 }
 
@@ -317,7 +321,7 @@ void ProgramReader::stop_ahead() {
     std::lock_guard<std::mutex> g(lock_);
     stop_ = true;
   }
-  changed_.notify_all();
+  handoff_.wake_both();
   thread_.join();
 }
 

@@ -5,7 +5,6 @@
 // is bounded by the longest line, whatever the program's size.
 #pragma once
 
-#include <condition_variable>
 #include <cstdio>
 #include <deque>
 #include <mutex>
@@ -20,6 +19,7 @@
 #include "readback/motion_time.h"
 #include "machine/kinematics.h"
 #include "machine/machine.h"
+#include "support/handoff.h"
 #include "support/source.h"
 #include "support/text_channel.h"
 #include "ir/ir.h"
@@ -119,9 +119,10 @@ class ProgramReader {
   };
   static constexpr size_t kBatch = 256, kBatches = 8;
   bool ahead_ = false, stop_ = false;
+  bool last_batch_in_ = false;  // the batch with the end is in batches_
   std::thread thread_;
   std::mutex lock_;
-  std::condition_variable changed_;
+  Handoff handoff_{kBatches};
   std::deque<std::vector<Item>> batches_;
   std::vector<Item> current_;
   size_t current_at_ = 0;

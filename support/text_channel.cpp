@@ -5,7 +5,7 @@ namespace clpc {
 void TextChannel::push(std::string_view text) {
   if (text.empty()) return;
   std::unique_lock<std::mutex> g(lock_);
-  changed_.wait(g, [&] { return abandoned_ || full_.size() < kChunks; });
+  handoff_.wait_for_room(g, [&] { return full_.size(); }, [&] { return abandoned_; });
   if (abandoned_) return;
   std::string chunk;
   if (!spare_.empty()) {
@@ -14,8 +14,7 @@ void TextChannel::push(std::string_view text) {
   }
   chunk.assign(text);
   full_.push_back(std::move(chunk));
-  g.unlock();
-  changed_.notify_all();
+  handoff_.added(g, full_.size());
 }
 
 void TextChannel::close() {
@@ -23,19 +22,18 @@ void TextChannel::close() {
     std::lock_guard<std::mutex> g(lock_);
     closed_ = true;
   }
-  changed_.notify_all();
+  handoff_.wake_both();
 }
 
 bool TextChannel::pop(std::string& out) {
   std::unique_lock<std::mutex> g(lock_);
-  changed_.wait(g, [&] { return closed_ || !full_.empty(); });
+  handoff_.wait_for_items(g, [&] { return full_.size(); }, [&] { return closed_; });
   if (full_.empty()) return false;
   out.clear();
   if (out.capacity() > 0) spare_.push_back(std::move(out));
   out = std::move(full_.front());
   full_.pop_front();
-  g.unlock();
-  changed_.notify_all();
+  handoff_.taken(g, full_.size());
   return true;
 }
 
@@ -45,7 +43,7 @@ void TextChannel::abandon() {
     abandoned_ = true;
     full_.clear();
   }
-  changed_.notify_all();
+  handoff_.wake_both();
 }
 
 }  // namespace clpc

@@ -4,12 +4,13 @@
 // program's size; chunk buffers go back and forth, none allocated per chunk once running.
 #pragma once
 
-#include <condition_variable>
 #include <deque>
 #include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "support/handoff.h"
 
 namespace clpc {
 
@@ -28,7 +29,7 @@ class TextChannel {
 
  private:
   std::mutex lock_;
-  std::condition_variable changed_;
+  Handoff handoff_{kChunks};
   std::deque<std::string> full_;
   std::vector<std::string> spare_;
   bool closed_ = false, abandoned_ = false;
