@@ -1,0 +1,377 @@
+// The comparison behind `clpc verify` and the certificate (readback/verify.h says what it
+// checks): the CL walked one record at a time against the program read back, with a bounded
+// window of program segments. One class, its state shared by every check; the checks of the
+// mill, five-axis and drilling are defined in readback/verify.cpp, those of the lathe's cycles
+// (stock removal, grooves, threads) in readback/verify_lathe.cpp. Internal to verify: only
+// make_comparison() (verify.h) is the interface.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/arc_geometry.h"
+#include "ir/stock_model.h"
+#include "machine/format.h"
+#include "readback/verify.h"
+#include "support/ring.h"
+#include "support/text.h"
+#include "support/worst_point.h"
+
+namespace clpc::verify_detail {
+
+using ir::Vec3;
+
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr size_t kMaxLookahead = 1 << 16;  // segments searched for one CL point
+constexpr size_t kMaxStored = 50;          // problems kept in the report
+
+inline bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+inline double point_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  Vec3 ab = b - a;
+  double l2 = ab.squaredNorm();
+  double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
+
+// How far a point lies from the CL line from→to (0 while there is no line yet: the first
+// point of a program).
+struct LineDistance {
+  Vec3 from, to;
+  bool active;
+  double operator()(const Vec3& q) const { return active ? point_segment(q, from, to) : 0.0; }
+};
+
+inline std::string xyz(const Vec3& v) {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%.4f, %.4f, %.4f)", v.x(), v.y(), v.z());
+  return b;
+}
+
+class Comparison : public ProgramSink {
+ public:
+  Comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
+      : m_(m), rd_(rd), d_(d), rep_(rep), tol_(rep.tolerance), axis_tol_(rep.axis_tolerance) {
+    k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m.units);
+    five_axis_ = m.kinematics.has_rotaries();
+    increment_ = std::abs(dequantize(1, m.format('Z')));
+    table_ = !info.offsets.empty();
+  }
+
+  void operation(const ir::Operation& op) override;
+
+  // After the last CL record: what the program does beyond the CL path.
+  void end() override;
+
+ private:
+  // --- the program's segments, through a window -----------------------------------------
+
+  const TipSegment* peek(size_t i);
+
+  void consume(size_t n);
+
+  // A CL point within the tolerance of where the tool is already needs no block of its own
+  // (a move shorter than the output resolution is rightly dropped).
+  // Blocks that follow and end within the tolerance of the point too (the CL dithering about
+  // it by less than the tolerance, each step written) are this point's: taken with it.
+  bool already_there(const Vec3& p);
+
+  void take_reader_problems();
+
+  // --- reporting -------------------------------------------------------------------------
+
+  void fail(SourceLoc loc, int gline, const std::string& msg, double deviation);
+
+  void deviate(double d, SourceLoc loc, int gline);
+
+  // --- the report's operations and deviation map -----------------------------------------
+
+  void begin_operation(const ir::Operation& op);
+
+  void end_operation();
+
+  // The CL point just checked, with the largest deviation found for it.
+  void sample(const Vec3& p);
+
+  // --- CL geometry in the frame the program is read back in ------------------------------
+
+  // NX MSYS points are in the operation's frame; where the offset table put them in
+  // machine terms, the read-back gives model coordinates.
+  // Lowering gives every point and tool axis in the program frame; a rotary index record
+  // turns what follows it (kin::RotaryIndexing, as the kinematics pass does).
+  Vec3 model(const Vec3& p) const { return (indexing_.on ? Vec3(indexing_.rotation * p) : p) * k_; }
+  Vec3 model_dir(const Vec3& v) const { return indexing_.on ? Vec3(indexing_.rotation * v) : v; }
+
+  bool axis_ok(const TipSegment& s, const Vec3& axis);
+
+  // May the walk pass over segment s on its way to the next CL point? Rapids and cycle
+  // motion always; feeds only on `on_path`.
+  template <class OnPath>
+  bool passable(const TipSegment& s, OnPath on_path, double& dev) {
+    dev = 0;
+    if (s.raw.kind == gcode::Segment::Kind::Rapid || s.raw.from_cycle) return true;
+    if (!finite(s.end)) return true;
+    if (on_last_hole_axis(s)) return true;
+    dev = on_path(s.end);
+    if (dev > tol_) return false;  // (then its bow does not matter: the walk stops here)
+    if (s.rotates && finite(s.start)) dev = std::max(dev, worst_while_turning(s, on_path));
+    return dev <= tol_;
+  }
+
+  // Without TCPC the control interpolates the axes, not the tip: while a block turns the
+  // rotaries its tip bows away from the line. The distance at its worst point.
+  template <class Distance>
+  double worst_while_turning(const TipSegment& s, Distance distance) {
+    return worst_point([&](double t) { return distance(rd_.tip_at(s, t)); });
+  }
+
+  // The same against the CL line from→to, remembered for the last segment asked: the walk
+  // asks it twice of the block that reaches a CL point (looking past it for a nearer end,
+  // then taking it), and the search costs some twenty-five tip positions.
+  double worst_while_turning(const TipSegment& s, const LineDistance& line);
+
+  bool on_last_hole_axis(const TipSegment& s) const;
+
+  // Finds the segment that reaches `p`; returns its index in the window, or nothing (then
+  // `nearest`/`nearest_at` say how close the program came).
+  template <class OnPath>
+  std::optional<size_t> reach(const Vec3& p, OnPath on_path, double& nearest, size_t& nearest_at, std::vector<double>& passed,
+                              const Vec3* axis = nullptr) {
+    nearest = kInf;
+    nearest_at = 0;
+    passed.clear();
+    for (size_t j = 0; j < kMaxLookahead; ++j) {
+      const TipSegment* s = peek(j);
+      if (!s) return std::nullopt;
+      if (finite(s->end)) {
+        double d = (s->end - p).norm();
+        if (d <= tol_) return nearest_end(j, d, on_path, passed, p, axis);
+        if (d < nearest) {
+          nearest = d;
+          nearest_at = j;
+        }
+      }
+      double dev;
+      if (!passable(*s, on_path, dev)) return std::nullopt;
+      passed.push_back(dev);
+    }
+    return std::nullopt;
+  }
+
+  // The programmed feed of a cutting block against the CL's: the same kind (per minute, per
+  // revolution), the same value within the machine's feeds.max_rounding (or its max_feed, the
+  // clamp); inverse-time blocks are the kinematics' and not compared.
+  void feed_ok(const TipSegment& s, const ir::Feed* cl);
+
+  // A tap's feed keeps its pitch: over the hole's depth the tap may drift from its thread by
+  // less than half an output increment.
+  void tap_ok(const TipSegment& s, const ir::CycleSpec& spec);
+
+  // Where blocks lie closer together than the tolerance (a five-axis finish in tiny steps),
+  // the first block end within it may not be the CL point's own: of the blocks that follow on
+  // the path with their ends within the tolerance (the walk stops at twice it), the one that
+  // is nearest in tip and tool axis together — the larger of the two deviations, each over its
+  // tolerance, so a block whose axis agrees wins over one whose axis does not — the earlier
+  // on a tie.
+  template <class OnPath>
+  size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
+    auto score = [&](const TipSegment& t, double dist) {
+      double s = dist / tol_;
+      if (five_axis_ && axis && axis_tol_ > 0) {
+        const double n = t.axis.norm() * axis->norm();
+        const double c = n > 0 ? std::clamp(t.axis.dot(*axis) / n, -1.0, 1.0) : 1.0;
+        s = std::max(s, std::acos(c) * 180 / arcgeo::kPi / axis_tol_);
+      }
+      return s;
+    };
+    size_t best = j;
+    double best_score = score(*peek(j), d);
+    std::vector<double> devs;  // of the segments after j passed over, in order
+    for (size_t k = j + 1; k < kMaxLookahead; ++k) {
+      double dev;
+      if (!passable(*peek(k - 1), on_path, dev)) break;
+      devs.push_back(dev);
+      const TipSegment* t = peek(k);
+      // The path must run on unbroken, with the same tool: a block after a move the reader
+      // cannot place (G53, G28) or after a tool change may come back to the same point, and
+      // is then the next CL record's, not this one's.
+      if (!t || !finite(t->end) || !finite(t->start) || t->raw.tool != peek(j)->raw.tool) break;
+      // Near a singularity the tip creeps while the rotaries turn (a block of C moves it a
+      // thousandth of a millimetre), and the rounding of the angles, times the tool's length,
+      // shakes it by as much: one block end may sit just outside the tolerance between two
+      // inside it. The walk goes on until the tip has clearly left the point.
+      const double dk = (t->end - p).norm();
+      if (dk > 2 * tol_) break;
+      if (dk > tol_) continue;
+      const double sk = score(*t, dk);
+      if (sk < best_score) {
+        passed.insert(passed.end(), devs.begin(), devs.end());
+        devs.clear();
+        best = k;
+        best_score = sk;
+      }
+    }
+    return best;
+  }
+
+  // A CL point not reached: report how close the program came, and resynchronise past the
+  // nearest segment when it was a near miss (a shifted point), not when the program went
+  // elsewhere (a dropped block): then the next CL point finds its own segment.
+  void missed(const Vec3& p, double nearest, size_t nearest_at, const char* what);
+
+  // The tool the CL loaded cuts, with its own length offset (a wrong H puts the tip where
+  // another tool's length says). Reported once per tool change.
+  void tool_ok(const TipSegment& s);
+
+  // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
+  // it) is the cut made at rapid traverse; a rapid the post adds (a retract, a positioning
+  // move) leaves the path.
+  template <class OnPath>
+  void no_rapid_cut(size_t j, OnPath on_path) {
+    for (size_t i = 0; i < j && i < win_.size(); ++i) {
+      const TipSegment& s = win_[i];
+      if (s.raw.kind != gcode::Segment::Kind::Rapid || s.raw.from_cycle || !finite(s.start) || !finite(s.end)) continue;
+      if ((s.end - s.start).norm() > tol_ && on_path(s.start) <= tol_ && on_path(s.end) <= tol_) {
+        fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
+        return;
+      }
+    }
+  }
+
+  // The segment at j reached CL point p: the segments before it were passed over.
+  void reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, const std::vector<double>& passed);
+
+  // --- CL records --------------------------------------------------------------------------
+
+  void point(const Vec3& p, const Vec3& axis, bool rapid);
+
+  // Which way a CL arc turns, by the CL's own word (lowering's `hint`), and whether the move
+  // entering it agrees: a tangent move (at least 20 output increments long in the arc's plane,
+  // within 10 degrees of tangent) that runs against the arc's sense makes the CL ambiguous.
+  ir::ArcDir arc_sense(const ir::Arc& a);
+
+  void arc(const ir::Arc& a0);
+
+  // A GOTO of a CYCLE: a hole at the point, down the tool axis by the cycle's depth.
+  void hole(const Vec3& point, const Vec3& tool_axis);
+
+  // --- lathe stock removal: the control's cycle over the CL's profile, block for block ---------
+  // The reference is the CL's profile and cycle words expanded by the control's rules
+  // (ir/stock_model.h), from verify's own reading of the CL (its arcs' sense by the CAM
+  // convention); the program's G71/G72 and G70 as the reader runs them must make the same moves.
+  struct Want {
+    stock::Step::Kind kind;
+    Vec3 to, center;
+    bool ccw;
+    SourceLoc loc;
+  };
+
+  void rough_arc(const ir::Arc& a0);
+
+  void end_rough();
+
+  // After a cycle found wrong: the rest of its moves are not compared one by one.
+  void skip_cycle_segments();
+
+  // --- lathe grooves: the cycle's order is its own; every CL cut must be on its path --------
+
+  void begin_groove();
+
+  // A groove's CL feed move: its end and its middle must each lie on a feed of the program
+  // (the cycle pecks in its own order, so the order is not checked).
+  void groove_point(const Vec3& p, bool rapid);
+
+  // Is `q` (on the CL move to `p`) on a cutting move of the program? False, reported, if not.
+  bool groove_cut(const Vec3& q, const Vec3& p);
+
+  void end_groove();
+
+  // After a section whose rapids were not matched one by one (a groove, a thread): the rapids
+  // that bring the tool to the section's last CL point are the section's, not the next
+  // record's (a rapid whose ends both lie on a following arc is not that arc cut at rapid).
+  void consume_rapids_to(const Vec3& p);
+
+  // --- lathe threads: each CL thread cut is a synchronised cut of the program at the lead,
+  // and each synchronised cut of the program is one of the CL's (a pass too deep scraps the
+  // thread). Cycles (G92, G76) run their passes in their own order, as grooves do. -----------
+
+  void begin_thread(const ir::ThreadMark& t);
+
+  bool along_thread(const Vec3& from, const Vec3& to) const;
+
+  void thread_point(const Vec3& p, bool rapid);
+
+  // The CL cut from `from` to `p` must be one synchronised cut of the program: its end and its
+  // middle on it (finishing passes at one depth each take a cut of their own), at the lead.
+  void thread_cut(const Vec3& from, const Vec3& p, double lead);
+
+  void end_thread();
+
+  // --- limits --------------------------------------------------------------------------
+
+  void check_limits(const TipSegment& s);
+
+  void check_travel();
+
+  const Machine& m_;
+  ProgramReader& rd_;
+  Diagnostics& d_;
+  VerifyReport& rep_;
+  const double tol_, axis_tol_;
+  double k_ = 1;
+  bool five_axis_ = false, table_ = false;
+  Ring<TipSegment> win_;
+  std::vector<arcgeo::ArcProbe> probes_;  // the program arcs of the window a CL arc is checked against (reused)
+  std::vector<double> passed_;
+  SourceLoc loc_;
+  Vec3 prev_ = Vec3::Zero();  // the last CL point
+  bool have_prev_ = false;
+  Vec3 at_ = Vec3::Zero();    // where the program has taken the tool (the last segment passed)
+  bool have_at_ = false;
+  ir::Frame frame_;
+  kin::RotaryIndexing indexing_;
+  ir::Feed cl_feed_;          // the CL's feed in force
+  SourceLoc cl_feed_loc_;
+  bool have_cl_feed_ = false;
+  double increment_ = 0;      // one output increment of Z
+  Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
+  bool have_hole_ = false;
+  struct Bow {
+    int index = -1;
+    Vec3 from, to;
+    bool active = false;
+    double dev = 0;
+  } bow_;  // worst_while_turning's last answer against a CL line
+  double cut_deg_ = -1, cut_cos_ = 1;  // axis_ok's angle below which nothing changes, and its cosine
+  double point_dev_ = -1;      // the largest deviation found for the CL record being checked
+  long sample_count_ = 0;
+  std::array<long, 4> counts_at_start_{};  // points, arcs, holes, groove cuts when the operation began
+  int want_tool_ = 0, want_h_ = 0;  // the CL's tool and its length offset register
+  SourceLoc want_tool_loc_;
+  bool tool_reported_ = false;
+  ir::CycleSpec cycle_;       // the drilling cycle in force
+  bool cycle_on_ = false;
+  Vec3 incoming_ = Vec3::Zero();  // the last CL feed move (zero after a rapid or a hole)
+  bool groove_ = false;
+  size_t groove_reach_ = 0;
+  bool thread_on_ = false;
+  std::optional<ir::RoughMark> rough_;  // a CYCLE/ROUGH section being read: its profile is kept
+  SourceLoc rough_loc_;
+  std::vector<Want> rough_profile_;
+  ir::ThreadMark thread_;
+  std::vector<std::pair<Vec3, Vec3>> thread_cuts_;  // the CL's thread cuts of the section
+  std::vector<bool> thread_used_;  // the program's segments (window index) a CL thread cut took
+  int limit_reported_[26] = {};
+  double lo_[3] = {kInf, kInf, kInf}, hi_[3] = {-kInf, -kInf, -kInf};
+  int lo_line_[3] = {}, hi_line_[3] = {};
+  SourceLoc lo_loc_[3], hi_loc_[3];
+};
+
+}  // namespace clpc::verify_detail
