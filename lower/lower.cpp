@@ -155,10 +155,17 @@ void Lowerer::record(const Record& r) {
     case MajorId::Endsub: d_.error(r.loc, "ENDSUB without DEFSUB"); return;
     case MajorId::Calsub: lower_calsub(r); return;
 
+    case MajorId::Retract:
+      // RETRCT asks the post to take the tool up to the clearance surface (CLRSRF) before the
+      // next move. clpc makes no motion the CL does not give: the next move must be that
+      // retract itself (checked in push), or a tool change, which takes the tool up anyway.
+      if (has_pos_) retract_pending_ = r.loc;
+      return;
+
     // Header facts read by the pre-scan, and records with no meaning for the output.
     case MajorId::Partno: case MajorId::Machin: case MajorId::Multax: case MajorId::Remark:
     case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:
-    case MajorId::Clrsrf: case MajorId::Retract: case MajorId::Toolno: case MajorId::Autops:
+    case MajorId::Clrsrf: case MajorId::Toolno: case MajorId::Autops:
     case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler:
       return;
     case MajorId::Featno:
@@ -344,9 +351,37 @@ void Lowerer::make_room() {
 
 ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   arc_open_ = false;
+  if (retract_pending_) [[unlikely]]
+    check_retract(loc, op);
   make_room();
   op_.body.push_back(ir::Instr{loc, std::move(op)});
   return op_.body.back();
+}
+
+void Lowerer::check_retract(SourceLoc loc, const ir::Op& op) {
+  const SourceLoc retract = *retract_pending_;
+  if (std::holds_alternative<ir::ToolChange>(op)) {
+    retract_pending_.reset();
+    return;
+  }
+  const char* what = nullptr;
+  if (const auto* m = std::get_if<ir::Move>(&op)) {
+    const ir::Vec3 d = m->point - pos_;
+    const double along = d.dot(m->axis), tol = 0.01 / ir::mm_per_unit(info_.units);
+    if (along >= -tol && (d - along * m->axis).norm() <= tol) {
+      retract_pending_.reset();  // the CL retracts itself
+      return;
+    }
+    what = "does not go straight up the tool axis";
+  } else if (std::holds_alternative<ir::Arc>(op)) {
+    what = "is an arc";
+  } else {
+    return;  // no motion (a spindle, a feed, a comment): the retract is still to come
+  }
+  retract_pending_.reset();
+  d_.error(retract, std::string("RETRCT asks for a retract to the clearance surface, which clpc does not make: the next move (line ") +
+                        std::to_string(loc.line) + ") " + what +
+                        ", so the tool would cross at the depth it cut; write the retract as motion in the CAM system");
 }
 
 void Lowerer::open_operation(std::string name, SourceLoc loc) {

@@ -47,6 +47,7 @@ class Lowerer : public RecordSink {
  private:
   // lower.cpp: operations and dispatch
   ir::Instr& push(SourceLoc loc, ir::Op op);
+  void check_retract(SourceLoc loc, const ir::Op& op);  // the move after a RETRCT
   // An instruction whose text goes in the operation's pool (Comment, Insert, Passthrough):
   // the pool and the instruction land in the same chunk.
   template <class T>
@@ -147,6 +148,7 @@ class Lowerer : public RecordSink {
   ir::Vec3 from_ = ir::Vec3::Zero();
   bool has_from_ = false;
   bool rapid_next_ = false;
+  std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
 

@@ -49,6 +49,22 @@ TEST(Lower, FromGohomeGodlta) {
                           "rapid (5, 5, 50)"));
 }
 
+// RETRCT asks the post for a retract clpc does not make: the CL's next move must be that
+// retract (up the tool axis), or a tool change; any other motion would cross at the depth cut.
+TEST(Lower, RetractIsTheNextMoveUpTheToolAxisOrRefused) {
+  EXPECT_THAT(instrs("GOTO/1,1,-2\nRETRCT\nSPINDL/OFF\nRAPID\nGOTO/1,1,50\nGOTO/9,9,50\n"),
+              ElementsAre("feed (1, 1, -2)", "spindle off", "rapid (1, 1, 50)", "feed (9, 9, 50)"));
+  EXPECT_THAT(instrs("GOTO/1,1,-2,0,0.6,0.8\nRETRCT\nGOTO/1,4,2\n"),
+              ElementsAre("feed (1, 1, -2) axis (0, 0.6, 0.8)", "feed (1, 4, 2) axis (0, 0.6, 0.8)"));
+  EXPECT_EQ(err("LOADTL/1\nGOTO/1,1,-2\nRETRCT\nLOADTL/2\nGOTO/9,9,-2\n"), "");
+  EXPECT_EQ(err("RETRCT\nGOTO/9,9,-2\n"), "");  // no position yet: nothing to retract from
+  EXPECT_EQ(err("FROM/0,0,100\nGOTO/1,1,-2\nRETRCT\nGOHOME\n"),
+            "3:1: RETRCT asks for a retract to the clearance surface, which clpc does not make: the next move (line 4) does not "
+            "go straight up the tool axis, so the tool would cross at the depth it cut; write the retract as motion in the CAM system");
+  EXPECT_THAT(err("GOTO/10,0,0\nRETRCT\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0\nGOTO/0,10,0\n"), HasSubstr("2:1: RETRCT asks"));
+  EXPECT_THAT(err("GOTO/10,0,0\nRETRCT\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0\nGOTO/0,10,0\n"), HasSubstr("(line 3) is an arc"));
+}
+
 TEST(Lower, CircleNxElevenValues) {
   EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,20,0\nGOTO/0,10,0\n"),
               ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint cw nx11"));
