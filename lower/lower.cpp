@@ -263,6 +263,13 @@ constexpr MotionWord kMotionWords[] = {
     {"ARCSLP", "it changes how CIRCLE records are cut; have the CAM system write plain CIRCLE records"},
     {"ROTHED", "a rotary head positioned by record; have the CAM system write the tool axis on the GOTOs (MULTAX)"},
     {"MOVE", "a move clpc has no rule for; have the CAM system write GOTO points"},
+    // APT post-processor words (ISO 4343, the G-Post and IMS vocabularies) that move the
+    // machine or shift what follows: passed through as a comment they would change the cut.
+    {"POSTN", "it positions machine axes directly; have the CAM system write the move as GOTO points"},
+    {"SAFPOS", "a move to a safe position the post would choose; have the CAM system write the move as GOTO points"},
+    {"GOCLER", "a move to the clearance plane the post would make; have the CAM system write the retract as GOTO points"},
+    {"TRANS", "it shifts the coordinates that follow; set the part's origin in the CAM system or with the work offset (SET, CAMERA)"},
+    {"PIVOTZ", "it moves the point the coordinates name along the tool; have the CAM system output the tool tip"},
 };
 
 }  // namespace

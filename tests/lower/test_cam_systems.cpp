@@ -205,6 +205,11 @@ TEST(CamSystems, RecordsThatMoveAreReadOrRefused) {
   EXPECT_EQ(err("DNTCUT\n"),
             "1:1: 'DNTCUT' moves the tool and clpc does not read it: the motion after it is not to be cut; have the CAM "
             "system leave that motion out");
+  EXPECT_EQ(err("GOTO/0,0,5\nTRANS/10,0,0\nGOTO/1,1,5\n"),
+            "2:1: 'TRANS' moves the tool and clpc does not read it: it shifts the coordinates that follow; set the part's "
+            "origin in the CAM system or with the work offset (SET, CAMERA)");
+  for (const char* word : {"POSTN/IN,5", "SAFPOS", "GOCLER", "PIVOTZ/100"})
+    EXPECT_THAT(err(std::string(word) + "\n"), ::testing::StartsWith("1:1: '" + std::string(word).substr(0, std::string(word).find('/')) + "' moves the tool"));
   EXPECT_EQ(err("THREAD/TURN,1.5\n"), "");
   EXPECT_EQ(err("THREAD/SPIRAL,1.5\n"), "1:8: THREAD: a thread is TURN, FACE or TAPER (or THREAD/OFF), found 'SPIRAL'");
   EXPECT_EQ(err("THREAD/TURN,LEAD,1.5,STARTS,2\n"),
