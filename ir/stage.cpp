@@ -2,8 +2,8 @@
 
 namespace clpc::ir {
 
-const std::array<FactInfo, 8>& all_facts() {
-  static const std::array<FactInfo, 8> facts = {{
+const std::array<FactInfo, 9>& all_facts() {
+  static const std::array<FactInfo, 9> facts = {{
       {ArcsDecided, "arcs-decided", "for every CIRCLE's sense", "every arc has a direction and a positive sweep"},
       {ArcsOneTurn, "arcs-one-turn", "for helical and multi-turn arcs",
        "no arc has extra turns or a sweep over 360 degrees"},
@@ -16,6 +16,8 @@ const std::array<FactInfo, 8>& all_facts() {
       {Kinematic, "kinematic", "to turn tool axes into rotary positions",
        "every rapid and feed move has its rotary positions"},
       {LimitsChecked, "limits-checked", "to check every position against the machine's travel", ""},
+      {RapidsSplit, "rapids-split", "where motion.rapids_linear is false: each axis rapids at its own rate, so a rapid "
+       "down and across would reach the depth before it has crossed", ""},
   }};
   return facts;
 }

@@ -22,6 +22,7 @@ enum Fact : uint32_t {
   OffsetsAssigned = 1u << 5,  // SET/CAMERA/frames made into work-offset registers
   Kinematic = 1u << 6,        // tool axes turned into rotary positions
   LimitsChecked = 1u << 7,    // every position checked against the machine's travel
+  RapidsSplit = 1u << 8,      // no rapid goes along and across the tool axis at once (non-linear rapids)
 };
 using Facts = uint32_t;
 
@@ -32,7 +33,7 @@ struct FactInfo {
   std::string_view checked;  // what --verify-ir checks of it ("" where only the pass can tell)
 };
 // Every fact, in the order a pipeline establishes them.
-const std::array<FactInfo, 8>& all_facts();
+const std::array<FactInfo, 9>& all_facts();
 // "arcs-decided, cycles-formed" (empty: "nothing").
 std::string fact_names(Facts f);
 

@@ -110,6 +110,9 @@ struct MotionSettings {
   ir::Vec3 acceleration = ir::Vec3::Zero();  // X Y Z, output units per second squared
   ir::Vec3 rotary_velocity = ir::Vec3::Zero();  // A B C, degrees per second
   double junction_deviation = 0;             // output units: how far the control may cut a corner at speed
+  // G00 moves along a straight line (interpolated). False: each axis at its own rate (Fanuc's
+  // non-linear positioning), and the rapid-split pass must split rapids that go down and across.
+  bool rapids_linear = true;
   bool known() const { return velocity.minCoeff() > 0 && acceleration.minCoeff() > 0; }
 };
 

@@ -621,6 +621,10 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->length3("acceleration", mo.acceleration);
     s->vec3("rotary_velocity", mo.rotary_velocity);
     s->length("junction_deviation", mo.junction_deviation);
+    s->boolean("rapids_linear", mo.rapids_linear);
+    if (const toml::node* n = s->find("rapids_linear"); n && !mo.rapids_linear && m.is_lathe())
+      s->error(*n, "rapids_linear", "false is for mills: clpc does not split a lathe's rapids (which of X and Z "
+                                    "must go first depends on the side the tool comes from)");
     for (const char* k : {"velocity", "acceleration", "rotary_velocity"})
       if (const toml::node* n = s->find(k); n && (k[0] == 'v' ? mo.velocity : k[0] == 'a' ? mo.acceleration : mo.rotary_velocity).minCoeff() < 0)
         s->error(*n, k, "expected numbers of at least 0 (0: unknown)");

@@ -14,6 +14,7 @@ ir::Facts legal_program(const Machine& m) {
   ir::Facts f = ir::ArcsDecided | ir::ArcsOneTurn | ir::ArcsLegal | ir::CyclesFormed | ir::Kinematic;
   f |= m.is_lathe() ? ir::GroovesFormed : ir::OffsetsAssigned;
   if (m.kinematics.travel.set) f |= ir::LimitsChecked;
+  if (!m.motion.rapids_linear) f |= ir::RapidsSplit;
   return f;
 }
 

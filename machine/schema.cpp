@@ -102,7 +102,7 @@ std::vector<KeySpec> build() {
   section("", "offsets", "work offsets");
   section("", "kinematics", "rotary axes (five-axis, 3+2)", Shown::Rotaries);
   section("", "cycles", "canned drilling cycles");
-  section("", "motion", "axis velocities and accelerations, for cycle times (verify's dynamic estimate)");
+  section("", "motion", "axis velocities and accelerations, for cycle times (verify's dynamic estimate); how G00 moves");
   section("", "codes", "code templates");
 
   // --- [program] ------------------------------------------------------------------------------
@@ -219,6 +219,9 @@ std::vector<KeySpec> build() {
   ranged("motion", "junction_deviation", K::Length, 0, 1e3,
          "how far the control may round a corner at speed (the corner slowdown), output units",
          [](const Machine& m, size_t) { return n(m.motion.junction_deviation); });
+  key("motion", "rapids_linear", K::Bool,
+      "G00 along a straight line; false: each axis at its own rate (non-linear positioning), rapids down and across are split by rapid-split (mills)",
+      [](const Machine& m, size_t) { return b(m.motion.rapids_linear); });
 
   // --- [offsets] ------------------------------------------------------------------------------------
   const std::string_view o = "offsets";

@@ -16,5 +16,6 @@ const PassInfo& rough_cycles_pass();
 const PassInfo& offset_table_pass();
 const PassInfo& kinematics_pass();
 const PassInfo& limits_pass();
+const PassInfo& rapid_split_pass();
 
 }  // namespace clpc

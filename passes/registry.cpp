@@ -7,7 +7,7 @@ namespace clpc {
 
 const std::vector<PassInfo>& all_passes() {
   static const std::vector<PassInfo> passes = {arc_direction_pass(), helix_pass(),        arc_legalise_pass(),
-                                               drill_cycles_pass(),  thread_cycles_pass(), rough_cycles_pass(), groove_cycles_pass(), offset_table_pass(),
+                                               drill_cycles_pass(),  rapid_split_pass(),   thread_cycles_pass(), rough_cycles_pass(), groove_cycles_pass(), offset_table_pass(),
                                                kinematics_pass(),    limits_pass()};
   return passes;
 }

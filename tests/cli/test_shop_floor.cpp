@@ -148,7 +148,7 @@ TEST(ShopFloor, AnInchMachineDerivedFromAMetricOneHasItsNumbersConverted) {
 
 TEST(ShopFloor, EmptyAxesRemoveInheritedRotaries) {
   const char* toml =
-      "[three]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+      "[three]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"rapid-split\", \"offset-table\", "
       "\"arc-legalise\", \"limits\"]\n[three.kinematics]\naxes = []\n";
   Machine m = machine("three", toml);
   EXPECT_FALSE(m.kinematics.has_rotaries());
@@ -163,9 +163,9 @@ std::string load_error(const std::string& toml) { return machine_errors(toml); }
 
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
-                       "\"offset-table\", \"arc-legalise\"]\n"),
+                       "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),
             "shop.toml:3:12: error: rot.pipeline: machine 'rot' needs 'kinematics' in its pipeline, to turn tool axes into "
-            "rotary positions\n 3 | pipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+            "rotary positions\n 3 | pipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"rapid-split\", \"offset-table\", "
             "\"arc-legalise\"]\n   |            ^\n");
 }
 

@@ -99,7 +99,8 @@ TEST(CamSystems, NclPaddedFields) {
   Compiled c = compile_text(cl, machine("fanuc-mill"));
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_EQ(messages(c.diags), "");
-  EXPECT_THAT(c.output, HasSubstr("N70 G94 G01 Z-1. F100.\nN80 X30.\nN90 G00 X50. Y10. Z5.\n"));
+  // GOHOME goes up and across: up first on the Fanuc's non-linear rapids (rapid-split).
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G01 Z-1. F100.\nN80 X30.\nN90 G00 Z5.\nN100 X50. Y10.\n"));
 }
 
 // CAMWorks .clt: OPFEATSTART/OPFEATEND operations, BOX (the stock), trailing commas, blanks

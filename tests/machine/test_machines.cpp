@@ -36,7 +36,7 @@ TEST(Machines, MinimalMachineGetsSaneDefaults) {
   ASSERT_TRUE(m) << err.str();
   EXPECT_EQ(m->units, ir::Units::Mm);
   EXPECT_EQ(m->codes.tool_change.text, "T{tool} M06");
-  EXPECT_EQ(m->pipeline, (std::vector<std::string>{"arc-direction", "helix", "arc-legalise", "drill-cycles", "offset-table"}));
+  EXPECT_EQ(m->pipeline, (std::vector<std::string>{"arc-direction", "helix", "arc-legalise", "drill-cycles", "rapid-split", "offset-table"}));
 }
 
 TEST(MachineErrors, WrongType) {
@@ -70,7 +70,7 @@ TEST(MachineErrors, BadFormatSpec) {
 TEST(MachineErrors, UnknownPassName) {
   EXPECT_EQ(first_line(load_error("[m]\nfamily = \"mill\"\npipeline = [\"arc-direction\", \"make-it-good\"]\n")),
             "shop.toml:3:30: error: m.pipeline: unknown pass 'make-it-good' (passes: arc-direction, helix, arc-legalise, "
-            "drill-cycles, thread-cycles, rough-cycles, groove-cycles, offset-table, kinematics, limits)");
+            "drill-cycles, rapid-split, thread-cycles, rough-cycles, groove-cycles, offset-table, kinematics, limits)");
 }
 
 TEST(MachineErrors, MissingRequiredKey) {

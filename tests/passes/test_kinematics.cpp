@@ -256,7 +256,7 @@ TEST(KinematicsPass, ThreeAxisMachineRefusesATiltedTool) {
 TEST(KinematicsPass, HeadTableMachineFromToml) {
   // A B head (tilting the spindle about Y, pivot 200 mm) over a C table: the model solves it and
   // the transform puts the pivot where the tip must be.
-  std::string toml = "[bc-head]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"offset-table\", "
+  std::string toml = "[bc-head]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"rapid-split\", \"offset-table\", "
                      "\"kinematics\", \"arc-legalise\"]\n[bc-head.format]\nB = { decimals = 4 }\nC = { decimals = 4 }\nX = { decimals = 4 }\n"
                      "Y = { decimals = 4 }\nZ = { decimals = 4 }\n[bc-head.kinematics]\nsimultaneous = \"transform\"\n"
                      "pivot = 200.0\n[[bc-head.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\nside = \"table\"\n"

@@ -208,9 +208,14 @@ bool moves_the_tool(const Sampled& a, const Sampled& b, const Oracle& o) {
   for (size_t k = i; k < b.at.size(); ++k)
     if (!same_segment(a, k + 1, b, k, o)) return true;
   if (a.rapid[i] && !o.on_cl(a.at[i][0])) return false;  // a positioning rapid dropped
-  if (a.arc[i] || a.arc[i + 1] || b.arc[i] || a.rapid[i] != b.rapid[i]) return true;
+  if (a.arc[i] || a.rapid[i] != b.rapid[i]) return true;
   const Vec3 from = i > 0 ? a.at[i - 1][0] : a.at[i][0];
-  return !std::isfinite(from.x()) || point_line(a.at[i][0], from, b.at[i][0]) > tol;
+  if (!std::isfinite(from.x())) return true;
+  // A straight move dropped before an arc: the arc now starts where the move did (and matched
+  // the original's within the tolerance above); every point of the dropped move is within its
+  // length of that start.
+  if (a.arc[i + 1] || b.arc[i]) return far(from, a.at[i][0]) > tol;
+  return point_line(a.at[i][0], from, b.at[i][0]) > tol;
 }
 
 // --- one program and its mutants -----------------------------------------------------------

@@ -1,0 +1,122 @@
+// rapid-split: on a control whose rapids are not interpolated, a rapid that goes both along
+// the tool axis and across it becomes two: up first, or across first and then down.
+//
+// The CL's rapid is a straight line, and the CAM system checked that line for collisions. A
+// control with non-linear positioning (Fanuc's default: parameter 1401 bit 1 LRP = 0; machine
+// key motion.rapids_linear = false) moves each axis at its own rapid rate, so the axis with
+// the shortest way arrives first: going down, Z can reach the bottom before X and Y have
+// left the start, and the tool crosses at the depth of the end, below the CL's line. Split,
+// the tool never goes below that line: going up it rises first and crosses at the end's
+// height; going down it crosses at the start's height and then goes down along the tool axis.
+// Each piece moves along the tool axis or across it, so on the machine (tool axis = spindle
+// axis) each is Z alone or X and Y alone.
+//
+// A rapid is split only where the position before it is known (a move or an arc before it in
+// the same tool's motion), the tool axis does not change along it (a rapid that turns a
+// rotary is left as the CL gives it), and cutter compensation is off and not switched by it
+// (a block more would change the compensated path, or start or cancel it on a Z move). The first move after a tool change is the backend's (X Y,
+// then Z with the length offset).
+//
+// Its contract (what it expects, guarantees, reads, and the IR facts it requires and
+// provides) is rapid_split_pass() at the end of this file.
+#include <cmath>
+
+#include "passes/passes.h"
+
+namespace clpc {
+
+namespace {
+
+class RapidSplit : public Pass {
+ public:
+  void begin(PassContext& ctx) override {
+    on_ = !ctx.machine.motion.rapids_linear;
+    // Less than an increment along or across is no dog-leg the control could make.
+    eps_ = ctx.resolution();
+  }
+
+  void run(ir::Operation& op, PassContext&) override {
+    if (!on_) return;
+    std::vector<ir::Instr> out;  // built only once a rapid is split
+    for (size_t i = 0; i < op.body.size(); ++i) {
+      const ir::Instr& in = op.body[i];
+      if (const auto* m = std::get_if<ir::Move>(&in.op)) {
+        if (m->kind == ir::MoveKind::Rapid && known_ && !comp_ && !comp_switch_) {
+          if (auto mid = midpoint(*m)) {
+            if (out.empty() && i > 0) out.assign(op.body.begin(), op.body.begin() + std::ptrdiff_t(i));
+            ir::Move piece = *m;
+            piece.point = *mid;
+            piece.axis_written = false;
+            out.push_back({in.loc, piece});
+            split_ = true;
+          }
+        }
+        at_ = m->point;
+        axis_ = m->axis;
+        known_ = true;
+        comp_switch_ = false;
+      } else if (const auto* a = std::get_if<ir::Arc>(&in.op)) {
+        at_ = a->end;
+        axis_ = a->tool_axis;
+        known_ = true;
+        comp_switch_ = false;
+      } else if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) {
+        comp_ = c->side != ir::CompSide::Off;
+        comp_switch_ = true;  // the next move carries G41, G42 or G40
+      } else if (!keeps_position(in.op)) {
+        known_ = false;
+      }
+      if (split_) out.push_back(in);
+    }
+    if (split_) op.body.swap(out);
+    split_ = false;
+  }
+
+ private:
+  // Records that neither move the tool nor change what a point means.
+  static bool keeps_position(const ir::Op& op) {
+    return std::holds_alternative<ir::Feed>(op) || std::holds_alternative<ir::Spindle>(op) ||
+           std::holds_alternative<ir::Coolant>(op) || std::holds_alternative<ir::Comment>(op) ||
+           std::holds_alternative<ir::Passthrough>(op) || std::holds_alternative<ir::Dwell>(op) ||
+           std::holds_alternative<ir::Stop>(op);
+  }
+
+  // The corner of the split move, or nothing where the rapid goes only along the tool axis,
+  // only across it, or turns the tool axis.
+  std::optional<ir::Vec3> midpoint(const ir::Move& m) const {
+    if ((m.axis - axis_).norm() > 1e-9) return std::nullopt;
+    const ir::Vec3 d = m.point - at_;
+    const double along = d.dot(m.axis);
+    const ir::Vec3 across = d - along * m.axis;
+    if (std::abs(along) <= eps_ || across.norm() <= eps_) return std::nullopt;
+    return along > 0 ? ir::Vec3(at_ + along * m.axis) : ir::Vec3(at_ + across);
+  }
+
+  bool on_ = false;
+  double eps_ = 0;
+  bool known_ = false, comp_ = false, comp_switch_ = false, split_ = false;
+  ir::Vec3 at_ = ir::Vec3::Zero(), axis_ = ir::Vec3::UnitZ();
+};
+
+}  // namespace
+
+const PassInfo& rapid_split_pass() {
+  static const PassInfo info{
+      .name = "rapid-split",
+      .summary = "split rapids that go along and across the tool axis, for controls whose rapids are not interpolated",
+      .expects = "moves in the part frame with their tool axes (before kinematics); cycles formed",
+      .guarantees = "where motion.rapids_linear is false: no CL rapid goes both along the tool axis and across it "
+                    "(by more than an increment) with the tool axis unchanged and cutter compensation off; going up it "
+                    "rises first, going down it crosses first, so the tool never passes below the CL's straight line. "
+                    "Nothing changes where rapids are linear",
+      .settings = "motion.rapids_linear, format.X (one increment)",
+      .needs = ir::CyclesFormed,
+      .provides = ir::RapidsSplit,
+      .breaks = 0,
+      .costly = false,
+      .make = [] { return std::unique_ptr<Pass>(std::make_unique<RapidSplit>()); },
+  };
+  return info;
+}
+
+}  // namespace clpc

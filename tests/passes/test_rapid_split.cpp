@@ -1,0 +1,101 @@
+// rapid-split: on a control whose rapids are not interpolated (motion.rapids_linear = false)
+// a rapid that goes along and across the tool axis is written as two, never below the CL's
+// straight line; where rapids are linear nothing changes.
+#include "helpers.h"
+
+using namespace clpc;
+using namespace clpc::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+// A Fanuc mill whose builder set parameter 1401#1 (linear rapids), without the pass.
+const char* kLinearMill =
+    "[linear-mill]\ninherits = \"fanuc-mill\"\n"
+    "pipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", \"drill-cycles\", \"offset-table\"]\n"
+    "[linear-mill.motion]\nrapids_linear = true\n";
+
+// Up and across, down and across, up alone, across alone, a feed down and across, and an arc.
+const char* kRapids =
+    "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/10,10,50\nFEDRAT/MMPM,100\nGOTO/10,10,0\n"
+    "RAPID\nGOTO/40,30,20\nRAPID\nGOTO/60,30,2\nRAPID\nGOTO/60,30,30\nRAPID\nGOTO/90,30,30\n"
+    "GOTO/90,40,-1\nCIRCLE/90,50,-1,0,0,1,10\nGOTO/100,50,-1\nRAPID\nGOTO/80,50,10\n";
+
+// The blocks from the first feed to the end of the motion.
+std::string motion(const std::string& out) {
+  size_t from = out.find("G01 Z0.");
+  size_t to = out.find("M05", from);
+  if (from == std::string::npos || to == std::string::npos) return out;
+  from = out.rfind('N', from);
+  to = out.rfind('\n', to);
+  return out.substr(from, to - from + 1);
+}
+
+}  // namespace
+
+// fanuc-mill: a Fanuc control's rapids are non-linear unless its builder says otherwise.
+TEST(RapidSplit, UpFirstOrAcrossFirstWhereRapidsAreNotLinear) {
+  Compiled c = compile_text(kRapids, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(motion(c.output),
+            "N70 G94 G01 Z0. F100.\n"
+            "N80 G00 Z20.\n"   // up first...
+            "N90 X40. Y30.\n"  // ...then across at the end's height
+            "N100 X60.\n"      // across at the start's height...
+            "N110 Z2.\n"       // ...then down
+            "N120 Z30.\n"      // along the axis alone: as it is
+            "N130 X90.\n"      // across alone: as it is
+            "N140 G01 Y40. Z-1.\n"  // a feed is interpolated: as it is
+            "N150 G17 G03 X100. Y50. I0. J10.\n"
+            "N160 G00 Z10.\n"  // after an arc: up first
+            "N170 X80.\n");
+}
+
+TEST(RapidSplit, NothingChangesWhereRapidsAreLinear) {
+  Compiled c = compile_text(kRapids, machine("linear-mill", kLinearMill), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N80 G00 X40. Y30. Z20.\nN90 X60. Z2.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N140 G00 X80. Z10.\n"));
+}
+
+TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
+  Compiled c = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/10,10,50\nFEDRAT/MMPM,100\nGOTO/10,10,0\n"
+      "LOAD/TOOL,2\nRAPID\nGOTO/50,50,5\nCUTCOM/LEFT\nRAPID\nGOTO/60,50,20\nCUTCOM/OFF\nRAPID\nGOTO/70,50,30\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  // After the tool change: X Y, then Z with the length offset (the backend's), not split again.
+  // The moves that start and cancel compensation carry G41 and G40: as they are.
+  EXPECT_THAT(c.output, HasSubstr("N100 G90 G54 G00 X50. Y50.\nN110 G43 H02 Z5.\nN120 G41 D2 X60. Z20.\n"
+                                  "N130 G40 X70. Z30.\nN140 G91 G28 Z0.\n"));
+}
+
+TEST(RapidSplit, AlongATiltedToolAxisOnTheFiveAxis) {
+  // The Haas's G00 is not interpolated unless configured (CONTROLLERS.md); one whose is:
+  const char* toml = "[linear-umc]\ninherits = \"haas-umc750\"\n[linear-umc.motion]\nrapids_linear = true\n";
+  // Tool axis tilted 30 degrees about X; the second rapid goes down the axis and across it.
+  const std::string cl =
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nMULTAX/ON\nRAPID\nGOTO/0,-25,43.30127,0,-0.5,0.8660254\n"
+      "RAPID\nGOTO/20,-5,8.660254,0,-0.5,0.8660254\nFEDRAT/MMPM,100\nGOTO/20,-4,6.928203,0,-0.5,0.8660254\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  Compiled plain = compile_text(cl, machine("linear-umc", toml), {.certify = true});
+  ASSERT_TRUE(plain.ok) << plain.diags;
+  // One block more: the corner, across at the start's height (on the table, the tool axis is Z).
+  EXPECT_EQ(std::count(c.output.begin(), c.output.end(), '\n'), std::count(plain.output.begin(), plain.output.end(), '\n') + 1);
+  EXPECT_THAT(c.output, HasSubstr("N55 Y0.7874\nN60 Z0.3937\n"));
+  EXPECT_THAT(plain.output, HasSubstr("N55 Y0.7874 Z0.3937\n"));
+}
+
+TEST(RapidSplit, TheMachineMustRunThePassAndBeAMill) {
+  const std::string without = "[m]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
+                              "\"drill-cycles\", \"offset-table\"]\n";
+  EXPECT_EQ(machine_errors(without),
+            "shop.toml:3:12: error: m.pipeline: machine 'm' needs 'rapid-split' in its pipeline, where "
+            "motion.rapids_linear is false: each axis rapids at its own rate, so a rapid down and across would reach "
+            "the depth before it has crossed\n 3 | pipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
+            "\"drill-cycles\", \"offset-table\"]\n   |            ^\n");
+  EXPECT_EQ(machine_errors(without + "[m.motion]\nrapids_linear = true\n"), "");
+  EXPECT_THAT(machine_errors("[l]\ninherits = \"fanuc-lathe\"\n[l.motion]\nrapids_linear = false\n"),
+              HasSubstr("rapids_linear: false is for mills"));
+}
