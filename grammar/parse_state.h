@@ -11,7 +11,7 @@ namespace clpc::grammar {
 class ParseState {
  public:
   ParseState(SourceFile& src, Diagnostics* diags, RecordSink& sink, const bool* wanted)
-      : lexer(src, diags, wanted), diags_(diags), sink_(sink) {
+      : lexer(src, diags, wanted), sink_(sink) {
     params_.reserve(64);
   }
 
@@ -42,7 +42,6 @@ class ParseState {
   static constexpr size_t kMaxHead = 8;
 
  private:
-  Diagnostics* diags_;
   RecordSink& sink_;
   Record rec_;
   std::vector<Param> params_;

@@ -189,6 +189,7 @@ void Lowerer::record(const Record& r) {
     case MajorId::Origin: lower_origin(r); return;
     case MajorId::Unknown:
       if (motion_word(r.major)) {
+        if (iequals(r.major, "TRANS") && no_shift(r)) return;  // TRANS/0,0,0 shifts nothing, as ORIGIN/0,0,0
         motion_not_read(r, motion_hint(r.major));
         return;
       }
@@ -220,13 +221,17 @@ void Lowerer::unknown(const Record& r, std::string_view why, bool warn) {
 // zero from the part's), and some as a work offset: any shift would move every cut by a
 // guess. No shift (no numbers, or all zero) is nothing to do; any other is refused.
 void Lowerer::lower_origin(const Record& r) {
-  for (const Param& p : r.params) {
-    if (p.is_number() && p.number == 0) continue;
-    d_.error(r.loc, "ORIGIN moves every coordinate after it, and posts apply it in opposite senses: clpc does not guess "
-                    "which; set the part's origin in the CAM system's machine coordinate system (MCS, CSYS) or with "
-                    "the work offset (SET, CAMERA) instead");
-    return;
-  }
+  if (no_shift(r)) return;
+  d_.error(r.loc, "ORIGIN moves every coordinate after it, and posts apply it in opposite senses: clpc does not guess "
+                  "which; set the part's origin in the CAM system's machine coordinate system (MCS, CSYS) or with "
+                  "the work offset (SET, CAMERA) instead");
+}
+
+// A shift of the coordinates (ORIGIN, TRANS) that shifts nothing: every parameter a zero.
+bool Lowerer::no_shift(const Record& r) {
+  for (const Param& p : r.params)
+    if (!p.is_number() || p.number != 0) return false;
+  return true;
 }
 
 // A record without motion that clpc cannot act on: a warning, and the record as a comment.

@@ -94,6 +94,7 @@ class Lowerer : public RecordSink {
   void lower_delay(const Record& r);
   void lower_stop(const Record& r);
   void lower_origin(const Record& r);
+  static bool no_shift(const Record& r);
   void lower_insert(const Record& r);
   void lower_units(const Record& r);
 

@@ -209,6 +209,8 @@ TEST(CamSystems, RecordsThatMoveAreReadOrRefused) {
   EXPECT_EQ(err("GOTO/0,0,5\nTRANS/10,0,0\nGOTO/1,1,5\n"),
             "2:1: 'TRANS' moves the tool and clpc does not read it: it shifts the coordinates that follow; set the part's "
             "origin in the CAM system or with the work offset (SET, CAMERA)");
+  EXPECT_EQ(err("GOTO/0,0,5\nTRANS/0,0,0\nGOTO/1,1,5\n"), "");  // shifts nothing, as ORIGIN/0,0,0
+  EXPECT_THAT(err("TRANS/0,0,0.001\n"), ::testing::StartsWith("1:1: 'TRANS' moves the tool"));
   for (const char* word : {"POSTN/IN,5", "SAFPOS", "GOCLER", "PIVOTZ/100"})
     EXPECT_THAT(err(std::string(word) + "\n"), ::testing::StartsWith("1:1: '" + std::string(word).substr(0, std::string(word).find('/')) + "' moves the tool"));
   EXPECT_EQ(err("THREAD/TURN,1.5\n"), "");
