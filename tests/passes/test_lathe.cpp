@@ -279,3 +279,14 @@ TEST(Threads, AThreadWithoutOffEndsWhereTheNextBegins) {
   EXPECT_THAT(c.output, HasSubstr("N70 G76 X18.16 Z-20. P920 Q300 F1.5\nN80 G76 P020000 Q1 R0.05\nN90 G76 X18.16 Z-20. P920 Q300 F1.5\n"));
   EXPECT_THAT(c.diags, HasSubstr("22 thread cuts checked"));
 }
+
+// Turning motion outside the XZ plane (an NX lathe work plane other than ZM-XM, a mill file
+// posted for a lathe) is refused at each record, with the rule and where to set it.
+TEST(LatheMotion, OutsideTheXzPlaneIsRefusedWithTheRule) {
+  Compiled c = compile_text("UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.2\nRAPID\nGOTO/10,30,0\n",
+                            machine("fanuc-lathe"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":7:1: error: lathe motion must lie in the XZ plane (Y = 0), found Y = 30: the CL must "
+                                 "give turning motion with X the radius and Z along the spindle (in NX, the lathe work "
+                                 "plane ZM-XM)\n"));
+}
