@@ -73,12 +73,13 @@ class RapidSplit : public Pass {
   }
 
  private:
-  // Records that neither move the tool nor change what a point means.
+  // Records that neither move the tool nor change what a point means. Anything else (a tool
+  // change, a hole, a frame, an INSERT for the control) leaves the position unknown.
   static bool keeps_position(const ir::Op& op) {
     return std::holds_alternative<ir::Feed>(op) || std::holds_alternative<ir::Spindle>(op) ||
            std::holds_alternative<ir::Coolant>(op) || std::holds_alternative<ir::Comment>(op) ||
            std::holds_alternative<ir::Passthrough>(op) || std::holds_alternative<ir::Dwell>(op) ||
-           std::holds_alternative<ir::Stop>(op);
+           std::holds_alternative<ir::Stop>(op) || std::holds_alternative<ir::ToolPreselect>(op);
   }
 
   // The corner of the split move, or nothing where the rapid goes only along the tool axis,
