@@ -8,11 +8,14 @@
 // left the start, and the tool crosses at the depth of the end, below the CL's line. Split,
 // the tool never goes below that line: going up it rises first and crosses at the end's
 // height; going down it crosses at the start's height and then goes down along the tool axis.
-// Each piece moves along the tool axis or across it, so on the machine (tool axis = spindle
-// axis) each is Z alone or X and Y alone.
+// Each piece moves along the tool axis or across it, so where the tool axis is the machine's
+// Z (a three-axis mill, a table machine, a head at zero over a table turning about Z) each is
+// Z alone or X and Y alone. A tilted head would move several axes on each piece, at their
+// own rates again: there only rapids with the tool along the program's Z are split.
 //
-// A rapid is split only where the position before it is known (a move or an arc before it in
-// the same tool's motion), the tool axis does not change along it (a rapid that turns a
+// A rapid is split only where the position before it is known (a move or an arc before it;
+// a load of the tool already in the spindle, or a frame or work offset already in force, is
+// no motion: NX writes them at every operation), the tool axis does not change along it (a rapid that turns a
 // rotary is left as the CL gives it), and cutter compensation is off and not switched by it
 // (a block more would change the compensated path, or start or cancel it on a Z move). The first move after a tool change is the backend's (X Y,
 // then Z with the length offset).
@@ -20,6 +23,7 @@
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and
 // provides) is rapid_split_pass() at the end of this file.
 #include <cmath>
+#include <optional>
 
 #include "passes/passes.h"
 
@@ -31,6 +35,10 @@ class RapidSplit : public Pass {
  public:
   void begin(PassContext& ctx) override {
     on_ = !ctx.machine.motion.rapids_linear;
+    for (const RotaryAxis& r : ctx.machine.kinematics.rotaries) {
+      if (!r.table) head_ = true;
+      else if (std::abs(r.axis.normalized().z()) < 1 - 1e-9) tilting_table_ = true;
+    }
     // Less than an increment along or across is no dog-leg the control could make.
     eps_ = ctx.resolution();
   }
@@ -58,8 +66,16 @@ class RapidSplit : public Pass {
       } else if (const auto* a = std::get_if<ir::Arc>(&in.op)) {
         at_ = a->end;
         axis_ = a->tool_axis;
-        known_ = true;
-        comp_switch_ = false;
+        known_ = true;  // (G40 and G41 are written on the next straight move, not on an arc)
+      } else if (const auto* t = std::get_if<ir::ToolChange>(&in.op)) {
+        if (t->tool != tool_) known_ = false;  // the same tool again: the backend writes nothing
+        tool_ = t->tool;
+      } else if (const auto* f = std::get_if<ir::SetFrame>(&in.op)) {
+        if (!frame_ || !frame_->same_as(f->frame, 1e-9)) known_ = false;
+        frame_ = f->frame;
+      } else if (const auto* o = std::get_if<ir::SelectOffset>(&in.op)) {
+        if (o->reg != reg_) known_ = false;
+        reg_ = o->reg;
       } else if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) {
         comp_ = c->side != ir::CompSide::Off;
         comp_switch_ = true;  // the next move carries G41, G42 or G40
@@ -86,6 +102,7 @@ class RapidSplit : public Pass {
   // only across it, or turns the tool axis.
   std::optional<ir::Vec3> midpoint(const ir::Move& m) const {
     if ((m.axis - axis_).norm() > 1e-9) return std::nullopt;
+    if (head_ && (tilting_table_ || (m.axis - ir::Vec3::UnitZ()).norm() > 1e-9)) return std::nullopt;
     const ir::Vec3 d = m.point - at_;
     const double along = d.dot(m.axis);
     const ir::Vec3 across = d - along * m.axis;
@@ -95,7 +112,10 @@ class RapidSplit : public Pass {
 
   bool on_ = false;
   double eps_ = 0;
+  bool head_ = false, tilting_table_ = false;  // the machine's rotaries
   bool known_ = false, comp_ = false, comp_switch_ = false, split_ = false;
+  int tool_ = -1, reg_ = -1;
+  std::optional<ir::Frame> frame_;
   ir::Vec3 at_ = ir::Vec3::Zero(), axis_ = ir::Vec3::UnitZ();
 };
 
@@ -107,10 +127,11 @@ const PassInfo& rapid_split_pass() {
       .summary = "split rapids that go along and across the tool axis, for controls whose rapids are not interpolated",
       .expects = "moves in the part frame with their tool axes (before kinematics); cycles formed",
       .guarantees = "where motion.rapids_linear is false: no CL rapid goes both along the tool axis and across it "
-                    "(by more than an increment) with the tool axis unchanged and cutter compensation off; going up it "
+                    "(by more than an increment) from a known position with the tool axis unchanged and cutter compensation "
+                    "off (on a machine with a head: only with the tool along Z and no tilting table); going up it "
                     "rises first, going down it crosses first, so the tool never passes below the CL's straight line. "
                     "Nothing changes where rapids are linear",
-      .settings = "motion.rapids_linear, format.X (one increment)",
+      .settings = "motion.rapids_linear, kinematics.axes (head or table, axis), format.X (one increment)",
       .needs = ir::CyclesFormed,
       .provides = ir::RapidsSplit,
       .breaks = 0,

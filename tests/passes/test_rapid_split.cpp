@@ -99,3 +99,43 @@ TEST(RapidSplit, TheMachineMustRunThePassAndBeAMill) {
   EXPECT_THAT(machine_errors("[l]\ninherits = \"fanuc-lathe\"\n[l.motion]\nrapids_linear = false\n"),
               HasSubstr("rapids_linear: false is for mills"));
 }
+
+// NX writes MSYS and LOAD/TOOL at every operation: the same frame and the same tool again are
+// no motion, so the move from one operation to the next is split like any other.
+TEST(RapidSplit, FromOneOperationToTheNextWithTheSameToolAndFrame) {
+  const std::string op = "MSYS/0,0,0,1,0,0,0,1,0\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\n";
+  Compiled c = compile_text("UNITS/MM\nTOOL PATH/A,TOOL,EM\n" + op +
+                                "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nGOTO/10,0,-1\nEND-OF-PATH\nTOOL PATH/B,TOOL,EM\n" + op +
+                                "RAPID\nGOTO/50,50,2\nGOTO/50,50,-1\nEND-OF-PATH\nTOOL PATH/C,TOOL,EM2\n"
+                                "LOAD/TOOL,2\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nEND-OF-PATH\n",
+                            machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(B)\nN90 S1000 M03\nN100 G00 Z2.\nN110 X50. Y50.\nN120 G01 Z-1.\n"));  // up first
+  // Another tool: the backend's own X Y, then Z with the length offset.
+  EXPECT_THAT(c.output, HasSubstr("G00 X0. Y0.\nN170 G43 H02 Z5.\n"));
+}
+
+// G40 is written on the first straight move after CUTCOM/OFF, not on an arc: a rapid after
+// such an arc carries it and is not split.
+TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
+  Compiled c = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
+      "CUTCOM/LEFT\nGOTO/10,0,-1\nCUTCOM/OFF\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nRAPID\nGOTO/40,10,20\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G40 G00 X40. Z20.\n"));
+}
+
+// On a machine whose head tilts, a piece along a tilted tool axis moves several axes at their
+// own rates: only rapids with the tool along Z are split there.
+TEST(RapidSplit, OnAHeadMachineOnlyWithTheToolAlongZ) {
+  // examples/head_table_bc.toml: a B head over a C table.
+  const Machine m = machine("head-table-bc", read_file(source_path("examples/head_table_bc.toml")));
+  Compiled c = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nMULTAX/ON\nRAPID\nGOTO/0,0,50,0,0,1\nRAPID\nGOTO/20,0,10,0,0,1\n"
+      "RAPID\nGOTO/20,0,40,0.5,0,0.8660254\nRAPID\nGOTO/40,0,10,0.5,0,0.8660254\n",
+      m, {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  // Along Z: across first, then down; tilted 30 degrees: one block, as the CL gives it.
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z50.\nN70 X20.\nN80 Z10.\nN90 X145. Z6.506 B30.\nN100 X165. Z-23.494\n"));
+}
