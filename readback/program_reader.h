@@ -73,6 +73,9 @@ class ProgramReader {
   bool next(TipSegment& s);
   // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
   ir::Vec3 tip_at(const TipSegment& s, double t) const;
+  // Whether tip_at() is a straight line whatever the rotaries do: with tool-centre-point
+  // control or in a tilted plane the control moves the tip, not the axes (part_point()).
+  static bool tip_moves_straight(const TipSegment& s) { return s.raw.tcp || s.raw.plane; }
   const ProgramTotals& totals();
   // Problems the reader found (a control would alarm, or the reader cannot follow), drained.
   std::vector<gcode::Problem> take_problems();

@@ -1,6 +1,7 @@
 // clpc verify: every corpus file passes on every machine it is for; programs broken on
 // purpose (an arc flipped, a point shifted by 0.01 mm, a block dropped, B beyond its limit)
 // fail, naming the CL record; the report's counts, times and JSON form.
+#include <cmath>
 #include <regex>
 
 #include "driver/readback_commands.h"
@@ -161,6 +162,41 @@ TEST(Verify, RotaryBeyondItsLimitFails) {
   Checked c = verify(cl, m, edit(program, "N30 G00 B45. C0.\n", "N30 G00 B125. C0.\n"));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(c.diags, HasSubstr("error: B125.000 is beyond the B axis's limits (-35 to 120) [G-code line"));
+}
+
+// Under TCPC (G234) the control moves the tip straight while B turns: each turning block is
+// the CL move it carries, checked at its ends (no bow between them), so a simultaneous sweep
+// is certified; a block lifted by 0.1 mm is not, nor the same blocks without TCPC (the axes
+// then move the machine, not the tip).
+TEST(Verify, UnderTcpcATurningBlockIsTheStraightMoveOfItsTip) {
+  TempDir t;
+  const std::string cl = t.path("sweep.cls");
+  std::string text = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\nRAPID\nGOTO/0,0,5,0,0,1\n"
+                     "FEDRAT/MMPM,500\nGOTO/0,0,0,0,0,1\n";
+  for (int k = 1; k <= 8; ++k) {
+    const double a = 5 * k * 3.14159265358979323846 / 180;
+    text += "GOTO/" + std::to_string(5 * k) + ",0,0," + std::to_string(std::sin(a)) + ",0," + std::to_string(std::cos(a)) + "\n";
+  }
+  text += "RAPID\nGOTO/40,0,50,0.642788,0,0.766044\nFINI\n";
+  write_file(cl, text);
+  const Machine m = machine("haas-umc750");
+  const std::string program = program_for(cl, m);
+  ASSERT_THAT(program, HasSubstr("N30 G54 G00 G234 H01\n"));
+  ASSERT_THAT(program, HasSubstr("N75 X0.9843 B25.\n"));
+  Checked c = verify(cl, m, program);
+  EXPECT_TRUE(c.report.ok) << c.diags;
+  EXPECT_EQ(c.report.cl_points, 12);
+  EXPECT_LE(c.report.max_deviation, 0.00005);
+
+  c = verify(cl, m, edit(program, "N75 X0.9843 B25.\n", "N75 X0.9843 Z0.0039 B25.\n"));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags),
+              HasSubstr("sweep.cls:14:1: error: CL point (0.9843, 0.0000, 0.0000) is never reached: the program comes within "
+                        "0.00390 of it [G-code line 20]"));
+
+  c = verify(cl, m, edit(program, "N30 G54 G00 G234 H01\n", "N30 G54 G00 G43 H01\n"));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("sweep.cls:10:1: error: CL point (0.1969, 0.0000, 0.0000) is never reached"));
 }
 
 TEST_F(VerifyPlate, JsonReport) {
