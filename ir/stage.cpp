@@ -17,7 +17,8 @@ const std::array<FactInfo, 9>& all_facts() {
        "every rapid and feed move has its rotary positions"},
       {LimitsChecked, "limits-checked", "to check every position against the machine's travel", ""},
       {RapidsSplit, "rapids-split", "where motion.rapids_linear is false: each axis rapids at its own rate, so a rapid "
-       "down and across would reach the depth before it has crossed", ""},
+       "down and across would reach the depth before it has crossed (a control whose G00 moves in a straight line: "
+       "motion.rapids_linear = true)", ""},
   }};
   return facts;
 }

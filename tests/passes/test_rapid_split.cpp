@@ -93,7 +93,8 @@ TEST(RapidSplit, TheMachineMustRunThePassAndBeAMill) {
   EXPECT_EQ(machine_errors(without),
             "shop.toml:3:12: error: m.pipeline: machine 'm' needs 'rapid-split' in its pipeline, where "
             "motion.rapids_linear is false: each axis rapids at its own rate, so a rapid down and across would reach "
-            "the depth before it has crossed\n 3 | pipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
+            "the depth before it has crossed (a control whose G00 moves in a straight line: motion.rapids_linear = "
+            "true)\n 3 | pipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
             "\"drill-cycles\", \"offset-table\"]\n   |            ^\n");
   EXPECT_EQ(machine_errors(without + "[m.motion]\nrapids_linear = true\n"), "");
   EXPECT_THAT(machine_errors("[l]\ninherits = \"fanuc-lathe\"\n[l.motion]\nrapids_linear = false\n"),
