@@ -57,6 +57,7 @@ VerifyReport certify(SourceFile& src, const std::string& program, const Machine&
   VerifyReport rep = new_report(src, m, opt);
   std::string why;
   ProgramReader rd(m, info);
+  if (!opt.dynamic_time) rd.skip_dynamic_time();
   if (!rd.open(program, why)) {
     d.error({}, "cannot read the program back to verify it: " + why);
     return rep;
@@ -108,6 +109,7 @@ void CertifyBeside::start(const ir::ProgramInfo& info) {
   thread_ = std::thread([this] {
     name_this_thread("clpc-certify");
     ProgramReader rd(m_, info_);
+    if (!opt_.dynamic_time) rd.skip_dynamic_time();
     rd.open(channel_);
     try {
       // The reference's lowering on a thread of its own, as in the compile, for the

@@ -24,6 +24,7 @@ struct CertifyOptions {
   double axis_tolerance = 0.01;  // degrees, tool axis (five-axis)
   bool latin1 = false;           // the CL's comments in Latin-1
   bool collect_samples = false;  // keep the CL points' deviations (the HTML report's map)
+  bool dynamic_time = true;      // the cycle time with the machine's accelerations (the JSON report's)
 };
 
 // Reads the program at `program` back and walks it beside the CL of `src` lowered again, with

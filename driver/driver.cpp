@@ -146,6 +146,7 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       c.tolerance = opt.tolerance;
       c.axis_tolerance = opt.axis_tolerance;
       c.latin1 = opt.latin1;
+      c.dynamic_time = opt.certificate_json || opt.certificate_cycle_time;
       certificate = std::make_unique<CertifyBeside>(src, machine, out, c);
       sink = certificate->wrap(std::move(sink));
     }

@@ -38,6 +38,9 @@ struct CompileOptions {
   double tolerance = 0;          // the certificate's; 0: the machine's default
   double axis_tolerance = 0.01;  // degrees
   bool certificate_json = false; // the whole report as JSON on `err` instead of the one line
+  // The certificate also times the program with the machine's accelerations (the JSON report
+  // has it; the one line does not show it, so a plain compile leaves the planner out).
+  bool certificate_cycle_time = false;
 };
 
 struct CompileResult {

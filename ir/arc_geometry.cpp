@@ -48,6 +48,22 @@ Vec3 ArcProbe::point(double t) const {
   return center_ + h * axis_ + r * (std::cos(phi) * u_ + std::sin(phi) * w_);
 }
 
+void ArcProbe::interior_points(int n, std::vector<Vec3>& out) const {
+  out.resize(n > 1 ? size_t(n - 1) : 0);
+  if (n <= 1) return;
+  const double step = phi_total_ / n, cs = std::cos(step), sn = std::sin(step);
+  double c = 1, s = 0;
+  for (int i = 1; i < n; ++i) {
+    const double c1 = c * cs - s * sn;
+    s = s * cs + c * sn;
+    c = c1;
+    const double t = double(i) / n;
+    const double r = r0_ + (r1_ - r0_) * t;
+    const double h = h0_ + (h1_ - h0_) * t;
+    out[size_t(i - 1)] = center_ + h * axis_ + r * (c * u_ + s * w_);
+  }
+}
+
 Vec3 point_at(const Arc& a, double t) { return ArcProbe(a).point(t); }
 
 Vec3 tangent_at(const Arc& a, double t) {

@@ -1,6 +1,8 @@
 // Geometry of CL arcs and helices, shared by the arc passes and the verifier.
 #pragma once
 
+#include <vector>
+
 #include "ir/ir.h"
 
 namespace clpc::arcgeo {
@@ -30,6 +32,9 @@ class ArcProbe {
   explicit ArcProbe(const Arc& a);
   // The point a fraction t in [0, 1] along the arc.
   Vec3 point(double t) const;
+  // The points at fractions 1/n, 2/n, .. (n-1)/n into `out` (resized; its storage reused):
+  // one sine and cosine for them all, each next point turned from the last by the step.
+  void interior_points(int n, std::vector<Vec3>& out) const;
   // Distance from p to the arc (helix), within its sweep.
   double distance(const Vec3& p) const;
 

@@ -328,6 +328,7 @@ class Comparison : public ProgramSink {
   double k_ = 1;
   bool five_axis_ = false, table_ = false;
   Ring<TipSegment> win_;
+  std::vector<ir::Vec3> samples_;        // points along the CL arc being checked (reused)
   std::vector<arcgeo::ArcProbe> probes_;  // the program arcs of the window a CL arc is checked against (reused)
   std::vector<double> passed_;
   SourceLoc loc_;

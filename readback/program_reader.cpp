@@ -133,7 +133,7 @@ Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
 
 void ProgramReader::account(const gcode::Segment& s) {
   ProgramTotals& t = totals_;
-  timer_.add(s);
+  if (dynamic_time_) timer_.add(s);
   const bool known = finite(s.start) && finite(s.end);
   double len = 0;
   if (known) {
@@ -206,7 +206,7 @@ bool ProgramReader::read_next(TipSegment& out) {
     r.segments.clear();
     next_segment_ = 0;
     if (!read_line(line_)) {
-      if (timer_.known()) {
+      if (dynamic_time_ && timer_.known()) {
         totals_.dynamic_known = true;
         totals_.dynamic_minutes = timer_.minutes() + totals_.dwell_minutes + totals_.tool_change_minutes;
       }
@@ -235,9 +235,12 @@ bool ProgramReader::read_next(TipSegment& out) {
   out.start = part_point(s, s.start, a0, out.shift);
   out.end = part_point(s, s.end, a1, out.shift);
   out.rotates = a0 != a1;
-  out.axis = setup_turn(s.work_offset) * (m_.kinematics.has_rotaries() && a1 != kin::Angles{0, 0}
-                                               ? kin::tool_axis_in_part(m_.kinematics, a1)
-                                               : Vec3::UnitZ());
+  if (m_.kinematics.has_rotaries() && a1 != axis_angles_) {
+    // 3+2 work reads thousands of segments at the same angles: the chain is turned once for them.
+    axis_angles_ = a1;
+    axis_in_part_ = kin::tool_axis_in_part(m_.kinematics, a1);
+  }
+  out.axis = setup_turn(s.work_offset) * axis_in_part_;
   if (s.kind == gcode::Segment::Kind::Arc) {
     out.center = part_point(s, s.center, a1, out.shift);
     out.normal = s.plane ? Vec3(s.plane->rotation * s.normal)

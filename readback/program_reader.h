@@ -69,6 +69,9 @@ class ProgramReader {
   // then does only its own work). next(), take_problems() and totals() give the same as
   // without; totals() waits for the thread.
   void read_ahead();
+  // Leaves out the dynamic cycle-time estimate (totals().dynamic_known stays false): a
+  // compile's certificate line does not show it, and the planner is a tenth of the reading.
+  void skip_dynamic_time() { dynamic_time_ = false; }
   // The next segment, false at the end of the program.
   bool next(TipSegment& s);
   // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
@@ -113,6 +116,10 @@ class ProgramReader {
   std::set<int> known_registers_, reported_registers_;
   ProgramTotals totals_;
   MotionTimer timer_;
+  bool dynamic_time_ = true;
+  // The tool axis in the part frame at the last segment's angles (at zero: +Z).
+  kin::Angles axis_angles_{0, 0};
+  ir::Vec3 axis_in_part_ = ir::Vec3::UnitZ();
 
   // Reading ahead: batches of segments, each with the problems found up to it.
   struct Item {

@@ -428,8 +428,9 @@ void Comparison::arc(const ir::Arc& a0) {
     probes_.clear();  // the program's arcs, in the window's order
     for (size_t s = 0; s <= *j; ++s)
       if (win_[s].raw.kind == gcode::Segment::Kind::Arc) probes_.emplace_back(arc_of(win_[s]));
+    cl.interior_points(n, samples_);
     for (int i = 1; i < n; ++i) {
-      Vec3 q = cl.point(double(i) / n);
+      const Vec3& q = samples_[size_t(i - 1)];
       double best = kInf;
       int line = 0;
       size_t piece = 0;

@@ -117,6 +117,10 @@ TEST(MotionTime, TheReportShowsBothEstimates) {
     CompileOptions o;
     o.certify = true;
     std::ostringstream err;
+    CompileResult plain = compile_file(d.path("plate.cls"), d.path("plate.nc"), machine("fanuc-mill"), o, err);
+    ASSERT_TRUE(plain.ok && plain.certificate) << err.str();
+    EXPECT_FALSE(plain.certificate->program.dynamic_known);  // the one line shows no cycle time: not planned
+    o.certificate_cycle_time = true;
     CompileResult c = compile_file(d.path("plate.cls"), d.path("plate.nc"), machine("fanuc-mill"), o, err);
     ASSERT_TRUE(c.ok && c.certificate) << err.str();
     r = *c.certificate;
