@@ -6,6 +6,7 @@
 
 #include "backends/backend.h"
 #include "driver/certify.h"
+#include "lower/gcode_input.h"
 #include "driver/pipeline.h"
 #include "ir/printer.h"
 #include "lower/prescan.h"
@@ -104,6 +105,13 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     ir::ProgramInfo info = prescan_program(src, po);
     if (src.size() == 0) {
       d.error({1, 1}, "the file is empty");
+      throw FatalError{};
+    }
+    if (std::optional<GcodeInput> g = gcode_program_given(src)) {
+      d.error(g->loc, "this is a G-code program ('" + g->block +
+                          "'), not CL data: clpc reads the cutter-location file a CAM system writes (APT, CLSF) and "
+                          "makes the program; to check a program against its CL: clpc verify PART.cls --program " +
+                          src.name());
       throw FatalError{};
     }
     if (!info.units_given) d.warning({}, info.units_reason + " (use --input-units to say)", "units");

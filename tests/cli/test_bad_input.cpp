@@ -62,6 +62,20 @@ const std::string kHead = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,
 
 TEST(BadInput, EmptyFile) { expect_refused(compile_bytes("empty.cls", ""), "empty.cls:1:1: error: the file is empty"); }
 
+// A G-code program where the CL is due: one error at its first block that says what the file is
+// (not one for the '%' and a warning per block); a CL file whose first lines look like blocks is
+// still CL data once a record shows.
+TEST(BadInput, AGcodeProgramIsNamedForWhatItIs) {
+  Outcome o = compile_bytes("part.nc", "%\nO1234 (PART)\n! ISO comment\nN10 G21 G17 G40 G80 G90\nN20 T1 M06\nN30 G00 X0. Y0.\n"
+                                       "N40 G43 H1 Z5.\nN50 G01 Z-1. F100.\nM30\n%\n");
+  expect_refused(o, "part.nc:2:1: error: this is a G-code program ('O1234 (PART)'), not CL data: clpc reads the "
+                    "cutter-location file a CAM system writes (APT, CLSF) and makes the program; to check a program "
+                    "against its CL: clpc verify PART.cls --program ");
+  EXPECT_THAT(o.err, HasSubstr("clpc: 1 error, 0 warnings"));
+  Outcome cl = compile_bytes("blocks_then_cl.cls", "X1 Y2\nG1 X3\nM3 S100\n" + kHead + "GOTO/0,0,5\nGOTO/10,0,5\nFINI\n");
+  EXPECT_THAT(cl.err, ::testing::Not(HasSubstr("G-code program"))) << cl.err;
+}
+
 TEST(BadInput, BinaryGarbage) {
   std::mt19937 rng(11);
   std::string bytes(64 * 1024, '\0');
