@@ -6,7 +6,7 @@
 
 #include "backends/backend.h"
 #include "driver/certify.h"
-#include "lower/gcode_input.h"
+#include "lower/not_cl_data.h"
 #include "driver/pipeline.h"
 #include "ir/printer.h"
 #include "lower/prescan.h"
@@ -105,6 +105,11 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     ir::ProgramInfo info = prescan_program(src, po);
     if (src.size() == 0) {
       d.error({1, 1}, "the file is empty");
+      throw FatalError{};
+    }
+    if (std::optional<SourceLoc> nul = binary_file_given(src)) {
+      d.error(*nul, "a binary file (NUL bytes from here on), not CL data: clpc reads CL data as text; a CAM system "
+                    "that writes a binary CL file (an APT CLFILE) can write it as text (ASCII CL data, an APT source)");
       throw FatalError{};
     }
     if (std::optional<GcodeInput> g = gcode_program_given(src)) {

@@ -80,10 +80,21 @@ TEST(BadInput, BinaryGarbage) {
   std::mt19937 rng(11);
   std::string bytes(64 * 1024, '\0');
   for (char& c : bytes) c = char(rng() & 0xFF);
+  const size_t first_nul = bytes.find('\0');
+  const std::string first_line = bytes.substr(0, first_nul);
+  const size_t line = size_t(std::count(first_line.begin(), first_line.end(), '\n')) + 1;
+  const size_t col = first_nul - (first_line.rfind('\n') == std::string::npos ? size_t(-1) : first_line.rfind('\n'));
   Outcome o = compile_bytes("garbage.cls", bytes);
-  expect_refused(o, "garbage.cls:1:1: error:");
-  EXPECT_TRUE(std::regex_search(o.err, std::regex("garbage\\.cls:[0-9]+:[0-9]+: error: ")));
-  EXPECT_THAT(o.err, HasSubstr("fatal: too many errors (50), stopping"));
+  expect_refused(o, "garbage.cls:" + std::to_string(line) + ":" + std::to_string(col) +
+                        ": error: a binary file (NUL bytes from here on), not CL data: clpc reads CL data as text");
+  EXPECT_THAT(o.err, HasSubstr("clpc: 1 error, 0 warnings"));
+  // Without NUL bytes it is text, read as such: an error per bad line, up to the limit.
+  for (char& c : bytes)
+    if (c == '\0') c = 'x';
+  Outcome text = compile_bytes("garbage.cls", bytes);
+  expect_refused(text, "garbage.cls:1:1: error:");
+  EXPECT_TRUE(std::regex_search(text.err, std::regex("garbage\\.cls:[0-9]+:[0-9]+: error: ")));
+  EXPECT_THAT(text.err, HasSubstr("fatal: too many errors (50), stopping"));
 }
 
 TEST(BadInput, TenMegabyteLine) {

@@ -1,4 +1,4 @@
-#include "lower/gcode_input.h"
+#include "lower/not_cl_data.h"
 
 #include <cctype>
 #include <string_view>
@@ -69,13 +69,41 @@ bool gcode_block(std::string_view s) {
 
 }  // namespace
 
-std::optional<GcodeInput> gcode_program_given(const SourceFile& src) {
-  std::string head(64 * 1024, '\0');
+namespace {
+
+constexpr size_t kHead = 64 * 1024;
+
+std::string head_of(const SourceFile& src) {
+  std::string head(kHead, '\0');
   const long n = src.read_at(0, head.data(), head.size());
+  head.resize(n > 0 ? size_t(n) : 0);
+  return head;
+}
+
+}  // namespace
+
+std::optional<SourceLoc> binary_file_given(const SourceFile& src) {
+  const std::string head = head_of(src);
+  size_t nuls = 0, first = std::string::npos;
+  for (size_t i = 0; i < head.size(); ++i)
+    if (head[i] == '\0') {
+      if (first == std::string::npos) first = i;
+      ++nuls;
+    }
+  if (nuls < 16 || nuls * 1000 < head.size()) return std::nullopt;
+  uint32_t line = 1;
+  size_t line_start = 0;
+  for (size_t i = 0; i < first; ++i)
+    if (head[i] == '\n') ++line, line_start = i + 1;
+  return SourceLoc{line, uint32_t(first - line_start + 1)};
+}
+
+std::optional<GcodeInput> gcode_program_given(const SourceFile& src) {
+  const std::string head = head_of(src);
+  const long n = long(head.size());
   if (n <= 0) return std::nullopt;
-  head.resize(size_t(n));
   std::string_view text = head;
-  if (size_t(n) == 64 * 1024) text = text.substr(0, text.rfind('\n') + 1);  // whole lines only
+  if (size_t(n) == kHead) text = text.substr(0, text.rfind('\n') + 1);  // whole lines only
   std::optional<GcodeInput> first;
   int blocks = 0, said = 0;
   uint32_t line = 0;
