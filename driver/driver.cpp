@@ -107,6 +107,11 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
       d.error({1, 1}, "the file is empty");
       throw FatalError{};
     }
+    if (std::optional<std::string> bom = utf16_given(src)) {
+      d.error({1, 1}, "the file is UTF-16 text (it starts with the byte-order mark " + *bom +
+                          "): clpc reads CL data as ASCII or UTF-8; save the file as UTF-8 or ASCII");
+      throw FatalError{};
+    }
     if (std::optional<SourceLoc> nul = binary_file_given(src)) {
       d.error(*nul, "a binary file (NUL bytes from here on), not CL data: clpc reads CL data as text; a CAM system "
                     "that writes a binary CL file (an APT CLFILE) can write it as text (ASCII CL data, an APT source)");

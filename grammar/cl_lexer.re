@@ -111,7 +111,12 @@ Lexer::Lexer(SourceFile& src, Diagnostics* diags, const bool* wanted)
   cur_ = lim_ = tok_ = mar_ = ctx_ = buf_.get();
   raw_end_ = buf_.get();
   buf_[0] = 0;
-  src_.note_line_start(1, 0);
+  // A UTF-8 byte-order mark (Windows editors and CAM systems write one) is no text: the file's
+  // first line starts after it, and its columns count from there, as an editor shows them.
+  char bom[3];
+  if (src_.read_at(0, bom, 3) == 3 && bom[0] == '\xEF' && bom[1] == '\xBB' && bom[2] == '\xBF')
+    base_ = read_pos_ = line_start_ = 3;
+  src_.note_line_start(1, base_);
 }
 
 // Reads more of the file. The rules see only spliced text, and only whole lines of it (so a

@@ -82,6 +82,14 @@ std::string head_of(const SourceFile& src) {
 
 }  // namespace
 
+std::optional<std::string> utf16_given(const SourceFile& src) {
+  unsigned char bom[2];
+  if (src.read_at(0, reinterpret_cast<char*>(bom), 2) != 2) return std::nullopt;
+  if (bom[0] == 0xFF && bom[1] == 0xFE) return "FF FE";
+  if (bom[0] == 0xFE && bom[1] == 0xFF) return "FE FF";
+  return std::nullopt;
+}
+
 std::optional<SourceLoc> binary_file_given(const SourceFile& src) {
   const std::string head = head_of(src);
   size_t nuls = 0, first = std::string::npos;

@@ -22,6 +22,10 @@ struct GcodeInput {
 // Three blocks at least, among the first 200 lines that say anything.
 std::optional<GcodeInput> gcode_program_given(const SourceFile& src);
 
+// UTF-16 text (Windows editors save "Unicode" so): its byte-order mark, "FF FE" or "FE FF".
+// (UTF-8's mark is read past by the lexer.)
+std::optional<std::string> utf16_given(const SourceFile& src);
+
 // A binary file: NUL bytes, at least 16 and one in a thousand of the first 64 KiB (a text file
 // with a stray NUL is CL data with an error where the NUL is). The location of the first NUL.
 std::optional<SourceLoc> binary_file_given(const SourceFile& src);

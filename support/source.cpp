@@ -112,6 +112,7 @@ void SourceFile::note_line_start(uint32_t line, uint64_t offset) {
   size_t k = (line - 1) / kCheckpointEvery;
   std::lock_guard<std::mutex> lock(checkpoints_lock_);
   if (k == checkpoints_.size()) checkpoints_.push_back(offset);
+  else if (k == 0) checkpoints_[0] = offset;  // line 1 after a byte-order mark
 }
 
 std::string SourceFile::line_text(uint32_t line) const {

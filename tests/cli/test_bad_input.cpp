@@ -76,6 +76,22 @@ TEST(BadInput, AGcodeProgramIsNamedForWhatItIs) {
   EXPECT_THAT(cl.err, ::testing::Not(HasSubstr("G-code program"))) << cl.err;
 }
 
+// Windows editors write a UTF-8 byte-order mark: read past, columns counted after it (and the
+// source line shown without it). UTF-16 text is refused at 1:1 with what to do.
+TEST(BadInput, ByteOrderMarks) {
+  Outcome utf8 = compile_bytes("bom.cls", "\xEF\xBB\xBF" + kHead + "GOTO/0,0,5\nGOTO/1.2.3,0,5\nFINI\n");
+  expect_refused(utf8, "bom.cls:6:6: error: GOTO: expected a number, found '1.2.3'\n 6 | GOTO/1.2.3,0,5\n");
+  EXPECT_THAT(utf8.err, HasSubstr("clpc: 1 error, 0 warnings"));  // UNITS/MM on the first line was read
+  Outcome first = compile_bytes("bom1.cls", "\xEF\xBB\xBFGOTX/1\n" + kHead);
+  EXPECT_THAT(first.err, HasSubstr("bom1.cls:1:1: warning: unknown record 'GOTX' (passed through as a comment) "
+                                   "[-Wunknown-record]\n 1 | GOTX/1\n"));
+  std::string wide = "\xFF\xFE";
+  for (char c : kHead) wide += std::string{c, '\0'};
+  expect_refused(compile_bytes("wide.cls", wide),
+                 "wide.cls:1:1: error: the file is UTF-16 text (it starts with the byte-order mark FF FE): clpc reads "
+                 "CL data as ASCII or UTF-8; save the file as UTF-8 or ASCII");
+}
+
 TEST(BadInput, BinaryGarbage) {
   std::mt19937 rng(11);
   std::string bytes(64 * 1024, '\0');
