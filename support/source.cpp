@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -79,7 +80,15 @@ bool SourceFile::open(const std::string& path, std::string& error) {
   }
   fd_ = fd;
   size_ = uint64_t(st.st_size);
+  drop_end_of_file_marks();
   return true;
+}
+
+// DOS ended text files with Ctrl-Z (0x1A), and files that passed through DOS-era editors and
+// DNC software still carry it: at the very end it is no text, and the file ends before it.
+void SourceFile::drop_end_of_file_marks() {
+  char c;
+  while (size_ > 0 && read_at(size_ - 1, &c, 1) == 1 && c == '\x1A') --size_;
 }
 
 void SourceFile::open_memory(std::string name, std::string_view text) {
@@ -87,6 +96,7 @@ void SourceFile::open_memory(std::string name, std::string_view text) {
   memory_ = text;
   in_memory_ = true;
   size_ = text.size();
+  drop_end_of_file_marks();
 }
 
 SourceFile::~SourceFile() {
@@ -94,9 +104,10 @@ SourceFile::~SourceFile() {
 }
 
 long SourceFile::read_at(uint64_t offset, char* dst, size_t n) const {
+  if (offset >= size_) return 0;
+  n = size_t(std::min<uint64_t>(n, size_ - offset));  // the file ends at size_ (end-of-file marks)
   if (in_memory_) {
-    if (offset >= memory_.size()) return 0;
-    size_t k = std::min<size_t>(n, memory_.size() - offset);
+    size_t k = n;
     std::memcpy(dst, memory_.data() + offset, k);
     return long(k);
   }

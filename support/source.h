@@ -36,6 +36,7 @@ class SourceFile {
 
   const std::string& name() const { return name_; }
   // Reads up to `n` bytes at absolute `offset`; returns the count (0 at end, -1 on error).
+  // The end is size(): trailing Ctrl-Z bytes (DOS's end-of-file mark) are not part of the file.
   long read_at(uint64_t offset, char* dst, size_t n) const;
   uint64_t size() const { return size_; }
 
@@ -52,6 +53,7 @@ class SourceFile {
   std::string line_text(uint32_t line) const;
 
  private:
+  void drop_end_of_file_marks();
   std::string name_;
   int fd_ = -1;
   std::string_view memory_;

@@ -92,6 +92,17 @@ TEST(BadInput, ByteOrderMarks) {
                  "CL data as ASCII or UTF-8; save the file as UTF-8 or ASCII");
 }
 
+// DOS's end-of-file mark (Ctrl-Z) at the very end is no text; anywhere else it is a byte no
+// record may hold.
+TEST(BadInput, DosEndOfFileMark) {
+  Outcome end = compile_bytes("dos.cls", kHead + "GOTO/0,0,5\r\nGOTO/10,0,5\r\nFINI\r\n\x1A\x1A");
+  EXPECT_EQ(end.status, 0) << end.err;
+  EXPECT_TRUE(end.output_written);
+  EXPECT_THAT(end.err, HasSubstr("clpc: certified "));
+  expect_refused(compile_bytes("mid.cls", kHead + "GOTO/0,0,5\n\x1A\nGOTO/10,0,5\nFINI\n"),
+                 "mid.cls:6:1: error: expected a major word at the start of a record, found byte 0x1A");
+}
+
 TEST(BadInput, BinaryGarbage) {
   std::mt19937 rng(11);
   std::string bytes(64 * 1024, '\0');
