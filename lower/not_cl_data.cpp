@@ -1,5 +1,7 @@
 #include "lower/not_cl_data.h"
 
+#include "grammar/record.h"
+
 #include <cctype>
 #include <string_view>
 
@@ -18,7 +20,7 @@ std::string_view trim(std::string_view s) {
 }
 
 // A CL record: a word (letters first; blanks, digits, '-' and '_' after) then '/', a '$$'
-// comment, or a word the records without '/' begin with.
+// comment, or a line that starts with a major word clpc knows (grammar/majors.def).
 bool cl_record(std::string_view s) {
   if (s.substr(0, 2) == "$$") return true;
   size_t i = 0;
@@ -26,12 +28,7 @@ bool cl_record(std::string_view s) {
   while (i < s.size() && (lower_or_upper(s[i]) || digit(s[i]) || s[i] == ' ' || s[i] == '-' || s[i] == '_' || s[i] == ','))
     ++i;
   if (i < s.size() && s[i] == '/') return true;
-  std::string word(s.substr(0, s.find_first_of(" \t,/")));
-  for (char& c : word) c = char(std::toupper(static_cast<unsigned char>(c)));
-  for (const char* w : {"PARTNO", "PPRINT", "INSERT", "REMARK", "TPRINT", "FINI", "END", "RAPID", "END-OF-PATH", "RETRCT",
-                        "OPSTOP", "STOP"})
-    if (word == w) return true;
-  return false;
+  return major_id(s.substr(0, s.find_first_of(" \t,/"))) != MajorId::Unknown;  // PARTNO text, FINI, RAPID, ...
 }
 
 // A G-code block: `%`, or address words (a letter, then a signed number) with comments in
@@ -66,10 +63,6 @@ bool gcode_block(std::string_view s) {
   }
   return any && motion_or_code;
 }
-
-}  // namespace
-
-namespace {
 
 constexpr size_t kHead = 64 * 1024;
 
@@ -108,10 +101,8 @@ std::optional<SourceLoc> binary_file_given(const SourceFile& src) {
 
 std::optional<GcodeInput> gcode_program_given(const SourceFile& src) {
   const std::string head = head_of(src);
-  const long n = long(head.size());
-  if (n <= 0) return std::nullopt;
   std::string_view text = head;
-  if (size_t(n) == kHead) text = text.substr(0, text.rfind('\n') + 1);  // whole lines only
+  if (head.size() == kHead) text = text.substr(0, text.rfind('\n') + 1);  // whole lines only
   std::optional<GcodeInput> first;
   int blocks = 0, said = 0;
   uint32_t line = 0;
