@@ -81,6 +81,7 @@ bool SourceFile::open(const std::string& path, std::string& error) {
   fd_ = fd;
   size_ = uint64_t(st.st_size);
   drop_end_of_file_marks();
+  detect_cr_line_ends();
   return true;
 }
 
@@ -88,7 +89,22 @@ bool SourceFile::open(const std::string& path, std::string& error) {
 // DNC software still carry it: at the very end it is no text, and the file ends before it.
 void SourceFile::drop_end_of_file_marks() {
   char c;
-  while (size_ > 0 && read_at(size_ - 1, &c, 1) == 1 && c == '\x1A') --size_;
+  while (size_ > 0 && read_raw(size_ - 1, &c, 1) == 1 && c == '\x1A') --size_;
+}
+
+// Classic Mac OS ended lines with CR alone, and text from old Mac CAM stations and some DNC
+// links still does. Such a file has no LF in its head and a CR that is no CR LF's: every CR is
+// then a line end, read as LF. One byte for one, so offsets, columns and the lines a diagnostic
+// shows stay those of the file. A file with LF line ends (or CR LF) keeps a lone CR as a blank.
+void SourceFile::detect_cr_line_ends() {
+  char head[65536];
+  const long n = read_raw(0, head, sizeof head);
+  if (n <= 0) return;
+  const std::string_view text(head, size_t(n));
+  const size_t cr = text.find('\r');
+  if (cr == std::string_view::npos || text.find('\n') != std::string_view::npos) return;
+  // A CR at the very end of the head may be the first half of a CR LF cut by the head's end.
+  cr_line_ends_ = cr + 1 < text.size() || uint64_t(n) == size_;
 }
 
 void SourceFile::open_memory(std::string name, std::string_view text) {
@@ -97,6 +113,7 @@ void SourceFile::open_memory(std::string name, std::string_view text) {
   in_memory_ = true;
   size_ = text.size();
   drop_end_of_file_marks();
+  detect_cr_line_ends();
 }
 
 SourceFile::~SourceFile() {
@@ -104,6 +121,12 @@ SourceFile::~SourceFile() {
 }
 
 long SourceFile::read_at(uint64_t offset, char* dst, size_t n) const {
+  const long got = read_raw(offset, dst, n);
+  if (cr_line_ends_ && got > 0) std::replace(dst, dst + got, '\r', '\n');
+  return got;
+}
+
+long SourceFile::read_raw(uint64_t offset, char* dst, size_t n) const {
   if (offset >= size_) return 0;
   n = size_t(std::min<uint64_t>(n, size_ - offset));  // the file ends at size_ (end-of-file marks)
   if (in_memory_) {

@@ -37,8 +37,11 @@ class SourceFile {
   const std::string& name() const { return name_; }
   // Reads up to `n` bytes at absolute `offset`; returns the count (0 at end, -1 on error).
   // The end is size(): trailing Ctrl-Z bytes (DOS's end-of-file mark) are not part of the file.
+  // In a file whose lines end in CR alone, every CR is read as LF.
   long read_at(uint64_t offset, char* dst, size_t n) const;
   uint64_t size() const { return size_; }
+  // True when the file's lines end in CR alone (classic Mac OS): read_at gives LF for each CR.
+  bool cr_line_ends() const { return cr_line_ends_; }
 
   // The lexer reports how far it has read (for a progress display).
   void on_progress(std::function<void(uint64_t)> f) { progress_ = std::move(f); }
@@ -54,11 +57,14 @@ class SourceFile {
 
  private:
   void drop_end_of_file_marks();
+  void detect_cr_line_ends();
+  long read_raw(uint64_t offset, char* dst, size_t n) const;
   std::string name_;
   int fd_ = -1;
   std::string_view memory_;
   bool in_memory_ = false;
   uint64_t size_ = 0;
+  bool cr_line_ends_ = false;
   std::function<void(uint64_t)> progress_;
   static constexpr uint32_t kCheckpointEvery = 1024;
   std::vector<uint64_t> checkpoints_{0};  // offset of line 1 + k * kCheckpointEvery

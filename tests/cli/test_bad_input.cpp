@@ -103,6 +103,33 @@ TEST(BadInput, DosEndOfFileMark) {
                  "mid.cls:6:1: error: expected a major word at the start of a record, found byte 0x1A");
 }
 
+// Lines that end in CR alone (classic Mac OS) are lines: the program is the one the LF file
+// makes, a free-text record ends at its CR, and an error is located on its own line.
+TEST(BadInput, ClassicMacLineEnds) {
+  const std::string lf = kHead + "PPRINT/ROUGH, THEN FINISH\nGOTO/0,0,5\nGOTO/10,0,5\nGOTO/10,10,5\nFINI\n";
+  std::string cr = lf;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  TempDir lf_dir, cr_dir;  // the same file name: the programs name their source
+  write_file(lf_dir.path("part.cls"), lf);
+  write_file(cr_dir.path("part.cls"), cr);
+  for (TempDir* d : {&lf_dir, &cr_dir}) {
+    RunResult r = run_clpc("compile " + d->path("part.cls") + " -t fanuc-mill -o " + d->path("part.nc"));
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const std::string program = read_file(cr_dir.path("part.nc"));
+  EXPECT_EQ(program, read_file(lf_dir.path("part.nc")));
+  EXPECT_THAT(program, HasSubstr("(ROUGH, THEN FINISH)\nN50 G54 G43 H01 G94 G01 X0. Y0. Z5. F100.\nN60 X10.\nN70 Y10.\n"));
+
+  std::string bad = kHead + "GOTO/0,0,5\nGOTO/1.2.3,0,5\nFINI\n";
+  std::replace(bad.begin(), bad.end(), '\n', '\r');
+  Outcome o = compile_bytes("bad.cls", bad);
+  expect_refused(o, "bad.cls:6:6: error: GOTO: expected a number, found '1.2.3'");
+  EXPECT_THAT(o.err, HasSubstr(" 6 | GOTO/1.2.3,0,5\n"));
+  // In a file with LF line ends a lone CR stays a blank, as before.
+  Outcome mixed = compile_bytes("mixed.cls", kHead + "GOTO/0,0,5\r\nGOTO/10,\r0,5\nFINI\n");
+  EXPECT_EQ(mixed.status, 0) << mixed.err;
+}
+
 TEST(BadInput, BinaryGarbage) {
   std::mt19937 rng(11);
   std::string bytes(64 * 1024, '\0');
