@@ -85,7 +85,7 @@ bool is_control_block(std::string_view t, std::string& why) {
       if (v < t.size() && (t[v] == '+' || t[v] == '-')) ++v;
       size_t d = v;
       bool point = false;
-      while (v < t.size() && (digit(t[v]) || (t[v] == '.' && !point))) point = point || t[v++] == '.';
+      for (; v < t.size() && (digit(t[v]) || (t[v] == '.' && !point)); ++v) point = point || t[v] == '.';
       if (v == d || (v == d + 1 && point)) {
         why = std::string("'") + c + "' at column " + std::to_string(i + 1) + " has no number after it";
         return false;
@@ -96,6 +96,32 @@ bool is_control_block(std::string_view t, std::string& why) {
   }
   (void)words;  // comments alone are a block too
   return true;
+}
+
+std::string axis_words(std::string_view t) {
+  std::string letters;
+  bool dwell = false;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const char c = t[i];
+    if (c == '(') {
+      const size_t close = t.find(')', i);
+      if (close == std::string_view::npos) break;
+      i = close;
+      continue;
+    }
+    if (!upper_letter(c) || (i > 0 && (upper_letter(t[i - 1]) || digit(t[i - 1]) || t[i - 1] == '.'))) continue;
+    if (i + 1 >= t.size() || !(digit(t[i + 1]) || t[i + 1] == '-' || t[i + 1] == '+' || t[i + 1] == '.' ||
+                               t[i + 1] == '#' || t[i + 1] == '['))
+      continue;
+    if (c == 'G') {
+      size_t v = i + 1;
+      while (v < t.size() && t[v] == '0') ++v;
+      if (v < t.size() && t[v] == '4' && (v + 1 >= t.size() || !digit(t[v + 1]))) dwell = true;
+    }
+    if (std::string_view("XYZABCUVW").find(c) != std::string_view::npos && letters.find(c) == std::string::npos)
+      letters.push_back(c);
+  }
+  return dwell ? std::string() : letters;
 }
 
 }  // namespace clpc

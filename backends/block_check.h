@@ -13,4 +13,8 @@ namespace clpc {
 // first thing that is none of these.
 bool is_control_block(std::string_view text, std::string& why);
 
+// The axis letters (X Y Z A B C U V W) that stand as address words in a control block, outside
+// comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.
+std::string axis_words(std::string_view block);
+
 }  // namespace clpc

@@ -70,6 +70,7 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     surface_ = s;
     surface_clamp_ = clamp;
     rpm_fixed_ = false;
+    spindle_rpm_ = 0;  // the speed follows the diameter
   } else {
     surface_.reset();
     rpm_fixed_ = false;
@@ -82,6 +83,7 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.word('S', s.speed);
     e_.code(dir);
     e_.end();
+    spindle_rpm_ = s.speed;
   }
   spindle_ = s.dir;
 }

@@ -242,6 +242,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             e_.comment(text);
             return;
           }
+          if (const std::string axes = axis_words(text); !axes.empty())
+            d_.warning(loc, "INSERT '" + std::string(text) + "' holds axis words (" + axes +
+                                "): it is written as given, and what it moves is not checked against the CL "
+                                "(the certificate follows the CL's own moves)", "insert");
           e_.line(text);
           // The inserted line may do anything: write every modal word again after it.
           motion_ = Motion::None;
@@ -475,8 +479,16 @@ void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
 void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
   double seconds = d.value;
   if (d.revolutions) {
-    d_.error(loc, "DELAY/REV: dwell in revolutions is not supported; give seconds");
-    return;
+    // A dwell of so many turns lasts as long as the spindle takes to make them at the speed in
+    // force; controls dwell in seconds (or ms), so it is written as that time. Without a fixed
+    // speed (stopped, or constant surface speed on a lathe) no time is known.
+    if (spindle_ == ir::SpindleDir::Off || !(spindle_rpm_ > 0)) {
+      d_.error(loc, std::string("DELAY/REV: a dwell of ") + num_text(d.value) + " revolutions needs the spindle turning at a " +
+                        (spindle_ == ir::SpindleDir::Off ? "set speed, and it is stopped here" : "fixed rpm (not constant surface speed)") +
+                        "; give the dwell in seconds");
+      return;
+    }
+    seconds = d.value * 60 / spindle_rpm_;
   }
   e_.begin(loc);
   e_.code(m_.codes.dwell, TemplateVars().with(Var::Seconds, seconds).with(Var::Milliseconds, seconds * 1000));

@@ -193,6 +193,13 @@ class Interp {
       else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5))
         tcp_ = true, length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
       else if (is_g(g, 187) || is_g(g, 5.1)) {}  // smoothing (Haas), AI contour control (Fanuc): the path is the same
+      // Codes that change how fast the tool goes along the path, never where: exact stop (G09
+      // one block, G61 modal), cutting mode (G64), tapping mode (G63), automatic corner override
+      // (G62), look-ahead (G08 P1/P0; Haas G103 P limits it), high-speed contouring (Fanuc
+      // G05 P10000/P0; Haas's G05 turns the spindle by R and is not this), polar coordinates
+      // off (G15). CAM users write them with INSERT or PREFUN.
+      else if (is_g(g, 9) || is_g(g, 61) || is_g(g, 62) || is_g(g, 63) || is_g(g, 64) || is_g(g, 8) ||
+               is_g(g, 103) || is_g(g, 15) || (is_g(g, 5) && has('P') && !has('R'))) {}
       else if (is_g(g, 68.2) || is_g(g, 268)) plane_set = true;
       else if (is_g(g, 69) || is_g(g, 269)) plane_cancel = true;
       else if (is_g(g, 53.1)) {}
@@ -225,7 +232,9 @@ class Interp {
       else if ((is_g(g, 98) || is_g(g, 99)) && !lathe) cycle_return_initial_ = is_g(g, 98);
       else if (is_g(g, 96) && lathe) css_ = true;
       else if (is_g(g, 97) && lathe) css_ = false;
-      else problem(line, "G" + fmt(g) + " is not a code clpc's reader knows");
+      else
+        problem(line, "G" + fmt(g) + " is not a code clpc's reader knows, so the program cannot be checked against the "
+                      "CL (written by an INSERT or PREFUN? compile with --no-verify to take it unchecked)");
     }
     if (motion_word && !new_cycle) cycle_ = 0, cycle_on_ = false;  // a motion code cancels a canned cycle
     if (new_offset > 0) work_offset_ = new_offset;

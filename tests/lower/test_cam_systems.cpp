@@ -330,3 +330,36 @@ TEST(CamSystems, FlippedFrameBeyondTheRotariesIsASetup) {
   EXPECT_THAT(c.output, HasSubstr("G55"));
   verifies(cl, haas);
 }
+
+// What shops put in INSERT and PREFUN records around a finish: codes that change how fast the
+// tool goes along the path, never where (high-speed and AI contour modes, look-ahead, exact
+// stop and cutting mode). They are written as given and read back as such, so the program is
+// certified; a dwell in revolutions lasts as long as the spindle takes to make them.
+// (INSERT/G05.1 Q1 once hung the compile: the block check's number scan stopped advancing
+// after a decimal point.)
+TEST(CamSystems, SpeedCodesInInsertsAndDwellsInRevolutions) {
+  const std::string cl =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1200,CLW\nFEDRAT/MMPM,300\nRAPID\nGOTO/0,0,10\nINSERT/G05.1 Q1\n"
+      "INSERT/G05 P10000\nPREFUN/61\nINSERT/G08 P1\nGOTO/0,0,-1\nGOTO/10,0,-1\nDELAY/REV,5\nINSERT/G64\n"
+      "GOTO/10,10,-1\nINSERT/G05.1 Q0\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(messages(c.diags), "");
+  EXPECT_THAT(c.output, HasSubstr("\nN60 G43 H01 Z10.\nG05.1 Q1\nG05 P10000\nG61\nG08 P1\nN70 G94 G01 X0. Y0. Z-1. F300.\n"));
+  // 5 turns at 1200 rpm: 0.25 s, in the Fanuc's milliseconds.
+  EXPECT_THAT(c.output, HasSubstr("\nN80 X10.\nN90 G04 P250\nG64\nN100 G01 X10. Y10. Z-1. F300.\nG05.1 Q0\n"));
+  verifies(cl, machine("fanuc-mill"));
+  // An INSERT that moves an axis is written, and said not to be checked (a dwell's X is no axis).
+  Compiled moved = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1200,CLW\nRAPID\nGOTO/0,0,10\nINSERT/G00 Z-30. (DOWN)\n"
+                                "INSERT/G04 X1.5\nRAPID\nGOTO/0,0,20\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(moved.ok) << moved.diags;
+  EXPECT_EQ(messages(moved.diags),
+            "part.cls:6:1: warning: INSERT 'G00 Z-30. (DOWN)' holds axis words (Z): it is written as given, and what it "
+            "moves is not checked against the CL (the certificate follows the CL's own moves) [-Winsert]\n");
+  // With the spindle stopped no time is known: refused where it stands.
+  Compiled stopped = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/OFF\nDELAY/REV,5\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(stopped.ok);
+  EXPECT_THAT(stopped.diags, HasSubstr(":4:1: error: DELAY/REV: a dwell of 5 revolutions needs the spindle turning at a set "
+                                       "speed, and it is stopped here; give the dwell in seconds"));
+}
