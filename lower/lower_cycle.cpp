@@ -172,6 +172,10 @@ void Lowerer::lower_cycle(const Record& r) {
       return false;
     };
     if (w == "DEPTH" || w == "FEDTO") {
+      // NX writes FEDTO as a signed distance along the tool axis from the hole's top, so a hole
+      // below it is negative (its posts take the bottom as the point + FEDTO x the tool axis);
+      // a positive one is read as the depth, as other systems write it.
+      if (w == "FEDTO" && v < 0 && info_.cam == ir::CamSystem::Nx) v = -v;
       if (!non_negative("the depth")) return;
       c.depth = v;
       depth = true;

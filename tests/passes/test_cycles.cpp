@@ -37,6 +37,22 @@ TEST(Cycles, NxDrillKeywordsInAnotherOrder) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,MMPM,80,CLEAR,2,DEPTH,5"), cycle_blocks("CYCLE/DRILL,FEDTO,5,RAPTO,2,MMPM,80"));
 }
 
+// NX writes FEDTO signed along the tool axis from the hole's top: a hole below is negative
+// (its posts put the bottom at the point + FEDTO x the tool axis). In a file NX wrote (its
+// TOOL PATH records say so) -12 is 12 deep; elsewhere a negative depth is still refused.
+TEST(Cycles, NxNegativeFeedToIsTheDepthBelowTheTop) {
+  const std::string nx = "TOOL PATH/DRILLING,TOOL,STD_DRILL_6\n";
+  Compiled c = compile_text(nx + kHead + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-12.0000,RTRCTO,AUTO,MMPM,250.0000\n"
+                                         "GOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\nEND-OF-PATH\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G98 G81 X10. Y10. Z-12. R3. F250.\n"));
+  Compiled other = compile_text(std::string(kHead) + "CYCLE/DRILL,RAPTO,3,FEDTO,-12,MMPM,250\nGOTO/10,10,0\nCYCLE/OFF\n",
+                                machine("fanuc-mill"));
+  EXPECT_FALSE(other.ok);
+  EXPECT_THAT(other.diags, HasSubstr(":7:27: error: CYCLE: the depth must not be negative, found -12"));
+}
+
 TEST(Cycles, FeedFromFedratWhenTheCycleGivesNone) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEPTH,5,CLEAR,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN80 X30.\nN90 G80");
 }
