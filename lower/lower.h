@@ -152,6 +152,14 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
+  // The last FEDRAT's mode and unit (factor to program units), which a FEDRAT without a unit
+  // word keeps, and where it was given.
+  struct FeedUnit {
+    ir::FeedMode mode = ir::FeedMode::PerMinute;
+    double to_program = 1;
+    SourceLoc loc;
+  };
+  std::optional<FeedUnit> last_feed_unit_;
 
   struct PendingArc {
     ir::Arc arc;

@@ -90,11 +90,12 @@ void Lowerer::lower_spindle(const Record& r) {
 void Lowerer::lower_feed(const Record& r) {
   ParamReader ps(r, d_);
   ir::Feed f;
-  bool have = false;
+  bool have = false, worded = false;
   double to_program = 1;  // factor from the record's length unit to program units
   const double prog_mm = ir::mm_per_unit(info_.units);
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
+    if (!p.is_number()) worded = true;
     if (p.is_number()) {
       if (have) {
         d_.error(p.loc, "FEDRAT: more than one value");
@@ -133,6 +134,18 @@ void Lowerer::lower_feed(const Record& r) {
     d_.error(r.loc, "FEDRAT: the feed must be greater than zero, found " + num_text(f.value));
     return;
   }
+  // A FEDRAT without a unit word keeps the unit the last one named (APT's feed mode is modal:
+  // FEDRAT/0.2,MMPR then FEDRAT/0.3 is 0.3 mm per revolution). Before any, per minute in the
+  // program's units. Inverse time is never kept: it belongs to the moves it was written for.
+  if (!worded && last_feed_unit_ && last_feed_unit_->mode != ir::FeedMode::InverseTime) {
+    f.mode = last_feed_unit_->mode;
+    to_program = last_feed_unit_->to_program;
+    if (f.mode == ir::FeedMode::PerRev)
+      d_.warning(r.loc, "FEDRAT/" + num_text(f.value) + " has no unit word: per revolution, as the FEDRAT at line " +
+                            std::to_string(last_feed_unit_->loc.line) + " set it (the feed mode stays until a FEDRAT names another)",
+                 "feed-unit");
+  }
+  if (worded) last_feed_unit_ = FeedUnit{f.mode, to_program, r.loc};
   if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
   ensure_operation(r.loc);
   push(r.loc, f);

@@ -363,3 +363,22 @@ TEST(CamSystems, SpeedCodesInInsertsAndDwellsInRevolutions) {
   EXPECT_THAT(stopped.diags, HasSubstr(":4:1: error: DELAY/REV: a dwell of 5 revolutions needs the spindle turning at a set "
                                        "speed, and it is stopped here; give the dwell in seconds"));
 }
+
+// APT's feed mode is modal: a FEDRAT without a unit word keeps the mode and unit of the last
+// one that named them (ISO 4343 posts, G-Post, IMSpost), per minute in the program's units
+// before any. Per revolution kept is said, since a feed per minute read per revolution would be
+// a crash; inverse time is never kept.
+TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/200\nGOTO/0,0,1\nFEDRAT/0.2,MMPR\nGOTO/10,0,1\n"
+                         "FEDRAT/0.3\nGOTO/20,0,1\nFEDRAT/IPM,10\nGOTO/30,0,1\nFEDRAT/20\nGOTO/40,0,1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(messages(c.diags),
+            "part.cls: warning: the file says its units are millimetres, but the feed at line 10 is in inches: if its "
+            "numbers are inches, --input-units inch reads them so [-Wunits]\n"
+            "part.cls:8:1: warning: FEDRAT/0.3 has no unit word: per revolution, as the FEDRAT at line 6 set it (the feed "
+            "mode stays until a FEDRAT names another) [-Wfeed-unit]\n");
+  EXPECT_THAT(c.output, HasSubstr(" G94 G01 X0. Y0. Z1. F200.\nN60 G95 X10. F0.2\nN70 X20. F0.3\nN80 G94 X30. F254.\n"
+                                  "N90 X40. F508.\n"));
+  verifies(cl, machine("fanuc-mill"));
+}
