@@ -116,6 +116,7 @@ class ProgramWriter : public Backend {
   ir::CoolantKind coolant_ = ir::CoolantKind::Off;
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
+  bool comp_on_ = false;  // G41/G42 written and no G40 since
   bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental
   bool position_known_ = false;
   bool cut_since_stop_ = false;     // something moved since the program start or the last M01

@@ -55,6 +55,15 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
 
 void ProgramWriter::end() {
   cancel_cycle({});
+  // Compensation still on (a CUTCOM/OFF with no move after it, or none at all) is cancelled
+  // before the finish's moves: the retract and park are no compensated path.
+  if (comp_on_) {
+    e_.begin({});
+    e_.code(m_.codes.comp_off);
+    e_.end();
+    comp_on_ = false;
+  }
+  comp_pending_set_ = false;
   write_smoothing(false);
   // The finish sequence, less a spindle or coolant stop the program has already made; the
   // park blocks before its last block (the program end, M30).
@@ -506,6 +515,7 @@ void ProgramWriter::comp_code() {
             TemplateVars().with(Var::Register, reg).with(Var::Tip, m_.lathe.tip));
   }
   comp_pending_set_ = false;
+  comp_on_ = c.side != ir::CompSide::Off;
 }
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {

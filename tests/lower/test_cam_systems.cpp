@@ -382,3 +382,16 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
                                   "N90 X40. F508.\n"));
   verifies(cl, machine("fanuc-mill"));
 }
+
+// Cutter compensation left on at the end (CUTCOM/OFF with no move after it, or never turned
+// off) is cancelled before the finish's retract: G40 alone, then the finish.
+TEST(CamSystems, CompensationStillOnAtTheEndIsCancelledBeforeTheFinish) {
+  for (const char* off : {"CUTCOM/OFF\n", ""}) {
+    const std::string cl = std::string("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nGOTO/0,-10,-1\n"
+                                       "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\n") + off + "FINI\n";
+    Compiled c = compile_text(cl, machine("fanuc-mill"));
+    ASSERT_TRUE(c.ok) << c.diags;
+    EXPECT_THAT(c.output, HasSubstr("N60 G41 D1 Y0.\nN70 X20.\nN80 G40\nN90 M05\nN100 G91 G28 Z0.\n")) << off;
+    verifies(cl, machine("fanuc-mill"));
+  }
+}
