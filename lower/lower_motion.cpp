@@ -122,6 +122,15 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
   double s1 = n.dot(rprev.cross(re));
   double s2 = n.dot(re.cross(rp));
   if (s1 * s2 <= 0) return false;
+  // Creo writes an arc's intermediate points as far apart as it likes (the evidence for joining
+  // them). Other systems' CL (APT's points after a CIRCLE) keeps each chord within the CAM
+  // tolerance of the arc, so a step whose chord leaves the arc by more than 0.01 mm is a
+  // straight move that ends on the circle (a hexagon's edge after a corner arc), never an
+  // arc: cut round, it would gouge by its sagitta. A closer step is the same cut either way.
+  if (info_.cam != ir::CamSystem::Creo) {
+    const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
+    if (arc->radius * (1 - std::cos(step / 2)) > 0.01 / ir::mm_per_unit(info_.units)) return false;
+  }
   double turned = 0;
   ir::Vec3 q = rs;
   for (uint32_t k = 0; k < arc->via_count; ++k) {

@@ -86,11 +86,23 @@ TEST(Lower, CircleNxTimesIsExtraTurns) {
 }
 
 TEST(Lower, CreoIntermediatePointsJoinTheArc) {
-  // Two points further along the same circle, the same way round: one arc.
-  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/-10,0,0\nGOTO/0,-10,0\nGOTO/0,-20,0\n"),
+  // In a file Creo wrote ($$-> data comments), two points further along the same circle, the
+  // same way round: one arc.
+  const std::string path = "GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/-10,0,0\nGOTO/0,-10,0\nGOTO/0,-20,0\n";
+  EXPECT_THAT(instrs("$$-> MFGNO / 1\n" + path),
               ElementsAre("feed (10, 0, 0)",
                           "arc ? to (0, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (0, 10, 0) via (-10, 0, 0)",
                           "feed (0, -20, 0)"));
+  // Elsewhere (APT's points after a CIRCLE keep each chord within the CAM tolerance of the
+  // arc) a step whose chord leaves the arc by more than 0.01 mm is a straight move: these are
+  // a quarter circle and three chords of 2.9 mm sagitta (a square's edges after a corner arc).
+  EXPECT_THAT(instrs(path), ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
+                                        "feed (-10, 0, 0)", "feed (0, -10, 0)", "feed (0, -20, 0)"));
+  // Points as close as an APT processor's (2 degrees apart: 0.0015 mm) join the arc anywhere.
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/9.993908,0.348995,0\nGOTO/9.975641,0.697565,0\nGOTO/20,0,0\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (9.975641, 0.697565, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (9.993908, 0.348995, 0)",
+                          "feed (20, 0, 0)"));
 }
 
 TEST(Lower, RetractAfterArcIsNotAnIntermediatePoint) {
