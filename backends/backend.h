@@ -67,6 +67,7 @@ class ProgramWriter : public Backend {
   void comp_code();
   // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
   bool spindle_within_limit(double rpm, SourceLoc loc);
+  bool tool_loaded_for_cut(SourceLoc loc);  // false (and an error, once) when no tool is loaded
   void write_header(const ir::ProgramInfo& info);
   long program_number(const ir::ProgramInfo& info) const;
   void write_coolant(const ir::Coolant& c, SourceLoc loc);
@@ -117,6 +118,7 @@ class ProgramWriter : public Backend {
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
   bool comp_on_ = false;  // G41/G42 written and no G40 since
+  bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once
   bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental
   bool position_known_ = false;
   bool cut_since_stop_ = false;     // something moved since the program start or the last M01

@@ -119,6 +119,8 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!in_plane(mv.point, loc)) return;
+  // (No tool loaded is no error here, unlike on a mill: nothing cancels the offset of the tool
+  // the turret holds, which a program without T cuts with; the mill's start block has G49.)
   if (thread_ && mv.kind == ir::MoveKind::Feed && is_thread_cut(pos_, mv.point)) {
     write_thread_move(mv, loc);
     return;

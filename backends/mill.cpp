@@ -86,6 +86,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!check_axis(mv.axis, loc)) return;
+  if (mv.kind == ir::MoveKind::Feed && !tool_loaded_for_cut(loc)) return;
   if (m_.kinematics.has_rotaries() && !mv.has_rotary) {
     d_.error(loc, "internal: a move without rotary positions on a five-axis machine (is 'kinematics' in the pipeline?)");
     return;

@@ -365,6 +365,18 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   e_.end();
 }
 
+// No tool change before the first cut on a mill: its start block cancels length compensation
+// (G49), so no tool length offset is in force and the gauge line, not the tip, would go to the
+// CL's points. Said once.
+bool ProgramWriter::tool_loaded_for_cut(SourceLoc loc) {
+  if (tool_ >= 0) return true;
+  if (!no_tool_reported_)
+    d_.error(loc, "cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, TURRET), so no "
+                  "tool length offset is in force; add LOADTL/n before it, or have the CAM system write its tool change");
+  no_tool_reported_ = true;
+  return false;
+}
+
 bool ProgramWriter::spindle_within_limit(double rpm, SourceLoc loc) {
   const double limit = m_.spindle_limit();
   if (limit <= 0 || rpm <= limit) return true;

@@ -150,7 +150,8 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
 // Motion before any tool is loaded, in a file that loads tools later: no tool length offset is
 // in force to move by. A rapid there is where the tool starts (CATIA writes its start point
 // before the first tool change), taken as FROM with a warning; cutting motion is an error.
-// (Files that load no tool at all are programs for the tool already in the spindle.)
+// (A file that loads no tool at all is the backend's to judge: a mill refuses its first cut, a lathe
+// cuts with the tool the turret holds.)
 bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
   if (tool_ >= 0 || info_.tools.empty()) return true;
   const ir::ToolInfo& first = info_.tools.front();

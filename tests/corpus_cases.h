@@ -16,6 +16,7 @@ struct CorpusCase {
   const char* error;    // "" to be posted; else the located error (":line:col: error: ...")
   const char* why;      // for a refusal, or a machine that is not a built-in
   const char* input_units = "";  // "mm" or "inch": the file's UNITS record is wrong
+  bool machine_error = false;    // the error is the backend's (what a machine needs), not the front end's
 };
 
 inline const std::vector<CorpusCase>& corpus_cases() {
@@ -47,7 +48,11 @@ inline const std::vector<CorpusCase>& corpus_cases() {
       {"nist/dwnhole.ncl.3", "a-rotary-5x", "", "ten flutes at ten A positions (ROTATE/AAXIS): a continuous A about X"},
       {"nist/helical.ncl.1", "haas-umc750", "", "UNITS/INCHES, but its numbers are millimetres (a 10-inch cutter at 5 rpm)",
        "mm"},
-      {"nist/holemaking_cycle.ncl", "fanuc-mill", "", ""},
+      {"nist/holemaking_cycle.ncl", "fanuc-mill",
+       ":4:1: error: cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, TURRET), so no "
+       "tool length offset is in force",
+       "a ten-line fragment: two feeds down with no tool and no spindle; posted, the gauge line would go to the hole", "",
+       true},
       {"nist/look.ncl.1", "haas-umc750", "", "the milling of a mill-turn part, about X and Z"},
       {"nist/multi_axis1.ncl.2", "haas-umc750", "", "five-axis"},
       {"nist/thread_mill.ncl", "fanuc-mill", "", ""},

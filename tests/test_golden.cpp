@@ -65,7 +65,6 @@ TEST(Golden, CorpusPrograms) {
       {"nist/turn_op10.ncl.4", "fanuc-lathe"},       {"nist/b_turn_1.ncl.1", "fanuc-lathe"},
       {"nist/b_turn_innr.ncl.4", "fanuc-lathe"},     {"nist/b_turn_groove2.ncl.1", "fanuc-lathe"},
       {"creopost/bohren_1.ncl.8", "fanuc-mill"},     {"creopost/bohren_1.ncl.8", "haas-umc750"},
-      {"nist/holemaking_cycle.ncl", "fanuc-mill"},   {"nist/holemaking_cycle.ncl", "haas-umc750"},
   };
   bool update = std::getenv("CLPC_UPDATE_GOLDEN") != nullptr;
   for (const auto& [file, name] : cases) {

@@ -270,7 +270,7 @@ std::vector<Subject> subjects(const std::string& scratch) {
              {"nist/multi_axis1.ncl.2", "haas-umc750", "five-axis (Creo)"},
              {"nx-course/APT_Variable_Axis.cls", "haas-umc750", "five-axis (NX)"},
              {"catia/peening.aptsource", "haas-umc750", "five-axis (CATIA)"},
-             {"nist/holemaking_cycle.ncl", "fanuc-mill", "drilling cycles"},
+             {"catia/karlo_DEMO4.aptsource", "fanuc-mill", "peck drilling (CATIA)"},
              {"nist/casting_drill_tap.ncl.1", "haas-umc750", "3+2 drilling and tapping"},
              {"nist/turn_op10.ncl.4", "fanuc-lathe", "lathe"},
              {"nist/b_turn_groove2.ncl.1", "fanuc-lathe", "lathe grooves"},
