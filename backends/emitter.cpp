@@ -201,7 +201,8 @@ std::string Emitter::clean_comment(std::string_view text) const {
   std::string out;
   out.reserve(text.size());
   for (unsigned char ch : text) {
-    bool bad = ch < 0x20 || ch >= 0x7f || c.open.find(char(ch)) != std::string::npos ||
+    // '%' is the tape mark: a control loading the file stops at the first one, wherever it stands.
+    bool bad = ch < 0x20 || ch >= 0x7f || ch == '%' || c.open.find(char(ch)) != std::string::npos ||
                c.close.find(char(ch)) != std::string::npos;
     if (bad) {
       out += c.replacement;

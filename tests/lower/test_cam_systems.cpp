@@ -395,3 +395,16 @@ TEST(CamSystems, CompensationStillOnAtTheEndIsCancelledBeforeTheFinish) {
     verifies(cl, machine("fanuc-mill"));
   }
 }
+
+// '%' is the tape mark: Fanuc and Haas controls loading a file stop at the first one, so a
+// part name or note that holds one ("50% SCALE") must not carry it into a comment.
+TEST(CamSystems, APercentSignNeverReachesTheProgram) {
+  const std::string cl = "PARTNO 50% SCALE\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\n"
+                         "PPRINT RPM 100% ; CHECK\nGOTO/0,0,1\nFINI\n";
+  for (const char* name : {"fanuc-mill", "haas-umc750"}) {
+    Compiled c = compile_text(cl, machine(name));
+    ASSERT_TRUE(c.ok) << c.diags;
+    EXPECT_EQ(std::count(c.output.begin(), c.output.end(), '%'), 2) << c.output;  // the two tape marks
+    EXPECT_THAT(c.output, HasSubstr("(RPM 100 ; CHECK)\n")) << name;
+  }
+}
