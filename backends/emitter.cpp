@@ -98,14 +98,28 @@ void Emitter::forget_all() {
 
 void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, std::string& word) {
   char letter = 0;
-  for (const CodeTemplate::Piece& p : w) {
+  for (size_t i = 0; i < w.size(); ++i) {
+    const CodeTemplate::Piece& p = w[i];
     if (p.var < 0) {
       word += p.literal;
       continue;
     }
     double x = (v.set >> unsigned(p.var)) & 1u ? v.value[size_t(p.var)] : 0.0;
     if (p.width > 0) {
-      append_int(std::llround(x), p.width, word);
+      // A width pads to so many digits. Where another number stands against it in the same word
+      // it is also the most there is room for: T{tool:2}{offset:2} with tool 112 would read as
+      // another tool and offset (T112112).
+      const long long n = std::llround(x);
+      long long room = 1;
+      for (int k = 0; k < p.width; ++k) room *= 10;
+      const bool joined = (i + 1 < w.size() && w[i + 1].var >= 0) || (i > 0 && w[i - 1].var >= 0);
+      if (joined && (n < 0 || n >= room)) {
+        d_.error(loc_, std::string(var_name(Var(p.var))) + " " + std::to_string(n) + " does not fit the " +
+                           std::to_string(p.width) + " digits the machine's code gives it ({" + std::string(var_name(Var(p.var))) +
+                           ":" + std::to_string(p.width) + "}): the control would read another number");
+        continue;
+      }
+      append_int(n, p.width, word);
       continue;
     }
     if (!word.empty()) letter = word[0];

@@ -408,3 +408,20 @@ TEST(CamSystems, APercentSignNeverReachesTheProgram) {
     EXPECT_THAT(c.output, HasSubstr("(RPM 100 ; CHECK)\n")) << name;
   }
 }
+
+// A number too long for its fixed width in a machine's code (the lathe's T{tool:2}{offset:2})
+// is an error at the record: T112112 or T05105 would be read as another tool and offset.
+TEST(CamSystems, AToolNumberTooLongForTheLathesTWordIsRefusedAtItsRecord) {
+  const std::string rest = "SPINDL/RPM,500,CLW\nFEDRAT/MMPR,0.1\nRAPID\nGOTO/20,0,2\nGOTO/20,0,-10\nFINI\n";
+  Compiled big = compile_text("UNITS/MM\nLOADTL/112\n" + rest, machine("fanuc-lathe"));
+  EXPECT_FALSE(big.ok);
+  EXPECT_THAT(messages(big.diags), HasSubstr("part.cls:2:1: error: tool 112 does not fit the 2 digits the machine's code gives "
+                                             "it ({tool:2}): the control would read another number\n"));
+  Compiled offset = compile_text("UNITS/MM\nLOADTL/5,OSETNO,105\n" + rest, machine("fanuc-lathe"));
+  EXPECT_FALSE(offset.ok);
+  EXPECT_EQ(messages(offset.diags), "part.cls:2:1: error: offset 105 does not fit the 2 digits the machine's code gives it "
+                                    "({offset:2}): the control would read another number\n");
+  Compiled fits = compile_text("UNITS/MM\nLOADTL/5,OSETNO,15\n" + rest, machine("fanuc-lathe"));
+  ASSERT_TRUE(fits.ok) << fits.diags;
+  EXPECT_THAT(fits.output, HasSubstr("T0515"));
+}
