@@ -19,8 +19,9 @@ bool macro_statement(std::string_view t) {
   int depth = 0;
   for (char c : t) {
     if (c == '[') ++depth;
-    else if (c == ']' && --depth < 0) return false;
-    else if (!(upper_letter(c) || digit(c) || blank(c) || c == '#' || c == '.' || c == '+' || c == '-' || c == '*' ||
+    else if (c == ']') {
+      if (--depth < 0) return false;
+    } else if (!(upper_letter(c) || digit(c) || blank(c) || c == '#' || c == '.' || c == '+' || c == '-' || c == '*' ||
                c == '/' || c == '=' || c == ','))
       return false;
   }
@@ -34,6 +35,11 @@ bool is_control_block(std::string_view t, std::string& why) {
   while (!t.empty() && blank(t.back())) t.remove_suffix(1);
   if (t.empty()) {
     why = "it is empty";
+    return false;
+  }
+  // '%' is the tape mark: a control loading the file stops at it, even inside a comment.
+  if (t.find('%') != std::string_view::npos) {
+    why = "'%' is the tape mark, which ends the program where the control loads it";
     return false;
   }
   if (macro_statement(t)) return true;
@@ -109,7 +115,9 @@ std::string axis_words(std::string_view t) {
       i = close;
       continue;
     }
-    if (!upper_letter(c) || (i > 0 && (upper_letter(t[i - 1]) || digit(t[i - 1]) || t[i - 1] == '.'))) continue;
+    // A letter after a letter is part of a word (GOTO, SIN, LT); after a digit or a point it
+    // starts the next address of a packed block (G00Z-30., X10.Y5.).
+    if (!upper_letter(c) || (i > 0 && upper_letter(t[i - 1]))) continue;
     if (i + 1 >= t.size() || !(digit(t[i + 1]) || t[i + 1] == '-' || t[i + 1] == '+' || t[i + 1] == '.' ||
                                t[i + 1] == '#' || t[i + 1] == '['))
       continue;

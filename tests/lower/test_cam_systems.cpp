@@ -350,13 +350,22 @@ TEST(CamSystems, SpeedCodesInInsertsAndDwellsInRevolutions) {
   EXPECT_THAT(c.output, HasSubstr("\nN80 X10.\nN90 G04 P250\nG64\nN100 G01 X10. Y10. Z-1. F300.\nG05.1 Q0\n"));
   verifies(cl, machine("fanuc-mill"));
   // An INSERT that moves an axis is written, and said not to be checked (a dwell's X is no axis).
+  // Packed blocks too; a macro's words (GT, GOTO, SIN) are no addresses. A '%' (the tape mark)
+  // never reaches the program, not even in an INSERT's comment.
   Compiled moved = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1200,CLW\nRAPID\nGOTO/0,0,10\nINSERT/G00 Z-30. (DOWN)\n"
-                                "INSERT/G04 X1.5\nRAPID\nGOTO/0,0,20\nFINI\n",
+                                "INSERT/G04 X1.5\nINSERT/G0X10.Y5.\nINSERT/G04X1.5\nINSERT/IF[#1GT0]GOTO10\n"
+                                "INSERT/#1=SIN[#2]\nINSERT/G04 P500 (50% FEED)\nRAPID\nGOTO/0,0,20\nFINI\n",
                                 machine("fanuc-mill"));
   ASSERT_TRUE(moved.ok) << moved.diags;
   EXPECT_EQ(messages(moved.diags),
             "part.cls:6:1: warning: INSERT 'G00 Z-30. (DOWN)' holds axis words (Z): it is written as given, and what it "
-            "moves is not checked against the CL (the certificate follows the CL's own moves) [-Winsert]\n");
+            "moves is not checked against the CL (the certificate follows the CL's own moves) [-Winsert]\n"
+            "part.cls:8:1: warning: INSERT 'G0X10.Y5.' holds axis words (XY): it is written as given, and what it "
+            "moves is not checked against the CL (the certificate follows the CL's own moves) [-Winsert]\n"
+            "part.cls:12:1: warning: INSERT 'G04 P500 (50% FEED)' is no block the control reads ('%' is the tape mark, "
+            "which ends the program where the control loads it): written as a comment (program.inserts = \"raw\" writes "
+            "it as it is) [-Winsert]\n");
+  EXPECT_THAT(moved.output, HasSubstr("\nG04X1.5\nIF[#1GT0]GOTO10\n#1=SIN[#2]\n(G04 P500 50 FEED)\n"));
   // With the spindle stopped no time is known: refused where it stands.
   Compiled stopped = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/OFF\nDELAY/REV,5\nFINI\n", machine("fanuc-mill"));
   EXPECT_FALSE(stopped.ok);
