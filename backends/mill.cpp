@@ -326,6 +326,7 @@ void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
 
 void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
   if (!check_axis(a.tool_axis, loc)) return;
+  if (!tool_loaded_for_cut(loc)) return;
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
     return;
@@ -422,6 +423,7 @@ void MillBackend::cancel_cycle(SourceLoc loc) {
 void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc) {
   const ir::CycleSpec& c = op.cycles.at(h.spec);
   if (!check_axis(h.axis, loc)) return;
+  if (!tool_loaded_for_cut(loc)) return;
   const Codes& k = m_.codes;
   const CodeTemplate* code = nullptr;
   switch (c.kind) {

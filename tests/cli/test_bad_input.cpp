@@ -209,6 +209,13 @@ TEST(BadInput, GotoBeforeAnyToolIsLoaded) {
                  "none.cls:6:1: error: cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, "
                  "TURRET), so no tool length offset is in force; add LOADTL/n before it, or have the CAM system write its "
                  "tool change");
+  // An arc or a drilled hole is a cut too.
+  expect_refused(compile_bytes("arc.cls", "UNITS/MM\nSPINDL/RPM,100,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,0,0\n"
+                                          "CIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\n"),
+                 "arc.cls:6:1: error: cutting with no tool loaded");
+  expect_refused(compile_bytes("hole.cls", "UNITS/MM\nSPINDL/RPM,100,CLW\nRAPID\nGOTO/10,0,5\nCYCLE/DRILL,DEPTH,5,CLEAR,2,MMPM,50\n"
+                                           "GOTO/10,0,0\nCYCLE/OFF\n"),
+                 "hole.cls:6:1: error: cutting with no tool loaded");
 }
 
 TEST(BadInput, ContinuationAtEndOfFile) {
