@@ -106,13 +106,17 @@ void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, st
     }
     double x = (v.set >> unsigned(p.var)) & 1u ? v.value[size_t(p.var)] : 0.0;
     if (p.width > 0) {
-      // A width pads to so many digits. Where another number stands against it in the same word
-      // it is also the most there is room for: T{tool:2}{offset:2} with tool 112 would read as
+      // A width pads to so many digits. Where another number or a digit stands against it in
+      // the same word it is also the most there is room for: T{tool:2}{offset:2} with tool 112 would read as
       // another tool and offset (T112112).
       const long long n = std::llround(x);
       long long room = 1;
       for (int k = 0; k < p.width; ++k) room *= 10;
-      const bool joined = (i + 1 < w.size() && w[i + 1].var >= 0) || (i > 0 && w[i - 1].var >= 0);
+      auto digit_at = [](const std::string& l, bool end) {
+        return !l.empty() && (end ? l.back() : l.front()) >= '0' && (end ? l.back() : l.front()) <= '9';
+      };
+      const bool joined = (i + 1 < w.size() && (w[i + 1].var >= 0 || digit_at(w[i + 1].literal, false))) ||
+                          (i > 0 && (w[i - 1].var >= 0 || digit_at(w[i - 1].literal, true)));
       if (joined && (n < 0 || n >= room)) {
         d_.error(loc_, std::string(var_name(Var(p.var))) + " " + std::to_string(n) + " does not fit the " +
                            std::to_string(p.width) + " digits the machine's code gives it ({" + std::string(var_name(Var(p.var))) +

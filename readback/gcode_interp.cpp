@@ -196,10 +196,12 @@ class Interp {
       // Codes that change how fast the tool goes along the path, never where: exact stop (G09
       // one block, G61 modal), cutting mode (G64), tapping mode (G63), automatic corner override
       // (G62), look-ahead (G08 P1/P0; Haas G103 P limits it), high-speed contouring (Fanuc
-      // G05 P10000/P0; Haas's G05 turns the spindle by R and is not this), polar coordinates
-      // off (G15). CAM users write them with INSERT or PREFUN.
+      // G05 P10000/P0; other P values run stored high-speed cycles, and Haas's G05 turns the
+      // spindle by R: neither is this), polar coordinates off (G15). CAM users write them with
+      // INSERT or PREFUN.
       else if (is_g(g, 9) || is_g(g, 61) || is_g(g, 62) || is_g(g, 63) || is_g(g, 64) || is_g(g, 8) ||
-               is_g(g, 103) || is_g(g, 15) || (is_g(g, 5) && has('P') && !has('R'))) {}
+               is_g(g, 103) || is_g(g, 15) ||
+               (is_g(g, 5) && has('P') && !has('R') && (std::abs(a['P'] - 10000) < 1e-9 || a['P'] == 0))) {}
       else if (is_g(g, 68.2) || is_g(g, 268)) plane_set = true;
       else if (is_g(g, 69) || is_g(g, 269)) plane_cancel = true;
       else if (is_g(g, 53.1)) {}

@@ -36,7 +36,7 @@ const std::vector<WarningName>& warning_names() {
       {"feed-unit", "a FEDRAT without a unit word after one per revolution: per revolution, kept"},
       {"force-family", "lathe data posted for a mill, or mill data for a lathe (--force-family)"},
       {"groove", "a groove cycle's cases (no CYCLE/OFF, a groove not collapsed)"},
-      {"insert", "an INSERT that is no block the control reads, written as a comment"},
+      {"insert", "an INSERT that is no block the control reads, written as a comment; one with axis words, not checked"},
       {"invalid-utf8", "a byte of a one-byte code page in a comment or text"},
       {"motion-before-tool", "a rapid before the first tool change, taken as the start point"},
       {"not-3plus2", "an operation in a tilted frame whose tool axis is not the frame's Z"},

@@ -97,10 +97,10 @@ void SourceFile::drop_end_of_file_marks() {
 // then a line end, read as LF. One byte for one, so offsets, columns and the lines a diagnostic
 // shows stay those of the file. A file with LF line ends (or CR LF) keeps a lone CR as a blank.
 void SourceFile::detect_cr_line_ends() {
-  char head[65536];
-  const long n = read_raw(0, head, sizeof head);
+  std::string head(65536, '\0');  // (not on the stack: the browser build's is small)
+  const long n = read_raw(0, head.data(), head.size());
   if (n <= 0) return;
-  const std::string_view text(head, size_t(n));
+  const std::string_view text(head.data(), size_t(n));
   const size_t cr = text.find('\r');
   if (cr == std::string_view::npos || text.find('\n') != std::string_view::npos) return;
   // A CR at the very end of the head may be the first half of a CR LF cut by the head's end.
