@@ -56,6 +56,10 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
       d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
       return;
     }
+    if (!(s.max_rpm > 0))
+      d_.warning(loc, "constant surface speed without MAXRPM: clamped at the machine's limit of " + num_text(clamp) +
+                          " rpm (give SPINDL/...,MAXRPM,n for the part's or the chuck's limit)",
+                 "spindle-clamp");
     e_.begin(loc);
     e_.code(m_.codes.spindle_clamp, TemplateVars().with(Var::Max, clamp));
     e_.end();

@@ -51,10 +51,16 @@ void Lowerer::lower_spindle(const Record& r) {
     else if (w == "MAXRPM") {
       auto v = ps.after("MAXRPM");
       if (!v) return;
-      s.max_rpm = *v;
+      if (*v < 0) {
+        d_.error(ps[i + 1 < ps.size() ? i + 1 : i].loc, "SPINDL: MAXRPM must not be negative, found " + num_text(*v));
+        return;
+      }
+      s.max_rpm = *v;  // 0: no clamp given (the machine's limit holds)
       ++i;
     } else if (w == "RANGE") {
       ++i;  // gear range: the control chooses
+    } else if (w == "LOW" || w == "MEDIUM" || w == "HIGH" || w == "AUTO") {
+      // ISO 4343's gear range words: the control chooses the range from the speed.
     } else if (w == "PARLEL" || w == "PERPTO") {
       d_.warning(r.loc, "SPINDL/" + w + " (live-tool orientation) is ignored: the machine has no such head",
                  "spindle-orientation");
@@ -67,11 +73,25 @@ void Lowerer::lower_spindle(const Record& r) {
   ensure_operation(r.loc);
   if (off) {
     s.dir = ir::SpindleDir::Off;
+    spindle_running_ = false;
     push(r.loc, s);
     return;
   }
+  if (!have_speed && !on && ps.has("MAXRPM")) {
+    // SPINDL/MAXRPM,n alone (a record of its own before the SPINDL/SMM|SFM it clamps): the
+    // clamp for every surface speed after it that names none; a surface speed running now
+    // takes it at once (a new G50 S).
+    pending_max_rpm_ = s.max_rpm;
+    if (last_spindle_ && last_spindle_->mode == ir::SpindleMode::SurfaceSpeed && last_spindle_->max_rpm != s.max_rpm) {
+      last_spindle_->max_rpm = s.max_rpm;
+      if (spindle_running_) push(r.loc, *last_spindle_);
+    }
+    return;
+  }
+  if (s.mode == ir::SpindleMode::SurfaceSpeed && !(s.max_rpm > 0)) s.max_rpm = pending_max_rpm_;
   if (!have_speed) {
     if (on && last_spindle_) {
+      spindle_running_ = true;
       push(r.loc, *last_spindle_);
       return;
     }
@@ -84,6 +104,7 @@ void Lowerer::lower_spindle(const Record& r) {
   }
   s.speed *= per_unit;
   last_spindle_ = s;
+  spindle_running_ = true;
   push(r.loc, s);
 }
 

@@ -48,6 +48,7 @@ const std::vector<WarningName>& warning_names() {
       {"rotary-index", "a rotary table sent to 0 on a machine without one"},
       {"seed-macro", "the seed paper's G65 macro computing an offset for other angles than the rotaries go to"},
       {"setup", "an operation cut in a setup of its own, after an operator stop"},
+      {"spindle-clamp", "constant surface speed without MAXRPM, clamped at the machine's spindle limit"},
       {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
       {"spindle-stopped", "a cutting move with the spindle stopped"},
       {"subroutine", "INDEX and DEFSUB blocks that end or redefine others"},

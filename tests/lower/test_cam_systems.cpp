@@ -434,3 +434,30 @@ TEST(CamSystems, AToolNumberTooLongForTheLathesTWordIsRefusedAtItsRecord) {
   ASSERT_TRUE(fits.ok) << fits.diags;
   EXPECT_THAT(fits.output, HasSubstr("T0515"));
 }
+
+// SPINDL/MAXRPM,n as a record of its own (a record that moves nothing never stops a post): the
+// clamp for each later surface speed that names none, and at once for one running (a new G50 S);
+// while the spindle is stopped it waits for the next SPINDL. ISO 4343's gear range words are left
+// to the control. A surface speed with no clamp at all takes the machine's limit, said.
+TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
+  const std::string cl =
+      "UNITS/MM\nLOADTL/1\nSPINDL/MAXRPM,2500\nSPINDL/SMM,200,CLW,HIGH\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/40,0,2\n"
+      "GOTO/30,0,2\nGOTO/30,0,-20\nSPINDL/MAXRPM,1800\nGOTO/40,0,-20\nSPINDL/OFF\nSPINDL/MAXRPM,1500\nSPINDL/SMM,150,CLW\n"
+      "GOTO/40,0,-25\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(messages(c.diags), "");
+  EXPECT_THAT(c.output, HasSubstr("\nN40 G50 S2500\nN50 G96 S200 M03\nN60 G00 X80. Z2.\nN70 G99 G01 X60. F0.2\nN80 Z-20.\n"
+                                  "N90 G50 S1800\nN100 G96 S200 M03\nN110 G99 G01 X80. Z-20. F0.2\nN120 M05\n"
+                                  "N130 G50 S1500\nN140 G96 S150 M03\nN150 G99 G01 X80. Z-25. F0.2\n"));
+  Compiled unclamped = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/40,0,2\nFINI\n",
+                                    machine("fanuc-lathe"));
+  ASSERT_TRUE(unclamped.ok) << unclamped.diags;
+  EXPECT_EQ(messages(unclamped.diags),
+            "part.cls:3:1: warning: constant surface speed without MAXRPM: clamped at the machine's limit of 3000 rpm (give "
+            "SPINDL/...,MAXRPM,n for the part's or the chuck's limit) [-Wspindle-clamp]\n");
+  EXPECT_THAT(unclamped.output, HasSubstr("\nN40 G50 S3000\nN50 G96 S200 M03\n"));
+  Compiled negative = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/MAXRPM,-3\nFINI\n", machine("fanuc-lathe"));
+  EXPECT_FALSE(negative.ok);
+  EXPECT_THAT(negative.diags, HasSubstr("part.cls:3:15: error: SPINDL: MAXRPM must not be negative, found -3"));
+}
