@@ -139,6 +139,17 @@ void Lowerer::record(const Record& r) {
       ParamReader p(r, d_);
       auto code = p.integer(0, r.id == MajorId::Auxfun ? "an M-code number" : "a G-code number", 0, 999);
       if (!code) return;
+      // ISO 4343: PREFUN/n[,NEXT], AUXFUN/n[,NOW|NEXT]. The code is written as a block of its
+      // own before the next move, which is when NEXT would have it; anything else after the
+      // code is no part of it and is said to be dropped.
+      for (size_t k = 1; k < r.params.size(); ++k) {
+        const Param& extra = r.params[k];
+        if (extra.is("NEXT") || extra.is("NOW")) continue;
+        d_.warning(extra.loc, std::string(r.major) + ": '" + std::string(extra.text) + "' after the code is not read (the code " +
+                                  (r.id == MajorId::Auxfun ? "M" : "G") + std::to_string(*code) + " is written alone)",
+                   "ignored-word");
+        break;
+      }
       ensure_operation(r.loc);
       push_text<ir::Insert>(r.loc, (r.id == MajorId::Auxfun ? "M" : "G") + std::to_string(*code));
       return;

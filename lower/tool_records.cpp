@@ -64,6 +64,15 @@ ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
       t.length_offset = int(r.params[k + 1].number);
       ++k;
     }
+    if (p.is_number() && k == i + 1 && d && p.number != 1 && p.number != t.number) {
+      // A bare number after the tool's is CATIA's corrector (LOADTL/2,1; docs/cl-input.md), no
+      // register. Where it is neither 1 nor the tool's own number (TURRET/5,12) it may be meant
+      // as the offset register, and the offset would be another: say which one is used.
+      d->warning(p.loc, std::string(r.major) + ": " + num_text(p.number) + " after the tool number is read as the tool's "
+                        "corrector, not an offset register: the offset is the tool's number, " + std::to_string(t.number) +
+                        " (write OSETNO," + num_text(p.number) + " for register " + num_text(p.number) + ")",
+                 "tool-offset");
+    }
     // Other minor words (MANUAL, SIZE, ...) carry nothing clpc uses.
   }
   return t;

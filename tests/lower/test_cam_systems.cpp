@@ -461,3 +461,29 @@ TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
   EXPECT_FALSE(negative.ok);
   EXPECT_THAT(negative.diags, HasSubstr("part.cls:3:15: error: SPINDL: MAXRPM must not be negative, found -3"));
 }
+
+// Numbers and words after a code or a tool that clpc does not read are said, never dropped
+// silently: a number after the tool's that could be an offset register (TURRET/5,12) keeps the
+// tool's own offset with a warning; ISO 4343's AUXFUN/n,NEXT is read, AUXFUN/8,2 is warned.
+TEST(CamSystems, WordsAfterACodeOrAToolThatAreNotReadAreSaid) {
+  Compiled lathe = compile_text("UNITS/MM\nTURRET/5,12\nSPINDL/RPM,500,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/40,0,2\nFINI\n",
+                                machine("fanuc-lathe"));
+  ASSERT_TRUE(lathe.ok) << lathe.diags;
+  EXPECT_EQ(messages(lathe.diags),
+            "part.cls:2:10: warning: TURRET: 12 after the tool number is read as the tool's corrector, not an offset "
+            "register: the offset is the tool's number, 5 (write OSETNO,12 for register 12) [-Wtool-offset]\n");
+  EXPECT_THAT(lathe.output, HasSubstr("\nN30 T0505 (T5)\n"));
+  // CATIA's correctors (LOADTL/2,2,2 then LOADTL/2,1) say nothing.
+  Compiled catia = compile_text("UNITS/MM\nLOADTL/2,2,2\nLOADTL/2,1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,20\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(catia.ok) << catia.diags;
+  EXPECT_EQ(messages(catia.diags), "");
+  Compiled codes = compile_text("UNITS/MM\nLOADTL/1\nAUXFUN/8,NEXT\nAUXFUN/9,2\nPREFUN/61,ON\nSPINDL/RPM,500,CLW\nRAPID\n"
+                                "GOTO/0,0,20\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(codes.ok) << codes.diags;
+  EXPECT_EQ(messages(codes.diags),
+            "part.cls:4:10: warning: AUXFUN: '2' after the code is not read (the code M9 is written alone) [-Wignored-word]\n"
+            "part.cls:5:11: warning: PREFUN: 'ON' after the code is not read (the code G61 is written alone) [-Wignored-word]\n");
+  EXPECT_THAT(codes.output, HasSubstr("\nM8\nM9\nG61\n"));
+}
