@@ -152,6 +152,7 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
+  std::optional<ir::CutterComp> last_comp_;  // the last CUTCOM/LEFT|RIGHT, which CUTCOM/ON resumes
   bool spindle_running_ = false;  // the last SPINDL turned the spindle on
   double pending_max_rpm_ = 0;    // SPINDL/MAXRPM,n alone: the clamp for surface speeds after it
   // The last FEDRAT's mode and unit (factor to program units), which a FEDRAT without a unit

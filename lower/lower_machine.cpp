@@ -202,10 +202,11 @@ void Lowerer::lower_coolant(const Record& r) {
 void Lowerer::lower_cutcom(const Record& r) {
   ParamReader ps(r, d_);
   ir::CutterComp c;
-  bool side = false;
+  bool side = false, on = false;
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
-    if (p.is("LEFT")) { c.side = ir::CompSide::Left; side = true; }
+    if (p.is("ON")) on = true;
+    else if (p.is("LEFT")) { c.side = ir::CompSide::Left; side = true; }
     else if (p.is("RIGHT")) { c.side = ir::CompSide::Right; side = true; }
     else if (p.is("OFF")) { c.side = ir::CompSide::Off; side = true; }
     else if (p.is_number()) {
@@ -213,12 +214,22 @@ void Lowerer::lower_cutcom(const Record& r) {
       if (!reg) return;
       c.reg = *reg;
     }
-    // Plane words (XYPLAN, ...) and ON are accepted and carry nothing more.
+    // Plane words (XYPLAN, ...) are accepted and carry nothing more.
+  }
+  if (!side && on && last_comp_) {
+    // CUTCOM/ON alone turns back on the side (and register) the last CUTCOM/LEFT|RIGHT named,
+    // as SPINDL/ON restarts the last speed.
+    int reg = c.reg;  // CUTCOM/ON,n: another register
+    c = *last_comp_;
+    if (reg != 0) c.reg = reg;
+    side = true;
   }
   if (!side) {
-    d_.error(r.loc, "CUTCOM: expected LEFT, RIGHT or OFF");
+    d_.error(r.loc, on ? "CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"
+                       : "CUTCOM: expected LEFT, RIGHT or OFF");
     return;
   }
+  if (c.side != ir::CompSide::Off) last_comp_ = c;
   ensure_operation(r.loc);
   push(r.loc, c);
 }

@@ -487,3 +487,18 @@ TEST(CamSystems, WordsAfterACodeOrAToolThatAreNotReadAreSaid) {
             "part.cls:5:11: warning: PREFUN: 'ON' after the code is not read (the code G61 is written alone) [-Wignored-word]\n");
   EXPECT_THAT(codes.output, HasSubstr("\nM8\nM9\nG61\n"));
 }
+
+// CUTCOM/ON resumes the side and register of the last CUTCOM/LEFT|RIGHT (as SPINDL/ON restarts
+// the last speed); with none before it the side is not known, and it is refused where it stands.
+TEST(CamSystems, CompensationOnResumesTheLastSide) {
+  const std::string cl =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nCUTCOM/LEFT,21\n"
+      "GOTO/10,0,-1\nCUTCOM/OFF\nGOTO/10,10,-1\nCUTCOM/ON\nGOTO/0,10,-1\nCUTCOM/OFF\nGOTO/0,20,-1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN70 G94 G01 Z-1. F200.\nN80 G41 D21 X10.\nN90 G40 Y10.\nN100 G41 D21 X0.\nN110 G40 Y20.\n"));
+  verifies(cl, machine("fanuc-mill"));
+  Compiled unknown = compile_text("UNITS/MM\nLOADTL/1\nCUTCOM/ON\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(unknown.ok);
+  EXPECT_THAT(unknown.diags, HasSubstr("part.cls:3:1: error: CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"));
+}
