@@ -8,8 +8,16 @@ bool expand_hole(const ir::Hole& h, const ir::CycleSpec& c, const ExpandContext&
                  std::vector<ir::Instr>& out, Diagnostics& d) {
   using ir::CycleKind;
   if (c.kind == CycleKind::Tap || c.kind == CycleKind::FineBore || c.kind == CycleKind::BackBore) {
+    // Say which code would post it: the machine key a user can set in the TOML.
+    const char* key = c.kind == CycleKind::FineBore ? "codes.cycle_fine_bore"
+                      : c.kind == CycleKind::BackBore ? "codes.cycle_back_bore"
+                      : c.left_hand                   ? "codes.cycle_tap_left"
+                                                      : "codes.cycle_tap";
     d.error(loc, std::string("a ") + std::string(ir::cycle_kind_name(c.kind)) +
-                     " cycle cannot be written as plain moves: the machine needs the canned cycle for it");
+                     " cycle cannot be written as plain moves: the machine needs the canned cycle for it, " +
+                     (x.lathe ? std::string("and a lathe writes every drilling cycle as moves (its G83/G84 are "
+                                            "live-tool cycles clpc does not post)")
+                              : "and the machine has none (" + std::string(key) + " is empty)"));
     return false;
   }
   const ir::Vec3 a = h.axis;

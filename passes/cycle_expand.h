@@ -18,6 +18,7 @@ struct ExpandContext {
   bool return_initial;     // G98 (true) or G99
   double spindle_rpm;      // for BoreStop's restart (0: unknown)
   ir::SpindleDir spindle_dir;
+  bool lathe = false;      // a lathe expands every cycle (why a tap cannot be written, said)
 };
 
 // Appends the moves for hole `h` of cycle `c`. False (and an error) for cycles that cannot

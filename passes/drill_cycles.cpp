@@ -129,7 +129,7 @@ class DrillCycles : public Pass {
       h.initial = active_->retract >= 0 ? active_->retract : std::max(initial, active_->clearance);
       if (expand_) {
         ExpandContext x{ctx.machine.cycles.peck_clearance * ctx.from_output(), feed_.value, feed_.mode, have_feed_,
-                        ctx.machine.cycles.return_initial, spindle_.speed, spindle_.dir};
+                        ctx.machine.cycles.return_initial, spindle_.speed, spindle_.dir, ctx.machine.is_lathe()};
         expand_hole(h, *active_, x, in.loc, out, ctx.diags);
       } else {
         out.push_back({in.loc, h});

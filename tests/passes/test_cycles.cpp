@@ -155,7 +155,16 @@ TEST(Cycles, TappingCannotBeWrittenAsMoves) {
   Machine m = machine("no-tap", extra);
   Compiled c = compile_text(std::string(kHead) + "CYCLE/TAP,DEPTH,7,PITCH,1,CLEAR,1\nGOTO/10,10,0\nCYCLE/OFF\n", m);
   EXPECT_FALSE(c.ok);
-  EXPECT_THAT(c.diags, HasSubstr(":8:1: error: a tap cycle cannot be written as plain moves"));
+  EXPECT_THAT(c.diags, HasSubstr(":8:1: error: a tap cycle cannot be written as plain moves: the machine needs the canned "
+                                 "cycle for it, and the machine has none (codes.cycle_tap is empty)"));
+  // A lathe writes every drilling cycle as moves: a tap on the centreline is refused, saying so.
+  Compiled lathe = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,10\n"
+                                "CYCLE/TAP,DEPTH,20,CLEAR,5,PITCH,1.5\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n",
+                                machine("fanuc-lathe"));
+  EXPECT_FALSE(lathe.ok);
+  EXPECT_THAT(lathe.diags, HasSubstr("part.cls:7:1: error: a tap cycle cannot be written as plain moves: the machine needs "
+                                     "the canned cycle for it, and a lathe writes every drilling cycle as moves (its "
+                                     "G83/G84 are live-tool cycles clpc does not post)"));
 }
 
 TEST(Cycles, ParameterRecordsInTheIr) {
