@@ -166,6 +166,11 @@ void Lowerer::lower_feed(const Record& r) {
                             std::to_string(last_feed_unit_->loc.line) + " set it (the feed mode stays until a FEDRAT names another)",
                  "feed-unit");
   }
+  if (!worded && last_feed_unit_ && last_feed_unit_->mode == ir::FeedMode::InverseTime)
+    d_.warning(r.loc, "FEDRAT/" + num_text(f.value) + " has no unit word after the inverse-time FEDRAT at line " +
+                          std::to_string(last_feed_unit_->loc.line) +
+                          ": per minute in the file's units (inverse time belongs to the moves it was written for)",
+               "feed-unit");
   if (worded) last_feed_unit_ = FeedUnit{f.mode, to_program, r.loc};
   if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
   ensure_operation(r.loc);

@@ -33,7 +33,7 @@ const std::vector<WarningName>& warning_names() {
       {"coolant", "a COOLNT record that says nothing, or a coolant the machine has no code for"},
       {"cycle", "a CYCLE record's degenerate but real cases: no holes, zero depth, no clearance, no CYCLE/OFF"},
       {"data-comment", "a Creo $$-> data comment that cannot be read"},
-      {"feed-unit", "a FEDRAT without a unit word after one per revolution: per revolution, kept"},
+      {"feed-unit", "a FEDRAT without a unit word after one per revolution (kept) or in inverse time (per minute)"},
       {"force-family", "lathe data posted for a mill, or mill data for a lathe (--force-family)"},
       {"groove", "a groove cycle's cases (no CYCLE/OFF, a groove not collapsed)"},
       {"ignored-word", "a word or number of a PREFUN or AUXFUN after its code, not read"},

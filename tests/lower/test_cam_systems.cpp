@@ -390,6 +390,15 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
   EXPECT_THAT(c.output, HasSubstr(" G94 G01 X0. Y0. Z1. F200.\nN60 G95 X10. F0.2\nN70 X20. F0.3\nN80 G94 X30. F254.\n"
                                   "N90 X40. F508.\n"));
   verifies(cl, machine("fanuc-mill"));
+  // After inverse time: per minute in the file's units (mm), said; the UMC-750 writes inches.
+  Compiled inverse = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/INVERS,10\n"
+                                  "GOTO/0,0,1\nFEDRAT/200\nGOTO/10,0,1\nFINI\n",
+                                  machine("haas-umc750"));
+  ASSERT_TRUE(inverse.ok) << inverse.diags;
+  EXPECT_EQ(messages(inverse.diags),
+            "part.cls:8:1: warning: FEDRAT/200 has no unit word after the inverse-time FEDRAT at line 6: per minute in the "
+            "file's units (inverse time belongs to the moves it was written for) [-Wfeed-unit]\n");
+  EXPECT_THAT(inverse.output, HasSubstr(" G93 G01 Z0.0394 F10.\nN55 G94 X0.3937 F7.87\n"));
 }
 
 // Cutter compensation left on at the end (CUTCOM/OFF with no move after it, or never turned
