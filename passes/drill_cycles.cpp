@@ -218,7 +218,9 @@ const PassInfo& drill_cycles_pass() {
                     "plane first rises to it), or, where the machine has no "
                     "code for the cycle or the pecks vary (2NDPECK), the plain moves the cycle makes; every cycle "
                     "ends (a warning and an implicit cancel at the end of an operation without CYCLE/OFF); "
-                    "tapping and oriented boring cannot be written as moves: an error; so is a tool below a hole's R plane "
+                    "tapping and oriented boring cannot be written as moves: an error naming the machine key that would "
+                    "post them (codes.cycle_tap, ...), or on a lathe, which writes every drilling cycle as moves, saying "
+                    "so; so is a tool below a hole's R plane "
                     "and beside the hole, where the cycle would cross at that level",
       .settings = "cycles.return, cycles.tap_feed, cycles.peck_clearance, codes.cycle_*, codes.rigid_tap",
       .needs = 0,
