@@ -1,6 +1,7 @@
 // The CL lexer: re2c rules, one block per mode. See lexer.h for the contract and
 // docs/cl-input.md for the lexical rules it implements.
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -237,20 +238,24 @@ SourceLoc Lexer::loc_of(const unsigned char* p) const {
 namespace {
 
 // A number: digits with an optional point, sign and exponent (12, 12., .5, -55., 1.25E-3).
-// Returns its end, or null.
+// Fortran's double-precision exponent is read too (0.1000000D+02: APT processors are Fortran
+// programs, and list-directed output writes D), only in that strict form (a point, a signed
+// exponent), so that a name like 6D10 stays a name. Returns its end, or null.
 const unsigned char* match_num(const unsigned char* p, const unsigned char* e) {
   if (p < e && (*p == '+' || *p == '-')) ++p;
   const unsigned char* digits = p;
   while (p < e && *p >= '0' && *p <= '9') ++p;
-  bool any = p > digits;
+  bool any = p > digits, point = false;
   if (p < e && *p == '.') {
     ++p;
+    point = true;
     const unsigned char* frac = p;
     while (p < e && *p >= '0' && *p <= '9') ++p;
     any = any || p > frac;
   }
   if (!any) return nullptr;
-  if (p < e && (*p == 'e' || *p == 'E')) {
+  const bool fortran = point && p + 1 < e && (*p == 'd' || *p == 'D') && (p[1] == '+' || p[1] == '-');
+  if (p < e && (*p == 'e' || *p == 'E' || fortran)) {
     const unsigned char* q = p + 1;
     if (q < e && (*q == '+' || *q == '-')) ++q;
     const unsigned char* exp = q;
@@ -670,18 +675,28 @@ Lexer::Symbol Lexer::number_token(const unsigned char* b, const unsigned char* e
   const char* s = reinterpret_cast<const char*>(b);
   const char* end_text = reinterpret_cast<const char*>(e);
   const char* digits = *s == '+' ? s + 1 : s;
+  const char* digits_end = end_text;
+  // Fortran's D exponent (match_num) reads as E: the number is copied with the letter changed.
+  std::array<char, 128> fortran{};
+  if (const char* d = std::find_if(digits, end_text, [](char c) { return c == 'd' || c == 'D'; });
+      d != end_text && size_t(end_text - digits) <= fortran.size()) {
+    std::copy(digits, end_text, fortran.begin());
+    fortran[size_t(d - digits)] = 'E';
+    digits_end = fortran.data() + (end_text - digits);
+    digits = fortran.data();
+  }
   double v = 0;
-  auto [end, ec] = read_decimal(digits, end_text, v);
+  auto [end, ec] = read_decimal(digits, digits_end, v);
   if (ec == std::errc::result_out_of_range) {
     // Underflow reads as zero; overflow is an error.
     const char* exp = digits;
-    while (exp < end_text && *exp != 'e' && *exp != 'E') ++exp;
-    if (exp < end_text && exp[1] != '-') {
+    while (exp < digits_end && *exp != 'e' && *exp != 'E') ++exp;
+    if (exp < digits_end && exp[1] != '-') {
       bad = true;
       return error_token(loc_of(b), "number out of range: '" + std::string(s, end_text) + "'");
     }
     v = 0;
-  } else if (ec != std::errc() || end != end_text) {
+  } else if (ec != std::errc() || end != digits_end) {
     bad = true;
     return error_token(loc_of(b), "bad number '" + std::string(s, end_text) + "'");
   }

@@ -36,6 +36,10 @@ TEST(Lexer, SpacesAnywhere) {
 TEST(Lexer, NumberForms) {
   EXPECT_THAT(recs("GOTO/12,12.,.5\nGOTO/-1.5E-3,+3,-55.\nGOTO/1e-400,-.25,0.0000\n"),
               ElementsAre("1:1 GOTO/12,12,0.5", "2:1 GOTO/-0.0015,3,-55", "3:1 GOTO/0,-0.25,0"));
+  // Fortran's double-precision exponent, in its strict form (a point, a signed exponent); a
+  // name like 6D10 or 1.5D2 stays a name.
+  EXPECT_THAT(recs("GOTO/0.1000000000000000D+02,-.25D-00,5.d+01\nTOOL PATH/A,TOOL,6D10,1.5D2,1D+2\n"),
+              ElementsAre("1:1 GOTO/10,-0.25,50", "2:1 TOOL PATH/A,TOOL,6D10,1.5D2,1D+2"));
 }
 
 TEST(Lexer, ParameterLocations) {
@@ -355,7 +359,8 @@ TEST(Lexer, SimpleRecordsEqualTheGrammarsOnTheEdges) {
       // Creo: blanks before the slash, records continued over lines.
       "GOTO / 1.5, -2.25, 3.0\nGOTO / 0.5, 0.25, 0.75,  $\n0.0, -0.6, 0.8\nCIRCLE / 1, 2, 3,  $\n0, 0, 1,  5\n"
       "GOTO  /1,2,3\nGOTO\t/ 1,2,3\nGOTOX/1\nGOTO 1,2,3\nGOTO / 1, $\n2, $\n3\nGOTO / 1, 2, $\n1e999\n"
-      "GOTO / 1, 2$\n, 3\nGOTO / $\n1,2,3\nFROM / 0.0, 0.0, 50.0,  $\n0.0, 0.0, 1.0\nGOTO/1,2,3";
+      "GOTO / 1, 2$\n, 3\nGOTO / $\n1,2,3\nFROM / 0.0, 0.0, 50.0,  $\n0.0, 0.0, 1.0\nGOTO/1.5D+01,2.D-1,6D10\n"
+      "GOTO/1.0D+999\nGOTO/1,2,3";
   std::string d1, d2;
   std::string fast = dump("edges.cls", text, true, d1), slow = dump("edges.cls", text, false, d2);
   EXPECT_EQ(fast, slow);
