@@ -3,6 +3,9 @@
 #include "backends/backend.h"
 #include "backends/block_check.h"
 
+#include <algorithm>
+#include <numbers>
+
 #include "machine/format.h"
 #include "support/text.h"
 
@@ -350,18 +353,29 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.end();
     return;
   }
+  double rpm = s.speed;
   if (s.mode == ir::SpindleMode::SurfaceSpeed) {
-    d_.error(loc, "machine '" + m_.name + "' is a mill: constant surface speed (SPINDL/SFM, SMM) needs a lathe");
-    return;
+    // A mill's cutting speed (CATIA and others write SPINDL/v,SMM|SFM when the speed is given
+    // as a cutting speed) is the speed at the cutter's diameter: n = 1000 v / (pi D), fixed for
+    // the tool (a milling spindle has no constant surface speed to hold).
+    const ir::ToolInfo* t = info_ && tool_ >= 0 ? info_->tool(tool_) : nullptr;
+    if (!t || !(t->diameter > 0)) {
+      d_.error(loc, "a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, and " +
+                        std::string(tool_ < 0 ? "no tool is loaded" : "tool " + std::to_string(tool_) + " has no diameter (CUTTER, TLDATA)") +
+                        ": give the speed in RPM, or the tool's diameter");
+      return;
+    }
+    rpm = s.speed * 1000 / (std::numbers::pi * t->diameter * ir::mm_per_unit(info_->units));
+    if (s.max_rpm > 0) rpm = std::min(rpm, s.max_rpm);  // the programmer's MAXRPM holds
   }
-  if (!spindle_within_limit(s.speed, loc)) {
+  if (!spindle_within_limit(rpm, loc)) {
     spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
     return;
   }
-  e_.word('S', s.speed);
+  e_.word('S', rpm);
   e_.code(s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
   spindle_ = s.dir;
-  spindle_rpm_ = s.speed;
+  spindle_rpm_ = rpm;
   e_.end();
 }
 

@@ -96,6 +96,7 @@ void Lowerer::record(const Record& r) {
         for (size_t i = 0; i < info_.tools.size(); ++i)
           if (info_.tools[i].number == n) tc.slot = int(i);
         tool_ = n;
+        forget_the_last_tools_state();
         push(r.loc, tc);
       }
       return;

@@ -87,6 +87,7 @@ class Lowerer : public RecordSink {
 
   // lower_machine.cpp
   void lower_tool_change(const Record& r);
+  void forget_the_last_tools_state();
   void lower_spindle(const Record& r);
   void lower_feed(const Record& r);
   void lower_coolant(const Record& r);

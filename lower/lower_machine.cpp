@@ -21,7 +21,16 @@ void Lowerer::lower_tool_change(const Record& r) {
   for (size_t i = 0; i < info_.tools.size(); ++i)
     if (info_.tools[i].number == t.number && !info_.tools[i].auto_numbered) tc.slot = int(i);
   tool_ = t.number;
+  forget_the_last_tools_state();
   push(r.loc, tc);
+}
+
+// The new tool starts from nothing of the last one's: its spindle is started by a SPINDL of
+// its own (a mill's M06 stops it), and CUTCOM/ON has no side of its own to resume (the last
+// tool's register would be another tool's diameter).
+void Lowerer::forget_the_last_tools_state() {
+  spindle_running_ = false;
+  last_comp_.reset();
 }
 
 void Lowerer::lower_spindle(const Record& r) {
@@ -91,6 +100,7 @@ void Lowerer::lower_spindle(const Record& r) {
   if (s.mode == ir::SpindleMode::SurfaceSpeed && !(s.max_rpm > 0)) s.max_rpm = pending_max_rpm_;
   if (!have_speed) {
     if (on && last_spindle_) {
+      if (ps.has("MAXRPM")) last_spindle_->max_rpm = s.max_rpm;  // SPINDL/ON,MAXRPM,n: the new clamp
       spindle_running_ = true;
       push(r.loc, *last_spindle_);
       return;

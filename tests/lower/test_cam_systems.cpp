@@ -466,6 +466,15 @@ TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
             "part.cls:3:1: warning: constant surface speed without MAXRPM: clamped at the machine's limit of 3000 rpm (give "
             "SPINDL/...,MAXRPM,n for the part's or the chuck's limit) [-Wspindle-clamp]\n");
   EXPECT_THAT(unclamped.output, HasSubstr("\nN40 G50 S3000\nN50 G96 S200 M03\n"));
+  // After a tool change the clamp waits for the new tool's SPINDL (the last tool's speed is
+  // not restarted); SPINDL/ON,MAXRPM,n restarts with the new clamp.
+  Compiled changed = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,2000\nFEDRAT/0.2,MMPR\nRAPID\n"
+                                  "GOTO/40,0,2\nLOADTL/2\nSPINDL/MAXRPM,1500\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,5\n"
+                                  "SPINDL/OFF\nSPINDL/SMM,180,CLW\nSPINDL/OFF\nSPINDL/ON,MAXRPM,1200\nGOTO/40,0,6\nFINI\n",
+                                  machine("fanuc-lathe"));
+  ASSERT_TRUE(changed.ok) << changed.diags;
+  EXPECT_THAT(changed.output, HasSubstr("\nN80 T0202 (T2)\nN90 G97 S800 M03\nN100 G00 X80. Z5.\nN110 M05\nN120 G50 S1500\n"
+                                        "N130 G96 S180 M03\nN140 M05\nN150 G50 S1200\nN160 G96 S180 M03\n"));
   Compiled negative = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/MAXRPM,-3\nFINI\n", machine("fanuc-lathe"));
   EXPECT_FALSE(negative.ok);
   EXPECT_THAT(negative.diags, HasSubstr("part.cls:3:15: error: SPINDL: MAXRPM must not be negative, found -3"));
@@ -507,7 +516,40 @@ TEST(CamSystems, CompensationOnResumesTheLastSide) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("\nN70 G94 G01 Z-1. F200.\nN80 G41 D21 X10.\nN90 G40 Y10.\nN100 G41 D21 X0.\nN110 G40 Y20.\n"));
   verifies(cl, machine("fanuc-mill"));
+  // Another tool has no side of its own to resume (the last one's D would be another diameter).
+  Compiled other = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,5\n"
+                                "CUTCOM/LEFT,21\nGOTO/10,0,5\nCUTCOM/OFF\nGOTO/10,10,5\nLOADTL/2\nSPINDL/RPM,1000,CLW\n"
+                                "CUTCOM/ON\nGOTO/0,10,5\nFINI\n",
+                                machine("fanuc-mill"));
+  EXPECT_FALSE(other.ok);
+  EXPECT_THAT(other.diags, HasSubstr("part.cls:13:1: error: CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT"));
   Compiled unknown = compile_text("UNITS/MM\nLOADTL/1\nCUTCOM/ON\nFINI\n", machine("fanuc-mill"));
   EXPECT_FALSE(unknown.ok);
   EXPECT_THAT(unknown.diags, HasSubstr("part.cls:3:1: error: CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"));
+}
+
+// A cutting speed on a mill (CATIA writes SPINDL/v,SMM when the speed is given as one) is the
+// rpm at the cutter's diameter, n = 1000 v / (pi D): 200 m/min on a 10 mm cutter is 6366 rpm;
+// 500 ft/min on a 1/2 inch cutter is 3820 rpm (the shop's 3.82 x SFM / D). Without a diameter,
+// or a tool, no rpm is known: refused where the speed stands.
+TEST(CamSystems, ACuttingSpeedOnAMillIsTheRpmAtTheCuttersDiameter) {
+  const std::string cl = "UNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/200,SMM,CLW\nFEDRAT/200,MMPM\nRAPID\nGOTO/0,0,5\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN30 T1 M06 (T1 D=10. CR=0.)\nN40 S6366 M03\n"));
+  verifies(cl, machine("fanuc-mill"));
+  Compiled inch = compile_text("UNITS/INCHES\nCUTTER/0.5\nLOADTL/2\nSPINDL/SFM,500,CCLW\nRAPID\nGOTO/0,0,1\nFINI\n",
+                               machine("haas-umc750"));
+  ASSERT_TRUE(inch.ok) << inch.diags;
+  EXPECT_THAT(inch.output, HasSubstr(" S3820 M04\n"));
+  // The programmer's MAXRPM holds: 200 m/min on 10 mm under MAXRPM 5000 is 5000 rpm.
+  Compiled clamped = compile_text("UNITS/MM\nCUTTER/10,0\nLOADTL/1\nSPINDL/200,SMM,CLW,MAXRPM,5000\nRAPID\nGOTO/0,0,5\nFINI\n",
+                                  machine("fanuc-mill"));
+  ASSERT_TRUE(clamped.ok) << clamped.diags;
+  EXPECT_THAT(clamped.output, HasSubstr("\nN40 S5000 M03\n"));
+  Compiled none = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,5\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(none.ok);
+  EXPECT_THAT(none.diags, HasSubstr("part.cls:3:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the "
+                                    "cutter's diameter, and tool 1 has no diameter (CUTTER, TLDATA): give the speed in RPM, "
+                                    "or the tool's diameter"));
 }
