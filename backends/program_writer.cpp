@@ -545,6 +545,14 @@ void ProgramWriter::comp_code() {
 }
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
+  // A register the machine's G41/G42 has no place for (a Fanuc lathe takes the nose radius and
+  // tip from the offset its T word selects) is not written: say so, unless it is the tool's own.
+  const CodeTemplate& code = c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right;
+  if (c.side != ir::CompSide::Off && c.reg > 0 && c.reg != tool_ && !code.uses(Var::Register))
+    d_.warning(loc, "CUTCOM register " + std::to_string(c.reg) + " is not written: machine '" + m_.name + "''s " +
+                        (c.side == ir::CompSide::Left ? "comp_left" : "comp_right") + " code ('" + code.text +
+                        "') takes no register, so the compensation uses the offset of the tool's own T word",
+               "tool-offset");
   comp_pending_ = c;
   comp_pending_set_ = true;
 }

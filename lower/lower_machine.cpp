@@ -229,7 +229,8 @@ void Lowerer::lower_cutcom(const Record& r) {
       if (!reg) return;
       c.reg = *reg;
     }
-    // Plane words (XYPLAN, ...) are accepted and carry nothing more.
+    else if (!(p.is_empty() || p.is("XYPLAN") || p.is("YZPLAN") || p.is("ZXPLAN")))  // a plane word: nothing more
+      d_.warning(p.loc, "CUTCOM: '" + std::string(p.name()) + "' is not read", "ignored-word");
   }
   if (!side && on && last_comp_) {
     // CUTCOM/ON alone turns back on the side (and register) the last CUTCOM/LEFT|RIGHT named,

@@ -43,6 +43,7 @@ struct CodeTemplate {
 
   bool empty() const { return words.empty(); }
   uint32_t vars_used() const;
+  bool uses(Var v) const { return (vars_used() >> unsigned(v)) & 1u; }
   // True if any literal word starts with G (the block may change modal state).
   bool has_g_code() const;
 };

@@ -528,6 +528,34 @@ TEST(CamSystems, CompensationOnResumesTheLastSide) {
   EXPECT_THAT(unknown.diags, HasSubstr("part.cls:3:1: error: CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"));
 }
 
+// A CUTCOM register goes where the machine's G41/G42 has a place for it (a mill's D word). A
+// Fanuc lathe's G41 takes none (the T word's offset holds the nose radius and tip): the number
+// is said not to be written. A word CUTCOM does not read is said too; a plane word is silent.
+TEST(CamSystems, ACompensationRegisterTheMachineHasNoPlaceForIsSaid) {
+  const std::string turn =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/50,0,10\nCUTCOM/LEFT,3\n"
+      "GOTO/40,0,5\nGOTO/40,0,-20\nCUTCOM/OFF\nGOTO/50,0,-20\nFINI\n";
+  Compiled lathe = compile_text(turn, machine("fanuc-lathe"));
+  ASSERT_TRUE(lathe.ok) << lathe.diags;
+  EXPECT_THAT(lathe.output, HasSubstr("\nN60 G41 G99 G01 X80. Z5. F0.2\n"));
+  EXPECT_EQ(messages(lathe.diags),
+            "part.cls:7:1: warning: CUTCOM register 3 is not written: machine 'fanuc-lathe''s comp_left code ('G41') "
+            "takes no register, so the compensation uses the offset of the tool's own T word [-Wtool-offset]\n");
+  // The tool's own number is what the T word selects anyway: nothing to say.
+  Compiled own = compile_text("UNITS/MM\nLOADTL/3\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/50,0,10\n"
+                              "CUTCOM/RIGHT,3\nGOTO/40,0,5\nCUTCOM/OFF\nGOTO/50,0,5\nFINI\n",
+                              machine("fanuc-lathe"));
+  ASSERT_TRUE(own.ok) << own.diags;
+  EXPECT_EQ(messages(own.diags), "");
+  const std::string mill =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
+      "CUTCOM/LEFT,XYPLAN,21\nGOTO/10,0,-1\nCUTCOM/OFF,SIDE\nGOTO/10,10,-1\nFINI\n";
+  Compiled m = compile_text(mill, machine("fanuc-mill"));
+  ASSERT_TRUE(m.ok) << m.diags;
+  EXPECT_THAT(m.output, HasSubstr("\nN80 G41 D21 X10.\nN90 G40 Y10.\n"));
+  EXPECT_EQ(messages(m.diags), "part.cls:10:12: warning: CUTCOM: 'SIDE' is not read [-Wignored-word]\n");
+}
+
 // A cutting speed on a mill (CATIA writes SPINDL/v,SMM when the speed is given as one) is the
 // rpm at the cutter's diameter, n = 1000 v / (pi D): 200 m/min on a 10 mm cutter is 6366 rpm;
 // 500 ft/min on a 1/2 inch cutter is 3820 rpm (the shop's 3.82 x SFM / D). Without a diameter,
