@@ -174,8 +174,17 @@ void Lowerer::lower_cycle(const Record& r) {
     if (w == "DEPTH" || w == "FEDTO") {
       // NX writes FEDTO as a signed distance along the tool axis from the hole's top, so a hole
       // below it is negative (its posts take the bottom as the point + FEDTO x the tool axis);
-      // a positive one is read as the depth, as other systems write it.
-      if (w == "FEDTO" && v < 0 && info_.cam == ir::CamSystem::Nx) v = -v;
+      // a positive one would put the bottom above the top, where no hole is: refused, not read
+      // as a depth (other systems write FEDTO as the depth, positive).
+      if (w == "FEDTO" && info_.cam == ir::CamSystem::Nx) {
+        if (v > 0) {
+          d_.error(vp->loc, "CYCLE: in NX's CL, FEDTO is signed along the tool axis from the hole's top, so " +
+                                num_text(v) + " puts the bottom above the top; a hole " + num_text(v) +
+                                " deep is FEDTO," + num_text(-v));
+          return;
+        }
+        v = -v;
+      }
       if (!non_negative("the depth")) return;
       c.depth = v;
       depth = true;

@@ -51,6 +51,13 @@ TEST(Cycles, NxNegativeFeedToIsTheDepthBelowTheTop) {
                                 machine("fanuc-mill"));
   EXPECT_FALSE(other.ok);
   EXPECT_THAT(other.diags, HasSubstr(":7:27: error: CYCLE: the depth must not be negative, found -12"));
+  // A positive FEDTO in NX's CL is a bottom above the top: not drilled 12 deep.
+  Compiled up = compile_text(nx + kHead + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,12.0000,MMPM,250.0000\nGOTO/10,10,0\n"
+                                          "CYCLE/OFF\nEND-OF-PATH\n",
+                             machine("fanuc-mill"));
+  EXPECT_FALSE(up.ok);
+  EXPECT_THAT(up.diags, HasSubstr(":8:32: error: CYCLE: in NX's CL, FEDTO is signed along the tool axis from the hole's "
+                                  "top, so 12 puts the bottom above the top; a hole 12 deep is FEDTO,-12\n"));
 }
 
 TEST(Cycles, FeedFromFedratWhenTheCycleGivesNone) {
