@@ -58,6 +58,22 @@ void Lowerer::record(const Record& r) {
   }
 
   if (!r.head.empty() && !is_contour_motion(r.id)) {
+    // Words before the major word are read only before a contour motion (TLON,GOFWD/...).
+    // Before a record clpc reads (RAPID,GOTO/...) they may change what it does: not posted as
+    // if they were not there. Before a record with nothing to cut, or an unknown one, they are
+    // passed through with it.
+    if (r.id != MajorId::Unknown && !carries_nothing_to_cut(r.id)) {
+      std::string name;
+      for (const Param& h : r.head) name += std::string(h.text) + ",";
+      d_.error(r.loc, "'" + name + std::string(r.major) + "': words before " + upper(r.major) +
+                          " are read only before a contour motion (TLON,GOFWD/...); what they change in it is not "
+                          "known: write them as records of their own");
+      return;
+    }
+    if (r.id == MajorId::Unknown && motion_word(r.major)) {
+      motion_not_read(r, motion_hint(r.major));
+      return;
+    }
     unknown(r, "unknown record", true);
     return;
   }
@@ -218,6 +234,18 @@ void Lowerer::record(const Record& r) {
       if (iequals(r.major, "BOX")) return;  // the stock (SolidWorks CAM, CAMWorks): nothing to cut
       unknown(r, "unknown record", true);
       return;
+  }
+}
+
+// Records that only name or describe (text, header facts, tolerances): nothing in them moves
+// the tool or changes how it cuts.
+bool carries_nothing_to_cut(MajorId id) {
+  switch (id) {
+    case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: case MajorId::Partno: case MajorId::Remark:
+    case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart: case MajorId::Toolno:
+    case MajorId::Autops: case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler: case MajorId::Featno:
+      return true;
+    default: return false;
   }
 }
 

@@ -528,6 +528,31 @@ TEST(CamSystems, CompensationOnResumesTheLastSide) {
   EXPECT_THAT(unknown.diags, HasSubstr("part.cls:3:1: error: CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"));
 }
 
+// Words before the major word are read before a contour motion (TLON,GOFWD/...) only. Before
+// a record that moves or sets how the tool cuts, dropping the record (it was passed through as a
+// comment: RAPID,GOTO lost its move, exit 0) or ignoring the words would post a guess: refused.
+// Before an unknown record or a text one they travel with it, as before.
+TEST(CamSystems, WordsBeforeARecordThatCutsAreRefusedNotDropped) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nGOTO/0,0,10\n";
+  Compiled rapid = compile_text(head + "RAPID,GOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(rapid.ok);
+  EXPECT_EQ(messages(rapid.diags),
+            "part.cls:6:1: error: 'RAPID,GOTO': words before GOTO are read only before a contour motion "
+            "(TLON,GOFWD/...); what they change in it is not known: write them as records of their own\n");
+  Compiled feed = compile_text(head + "XX,FEDRAT/50\nGOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(feed.ok);
+  EXPECT_THAT(feed.diags, HasSubstr("part.cls:6:1: error: 'XX,FEDRAT': words before FEDRAT are read only"));
+  Compiled shift = compile_text(head + "XX,TRANS/1,0,0\nGOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
+  EXPECT_FALSE(shift.ok);
+  EXPECT_THAT(shift.diags, HasSubstr("part.cls:6:1: error: 'XX,TRANS' moves the tool and clpc does not read it"));
+  Compiled text = compile_text(head + "XX,PPRINT/HELLO\nXX,FOO/1\nGOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
+  ASSERT_TRUE(text.ok) << text.diags;
+  EXPECT_EQ(messages(text.diags),
+            "part.cls:6:1: warning: unknown record 'PPRINT' (passed through as a comment) [-Wunknown-record]\n"
+            "part.cls:7:1: warning: unknown record 'FOO' (passed through as a comment) [-Wunknown-record]\n");
+  EXPECT_THAT(text.output, HasSubstr("\n(CL: XX,PPRINT/HELLO)\n(CL: XX,FOO/1)\nN60 X5. Y5.\n"));
+}
+
 // A CUTCOM register goes where the machine's G41/G42 has a place for it (a mill's D word). A
 // Fanuc lathe's G41 takes none (the T word's offset holds the nose radius and tip): the number
 // is said not to be written. A word CUTCOM does not read is said too; a plane word is silent.
