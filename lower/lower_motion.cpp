@@ -14,7 +14,9 @@ bool read_point(const Record& r, Diagnostics& d, ir::Vec3& p, ir::Vec3& axis, bo
   const auto& ps = r.params;
   for (size_t i = 0; i < ps.size(); ++i)
     if (!ps[i].is_number()) {
-      d.error(ps[i].loc, std::string(r.major) + ": expected a number, found '" + std::string(ps[i].text) + "'");
+      d.error(ps[i].loc, std::string(r.major) + ": expected a number, found " +
+                             (ps[i].is_group() ? "a parameter group (" + std::string(ps[i].text) + (ps[i].text.empty() ? "...)" : "/...)")
+                                               : "'" + std::string(ps[i].text) + "'"));
       return false;
     }
   if (ps.size() != 3 && ps.size() != 6) {

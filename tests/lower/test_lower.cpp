@@ -268,6 +268,10 @@ TEST(LowerErrors, GotoWithFourValues) {
 }
 
 TEST(LowerErrors, GotoWithAWord) { EXPECT_EQ(err("GOTO/1,X,3\n"), "1:8: GOTO: expected a number, found 'X'"); }
+TEST(LowerErrors, GotoWithAGroup) {
+  EXPECT_EQ(err("GOTO/(1,2,3)\n"), "1:6: GOTO: expected a number, found a parameter group (...)");
+  EXPECT_EQ(err("GOTO/(POINT/1,2,3)\n"), "1:6: GOTO: expected a number, found a parameter group (POINT/...)");
+}
 
 TEST(LowerErrors, ZeroToolAxis) { EXPECT_EQ(err("GOTO/1,2,3,0,0,0\n"), "1:12: GOTO: the tool axis (i,j,k) must not be zero"); }
 
