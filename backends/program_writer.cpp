@@ -359,10 +359,19 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     // as a cutting speed) is the speed at the cutter's diameter: n = 1000 v / (pi D), fixed for
     // the tool (a milling spindle has no constant surface speed to hold).
     const ir::ToolInfo* t = info_ && tool_ >= 0 ? info_->tool(tool_) : nullptr;
+    if (t && t->other_diameter_at.valid()) {
+      d_.error(loc, "a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, and tool " +
+                        std::to_string(tool_) + " is given two (" + num_text(t->diameter) + ", and " +
+                        num_text(t->other_diameter) + " at line " + std::to_string(t->other_diameter_at.line) +
+                        "): give the speed in RPM, or each cutter a number of its own");
+      spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
+      return;
+    }
     if (!t || !(t->diameter > 0)) {
       d_.error(loc, "a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, and " +
                         std::string(tool_ < 0 ? "no tool is loaded" : "tool " + std::to_string(tool_) + " has no diameter (CUTTER, TLDATA)") +
                         ": give the speed in RPM, or the tool's diameter");
+      spindle_ = s.dir;
       return;
     }
     rpm = s.speed * 1000 / (std::numbers::pi * t->diameter * ir::mm_per_unit(info_->units));

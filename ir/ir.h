@@ -364,6 +364,10 @@ struct ToolInfo {
   double length = 0;
   bool auto_numbered = false;  // the CL gave a name but no number
   SourceLoc first_use;
+  // A later CUTTER/TLDATA for this number with another diameter (the first one is kept): where,
+  // and the diameter it gave. Invalid when every definition agrees.
+  SourceLoc other_diameter_at;
+  double other_diameter = 0;
 };
 
 // A frame a CL record gives (MSYS, CSYS, $$-> CSYS, CAMERA), with the SET register it pairs

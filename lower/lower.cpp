@@ -52,7 +52,7 @@ void Lowerer::record(const Record& r) {
       }
       case MajorId::End: close_operation(); return;
       case MajorId::Csys: lower_matrix_frame(r, ir::FrameSource::Csys); return;
-      case MajorId::Cutter: read_tool_geometry(r, &d_); return;
+      case MajorId::Cutter: read_tool_geometry(r, &d_); say_another_diameter(r); return;
       default: return;
     }
   }
@@ -124,7 +124,7 @@ void Lowerer::record(const Record& r) {
 
     case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Select:
       lower_tool_change(r); return;
-    case MajorId::Tldata: case MajorId::Cutter: read_tool_geometry(r, &d_); return;
+    case MajorId::Tldata: case MajorId::Cutter: read_tool_geometry(r, &d_); say_another_diameter(r); return;
     case MajorId::Spindl: lower_spindle(r); return;
     case MajorId::Fedrat: lower_feed(r); return;
     case MajorId::Coolnt: lower_coolant(r); return;
@@ -247,6 +247,18 @@ bool carries_nothing_to_cut(MajorId id) {
       return true;
     default: return false;
   }
+}
+
+// A tool number the pre-scan found given another diameter at this record: one pocket holds one
+// cutter, and the program's tool list (and a cutting speed's rpm) keep the first.
+void Lowerer::say_another_diameter(const Record& r) {
+  for (const ir::ToolInfo& t : info_.tools)
+    if (t.other_diameter_at == r.loc)
+      d_.warning(r.loc, "tool " + std::to_string(t.number) + " is given the diameter " + num_text(t.other_diameter) +
+                            " here, but " + num_text(t.diameter) + " where it was first loaded (line " +
+                            std::to_string(t.first_use.line) + "): the program's tool list keeps " + num_text(t.diameter) +
+                            "; give each cutter a number of its own",
+                 "tool-geometry");
 }
 
 void Lowerer::unknown(const Record& r, std::string_view why, bool warn) {

@@ -67,6 +67,7 @@ class Lowerer : public RecordSink {
   void motion_not_read(const Record& r, std::string_view why);
   void not_read(const Record& r, std::string_view why, std::string_view category);
   void flush_chunk();
+  void say_another_diameter(const Record& r);
   void unknown(const Record& r, std::string_view why, bool warn);
   void passthrough(const Record& r);
 

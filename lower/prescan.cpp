@@ -92,7 +92,9 @@ class TableBuilder : public RecordSink {
         // After its load (Creo: LOADTL, then $$-> CUTTER) or before the next one (NX, CATIA:
         // the tool's data, then its LOAD/LOADTL/TURRET): the loaded tool takes it only while it
         // has none.
-        if (explicit_ >= 0 && !has_geometry(slot(explicit_, r.loc))) attach(slot(explicit_, r.loc), g);
+        // Creo's "$$-> CUTTER" always follows its load, so it is the loaded tool's even when
+        // the number was loaded before (a second operation with the same tool).
+        if (explicit_ >= 0 && (r.data_comment || !has_geometry(slot(explicit_, r.loc)))) attach(slot(explicit_, r.loc), g);
         else pending_ = g;
         break;
       }
@@ -231,12 +233,17 @@ class TableBuilder : public RecordSink {
   static bool has_geometry(const ir::ToolInfo& t) {
     return t.diameter != 0 || t.corner_radius != 0 || t.length != 0 || !t.kind.empty();
   }
+  // The first geometry a tool number is given is its own; another diameter later is noted (a
+  // pocket holds one cutter) for the lowerer to warn of and a cutting speed to refuse.
   static void attach(ir::ToolInfo& t, const ToolGeometry& g) {
     if (!has_geometry(t)) {
       t.kind = g.kind;
       t.diameter = g.diameter;
       t.corner_radius = g.corner_radius;
       t.length = g.length;
+    } else if (g.diameter > 0 && std::abs(g.diameter - t.diameter) > 1e-9 && !t.other_diameter_at.valid()) {
+      t.other_diameter_at = g.loc;
+      t.other_diameter = g.diameter;
     }
   }
   // A SET no frame record pairs with names the register of the frame in force.

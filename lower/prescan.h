@@ -27,6 +27,7 @@ struct ToolGeometry {
   std::string kind;
   double diameter = 0, corner_radius = 0, length = 0;
   bool any = false;
+  SourceLoc loc;  // the record that gave it
 };
 
 }  // namespace clpc

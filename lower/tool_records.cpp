@@ -80,6 +80,7 @@ ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
 
 ToolGeometry read_tool_geometry(const Record& r, Diagnostics* d) {
   ToolGeometry g;
+  g.loc = r.loc;
   size_t i = 0;
   if (r.id == MajorId::Tldata) {
     if (r.params.empty() || !r.params[0].is_word()) {

@@ -53,6 +53,7 @@ const std::vector<WarningName>& warning_names() {
       {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
       {"spindle-stopped", "a cutting move with the spindle stopped"},
       {"subroutine", "INDEX and DEFSUB blocks that end or redefine others"},
+      {"tool-geometry", "a tool number given another diameter than before: the tool list keeps the first"},
       {"tool-offset", "a number read as a corrector (TURRET/5,12), or a CUTCOM register the machine's G41 has no place for"},
       {"tool-by-name", "an operation that names a tool without loading it by number"},
       {"unknown-record", "a record without motion that clpc does not know, passed through as a comment"},

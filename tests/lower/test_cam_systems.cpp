@@ -553,6 +553,39 @@ TEST(CamSystems, WordsBeforeARecordThatCutsAreRefusedNotDropped) {
   EXPECT_THAT(text.output, HasSubstr("\n(CL: XX,PPRINT/HELLO)\n(CL: XX,FOO/1)\nN60 X5. Y5.\n"));
 }
 
+// Creo writes "$$-> CUTTER" after its load, also when a tool number is loaded again: it was
+// read as the next tool's (T3 listed with T1's 10 mm). A number given another diameter than
+// before (one pocket, two cutters) is warned, and a cutting speed on it has no one rpm: refused.
+TEST(CamSystems, EachCreoCutterIsItsOwnLoadsAndASecondDiameterIsSaid) {
+  auto op = [](int tool, const char* d) {
+    return "LOADTL / " + std::to_string(tool) + "\n$$-> CUTTER / " + d + "\nSPINDL / RPM, 1000, CLW\nRAPID\nGOTO / 0,0,10\n";
+  };
+  const std::string creo = "$$-> MFGNO / PART\nUNITS / MM\n" + op(1, "10.000000") + op(2, "6.000000") +
+                           op(1, "10.000000") + op(3, "3.000000") + "FINI\n";
+  Compiled c = compile_text(creo, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\n(T1 D=10. CR=0.)\n(T2 D=6. CR=0.)\n(T3 D=3. CR=0.)\n"));
+  EXPECT_EQ(messages(c.diags), "");
+  const std::string twice = "$$-> MFGNO / PART\nUNITS / MM\n" + op(1, "10.000000") + op(1, "12.000000") + "FINI\n";
+  Compiled w = compile_text(twice, machine("fanuc-mill"));
+  ASSERT_TRUE(w.ok) << w.diags;
+  EXPECT_EQ(messages(w.diags),
+            "part.cls:9:6: warning: tool 1 is given the diameter 12 here, but 10 where it was first loaded (line 3): "
+            "the program's tool list keeps 10; give each cutter a number of its own [-Wtool-geometry]\n");
+  // CATIA's order (CUTTER, then its LOADTL): the same.
+  const std::string catia = "UNITS/MM\nCUTTER/10\nLOADTL/1\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,10\nCUTTER/20\n"
+                            "LOADTL/1\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,20\nFINI\n";
+  Compiled speed = compile_text(catia, machine("fanuc-mill"));
+  EXPECT_FALSE(speed.ok);
+  EXPECT_EQ(messages(speed.diags),
+            "part.cls:7:1: warning: tool 1 is given the diameter 20 here, but 10 where it was first loaded (line 3): "
+            "the program's tool list keeps 10; give each cutter a number of its own [-Wtool-geometry]\n"
+            "part.cls:4:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, "
+            "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n"
+            "part.cls:9:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, "
+            "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n");
+}
+
 // A CUTCOM register goes where the machine's G41/G42 has a place for it (a mill's D word). A
 // Fanuc lathe's G41 takes none (the T word's offset holds the nose radius and tip): the number
 // is said not to be written. A word CUTCOM does not read is said too; a plane word is silent.
