@@ -63,9 +63,7 @@ void Lowerer::record(const Record& r) {
     // if they were not there. Before a record with nothing to cut, or an unknown one, they are
     // passed through with it.
     if (r.id != MajorId::Unknown && !carries_nothing_to_cut(r.id)) {
-      std::string name;
-      for (const Param& h : r.head) name += std::string(h.text) + ",";
-      d_.error(r.loc, "'" + name + std::string(r.major) + "': words before " + upper(r.major) +
+      d_.error(r.loc, "'" + head_and_major(r) + "': words before " + upper(r.major) +
                           " are read only before a contour motion (TLON,GOFWD/...); what they change in it is not "
                           "known: write them as records of their own");
       return;
@@ -237,6 +235,13 @@ void Lowerer::record(const Record& r) {
   }
 }
 
+// The record's name as written: its head words, then its major (TLON,GOFWD).
+std::string head_and_major(const Record& r) {
+  std::string name;
+  for (const Param& h : r.head) name += std::string(h.text) + ",";
+  return name + std::string(r.major);
+}
+
 // Records that only name or describe (text, header facts, tolerances): nothing in them moves
 // the tool or changes how it cuts.
 bool carries_nothing_to_cut(MajorId id) {
@@ -295,10 +300,7 @@ void Lowerer::not_read(const Record& r, std::string_view why, std::string_view c
 // A record that moves the tool (or the machine) in a way clpc does not read: never dropped, never
 // guessed (docs/cl-input.md, "Records that carry motion").
 void Lowerer::motion_not_read(const Record& r, std::string_view why) {
-  std::string name;
-  for (const Param& h : r.head) name += std::string(h.text) + ",";
-  name += std::string(r.major);
-  d_.error(r.loc, "'" + name + "' moves the tool and clpc does not read it: " + std::string(why));
+  d_.error(r.loc, "'" + head_and_major(r) + "' moves the tool and clpc does not read it: " + std::string(why));
 }
 
 namespace {

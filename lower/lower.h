@@ -20,6 +20,7 @@ namespace clpc {
 bool is_contour_motion(MajorId id);
 // PPRINT, PARTNO, INTOL, ...: records that neither move the tool nor change how it cuts (lower/lower.cpp).
 bool carries_nothing_to_cut(MajorId id);
+std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
 bool motion_word(std::string_view major);
 std::string_view motion_hint(std::string_view major);
