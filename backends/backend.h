@@ -118,6 +118,7 @@ class ProgramWriter : public Backend {
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
   bool comp_on_ = false;  // G41/G42 written and no G40 since
+  int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once
   bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental
   bool position_known_ = false;

@@ -138,6 +138,7 @@ void ProgramWriter::optional_stop_between_operations(SourceLoc loc) {
 // The next tool into the changer's ready position while this one cuts. The T word in the
 // tool-change block still says which tool is loaded: a preselect only saves time.
 void ProgramWriter::after_tool_change(int tool, SourceLoc loc) {
+  comp_register_said_ = 0;
   if (!m_.preselect || !info_ || info_->preselects_given) return;
   const std::vector<int>& seq = info_->tool_changes;
   // The next load of `tool` from where the last change was (a subroutine may repeat loads).

@@ -29,6 +29,7 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   e_.end(true);
   after_template(m_.codes.tool_change);
   tool_ = t.tool;
+  length_offset_ = offset;  // the offset the T word selects: nose radius and tip for G41/G42
   motion_ = Motion::None;
   e_.forget_linear();
   feed_written_ = false;

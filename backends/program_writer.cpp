@@ -555,13 +555,19 @@ void ProgramWriter::comp_code() {
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   // A register the machine's G41/G42 has no place for (a Fanuc lathe takes the nose radius and
-  // tip from the offset its T word selects) is not written: say so, unless it is the tool's own.
+  // tip from the offset its T word selects) is not written: say so once, unless it is the
+  // register the T word selects anyway.
   const CodeTemplate& code = c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right;
-  if (c.side != ir::CompSide::Off && c.reg > 0 && c.reg != tool_ && !code.uses(Var::Register))
-    d_.warning(loc, "CUTCOM register " + std::to_string(c.reg) + " is not written: machine '" + m_.name + "''s " +
-                        (c.side == ir::CompSide::Left ? "comp_left" : "comp_right") + " code ('" + code.text +
-                        "') takes no register, so the compensation uses the offset of the tool's own T word",
+  const int selected = length_offset_ > 0 ? length_offset_ : tool_;
+  if (c.side != ir::CompSide::Off && c.reg > 0 && c.reg != selected && c.reg != comp_register_said_ &&
+      !code.uses(Var::Register)) {
+    d_.warning(loc, "CUTCOM register " + std::to_string(c.reg) + " is not written: the " +
+                        (c.side == ir::CompSide::Left ? "comp_left" : "comp_right") + " code of machine '" + m_.name +
+                        "' ('" + code.text + "') takes no register, so the compensation uses offset " +
+                        std::to_string(selected) + ", the one the T word selects",
                "tool-offset");
+    comp_register_said_ = c.reg;
+  }
   comp_pending_ = c;
   comp_pending_set_ = true;
 }

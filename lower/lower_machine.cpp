@@ -229,7 +229,8 @@ void Lowerer::lower_cutcom(const Record& r) {
       if (!reg) return;
       c.reg = *reg;
     }
-    else if (!(p.is_empty() || p.is("XYPLAN") || p.is("YZPLAN") || p.is("ZXPLAN")))  // a plane word: nothing more
+    // A plane word carries nothing more; ADJUST marks the register that follows.
+    else if (!(p.is_empty() || p.is("XYPLAN") || p.is("YZPLAN") || p.is("ZXPLAN") || p.is("ADJUST")))
       d_.warning(p.loc, "CUTCOM: '" + std::string(p.name()) + "' is not read", "ignored-word");
   }
   if (!side && on && last_comp_) {

@@ -92,9 +92,15 @@ class TableBuilder : public RecordSink {
         // After its load (Creo: LOADTL, then $$-> CUTTER) or before the next one (NX, CATIA:
         // the tool's data, then its LOAD/LOADTL/TURRET): the loaded tool takes it only while it
         // has none.
-        // Creo's "$$-> CUTTER" always follows its load, so it is the loaded tool's even when
-        // the number was loaded before (a second operation with the same tool).
-        if (explicit_ >= 0 && (r.data_comment || !has_geometry(slot(explicit_, r.loc)))) attach(slot(explicit_, r.loc), g);
+        // Creo's "$$-> CUTTER" always follows its load; a file whose first plain CUTTER/TLDATA
+        // follows a load writes them all after it. Either way the record is the loaded tool's,
+        // also when the number was loaded before (a second operation with the same tool).
+        if (!r.data_comment && !order_known_) {
+          after_load_ = explicit_ >= 0;
+          order_known_ = true;
+        }
+        const bool after = r.data_comment || after_load_;
+        if (explicit_ >= 0 && (after || !has_geometry(slot(explicit_, r.loc)))) attach(slot(explicit_, r.loc), g);
         else pending_ = g;
         break;
       }
@@ -236,11 +242,11 @@ class TableBuilder : public RecordSink {
   // The first geometry a tool number is given is its own; another diameter later is noted (a
   // pocket holds one cutter) for the lowerer to warn of and a cutting speed to refuse.
   static void attach(ir::ToolInfo& t, const ToolGeometry& g) {
-    if (!has_geometry(t)) {
-      t.kind = g.kind;
+    if (t.kind.empty()) t.kind = g.kind;
+    if (t.length == 0) t.length = g.length;
+    if (t.diameter == 0 && t.corner_radius == 0) {  // a kind alone (TLDATA/MILL) gives no diameter
       t.diameter = g.diameter;
       t.corner_radius = g.corner_radius;
-      t.length = g.length;
     } else if (g.diameter > 0 && std::abs(g.diameter - t.diameter) > 1e-9 && !t.other_diameter_at.valid()) {
       t.other_diameter_at = g.loc;
       t.other_diameter = g.diameter;
@@ -292,6 +298,8 @@ class TableBuilder : public RecordSink {
 
   const PrescanOptions& opt_;
   ir::ProgramInfo info_;
+  bool order_known_ = false;  // the first plain CUTTER/TLDATA seen: does the file write them
+  bool after_load_ = false;   // after their load (true) or before it (CATIA, NX)?
   bool in_op_ = false;
   std::string op_name_;
   SourceLoc op_loc_;

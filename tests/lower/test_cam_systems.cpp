@@ -584,6 +584,22 @@ TEST(CamSystems, EachCreoCutterIsItsOwnLoadsAndASecondDiameterIsSaid) {
             "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n"
             "part.cls:9:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, "
             "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n");
+  // A file whose CUTTER follows its LOADTL writes them all so: T1 reloaded, then T2's own 6 mm.
+  const std::string after = "UNITS/MM\nLOADTL/1\nCUTTER/10\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nLOADTL/1\n"
+                            "CUTTER/10\nRAPID\nGOTO/0,0,20\nLOADTL/2\nCUTTER/6\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,20\nFINI\n";
+  Compiled a = compile_text(after, machine("fanuc-mill"));
+  ASSERT_TRUE(a.ok) << a.diags;
+  EXPECT_THAT(a.output, HasSubstr("\n(T1 D=10. CR=0.)\n(T2 D=6. CR=0.)\n"));
+  EXPECT_THAT(a.output, HasSubstr(" S10610 M03\n"));
+  EXPECT_EQ(messages(a.diags), "");
+  // NX's TLDATA with a kind alone gives no diameter: the next one's is the tool's first.
+  const std::string nx = "TOOL PATH/OP1,TOOL,T10\nTLDATA/MILL\nLOAD/TOOL,1,ADJUST,1\nUNITS/MM\nSPINDL/RPM,1000,CLW\n"
+                         "RAPID\nGOTO/0,0,10\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,T10\nTLDATA/MILL,10.0000,0.0000,50.0000\n"
+                         "LOAD/TOOL,1,ADJUST,1\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,20\nEND-OF-PATH\nFINI\n";
+  Compiled n = compile_text(nx, machine("fanuc-mill"));
+  ASSERT_TRUE(n.ok) << n.diags;
+  EXPECT_THAT(n.output, HasSubstr(" S6366 M03\n"));
+  EXPECT_EQ(messages(n.diags), "");
 }
 
 // A CUTCOM register goes where the machine's G41/G42 has a place for it (a mill's D word). A
@@ -597,8 +613,24 @@ TEST(CamSystems, ACompensationRegisterTheMachineHasNoPlaceForIsSaid) {
   ASSERT_TRUE(lathe.ok) << lathe.diags;
   EXPECT_THAT(lathe.output, HasSubstr("\nN60 G41 G99 G01 X80. Z5. F0.2\n"));
   EXPECT_EQ(messages(lathe.diags),
-            "part.cls:7:1: warning: CUTCOM register 3 is not written: machine 'fanuc-lathe''s comp_left code ('G41') "
-            "takes no register, so the compensation uses the offset of the tool's own T word [-Wtool-offset]\n");
+            "part.cls:7:1: warning: CUTCOM register 3 is not written: the comp_left code of machine 'fanuc-lathe' "
+            "('G41') takes no register, so the compensation uses offset 1, the one the T word selects [-Wtool-offset]\n");
+  // The register the T word selects (OSETNO) is silent, and so is CUTCOM/ON resuming one already said.
+  Compiled osetno = compile_text("UNITS/MM\nLOADTL/1,OSETNO,5\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\n"
+                                 "GOTO/50,0,10\nCUTCOM/LEFT,5\nGOTO/40,0,5\nCUTCOM/OFF\nGOTO/50,0,5\nCUTCOM/ON\n"
+                                 "GOTO/40,0,0\nCUTCOM/OFF\nGOTO/50,0,0\nFINI\n",
+                                 machine("fanuc-lathe"));
+  ASSERT_TRUE(osetno.ok) << osetno.diags;
+  EXPECT_THAT(osetno.output, HasSubstr("T0105"));
+  EXPECT_EQ(messages(osetno.diags), "");
+  Compiled said_once = compile_text("UNITS/MM\nLOADTL/1,OSETNO,5\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\n"
+                                    "GOTO/50,0,10\nCUTCOM/LEFT,1\nGOTO/40,0,5\nCUTCOM/OFF\nGOTO/50,0,5\nCUTCOM/ON\n"
+                                    "GOTO/40,0,0\nCUTCOM/OFF\nGOTO/50,0,0\nFINI\n",
+                                    machine("fanuc-lathe"));
+  ASSERT_TRUE(said_once.ok) << said_once.diags;
+  EXPECT_EQ(messages(said_once.diags),
+            "part.cls:7:1: warning: CUTCOM register 1 is not written: the comp_left code of machine 'fanuc-lathe' "
+            "('G41') takes no register, so the compensation uses offset 5, the one the T word selects [-Wtool-offset]\n");
   // The tool's own number is what the T word selects anyway: nothing to say.
   Compiled own = compile_text("UNITS/MM\nLOADTL/3\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/50,0,10\n"
                               "CUTCOM/RIGHT,3\nGOTO/40,0,5\nCUTCOM/OFF\nGOTO/50,0,5\nFINI\n",
@@ -607,7 +639,7 @@ TEST(CamSystems, ACompensationRegisterTheMachineHasNoPlaceForIsSaid) {
   EXPECT_EQ(messages(own.diags), "");
   const std::string mill =
       "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
-      "CUTCOM/LEFT,XYPLAN,21\nGOTO/10,0,-1\nCUTCOM/OFF,SIDE\nGOTO/10,10,-1\nFINI\n";
+      "CUTCOM/LEFT,XYPLAN,ADJUST,21\nGOTO/10,0,-1\nCUTCOM/OFF,SIDE\nGOTO/10,10,-1\nFINI\n";
   Compiled m = compile_text(mill, machine("fanuc-mill"));
   ASSERT_TRUE(m.ok) << m.diags;
   EXPECT_THAT(m.output, HasSubstr("\nN80 G41 D21 X10.\nN90 G40 Y10.\n"));
