@@ -18,11 +18,13 @@ std::unique_ptr<Backend> make_backend(const Machine& m, OutputFile& out, Diagnos
 }
 
 void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
-  if (t.tool == tool_) return;
+  const int offset = t.length_offset > 0 ? t.length_offset : t.tool;
+  // The tool already at the cut with the same offset: nothing to write. With another offset
+  // (OSETNO), the T word is written again: the turret stays, the offset changes.
+  if (t.tool == tool_ && offset == length_offset_) return;
   if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
-  int offset = t.length_offset > 0 ? t.length_offset : t.tool;
   e_.begin(loc);
   e_.code(m_.codes.tool_change, TemplateVars().with(Var::Tool, t.tool).with(Var::Offset, offset));
   if (info) e_.trailing_comment(tool_comment(*info));

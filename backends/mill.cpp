@@ -18,12 +18,21 @@ constexpr double kAxisTol = 1e-6;
 MillBackend::MillBackend(const Machine& m, OutputFile& out, Diagnostics& d) : ProgramWriter(m, out, d) {}
 
 void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
-  if (t.tool == tool_) return;  // already in the spindle
+  const int offset = t.length_offset > 0 ? t.length_offset : t.tool;
+  if (t.tool == tool_) {
+    // Already in the spindle: no M06. A reload that names another length register (one tool,
+    // two offsets) retracts and brings Z back down with the new H, as after a tool change.
+    if (offset == length_offset_) return;
+    retract(loc);
+    length_offset_ = offset;
+    need_length_offset_ = !m_.codes.length_offset.empty() && !tcp_on_;
+    return;
+  }
   if (tool_ >= 0) retract(loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
-  length_offset_ = t.length_offset > 0 ? t.length_offset : t.tool;
+  length_offset_ = offset;
   e_.code(m_.codes.tool_change, TemplateVars().with(Var::Tool, t.tool).with(Var::Offset, length_offset_));
   if (info) e_.trailing_comment(tool_comment(*info));
   e_.end(true);

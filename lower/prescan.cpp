@@ -89,12 +89,12 @@ class TableBuilder : public RecordSink {
         if (r.id == MajorId::Tldata && !r.params.empty()) family(r, r.params[0]);
         ToolGeometry g = read_tool_geometry(r, nullptr);
         if (!g.any) break;
-        // After its load (Creo: LOADTL, then $$-> CUTTER) or before the next one (NX, CATIA:
-        // the tool's data, then its LOAD/LOADTL/TURRET): the loaded tool takes it only while it
-        // has none.
-        // Creo's "$$-> CUTTER" always follows its load; a file whose first plain CUTTER/TLDATA
-        // follows a load writes them all after it. Either way the record is the loaded tool's,
-        // also when the number was loaded before (a second operation with the same tool).
+        // A tool's data stands after its load (Creo: LOADTL, then $$-> CUTTER) or before the
+        // next one (NX, CATIA: the data, then LOAD/LOADTL/TURRET). Creo's "$$-> CUTTER" always
+        // follows its load, and a file whose first plain CUTTER/TLDATA follows a load writes them
+        // all after it: then the record is the loaded tool's, also when the number was loaded
+        // before (a second operation with the same tool). Otherwise the loaded tool takes it only
+        // while it has none, and the rest waits for the next load.
         if (!r.data_comment && !order_known_) {
           after_load_ = explicit_ >= 0;
           order_known_ = true;

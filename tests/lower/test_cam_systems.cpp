@@ -646,6 +646,31 @@ TEST(CamSystems, ACompensationRegisterTheMachineHasNoPlaceForIsSaid) {
   EXPECT_EQ(messages(m.diags), "part.cls:10:12: warning: CUTCOM: 'SIDE' is not read [-Wignored-word]\n");
 }
 
+// One tool loaded again with another offset register (NX and APT write LOADTL/1,ADJUST,21 or
+// OSETNO for a second operation with the same cutter): the tool stays in the spindle or at the
+// cut, and the new register is written. It was dropped (the tool was "already there"), so the
+// program ran the second operation on the first register and verify refused it.
+TEST(CamSystems, TheSameToolLoadedWithAnotherOffsetWritesTheNewOffset) {
+  const std::string cl = "UNITS/MM\nLOADTL/1,ADJUST,1\nSPINDL/1000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/100\n"
+                         "GOTO/10,0,0\nLOADTL/1,ADJUST,21\nRAPID\nGOTO/0,0,50\nFEDRAT/100\nGOTO/10,0,0\n"
+                         "LOADTL/1,ADJUST,21\nGOTO/10,0,-10\nFINI\n";
+  Compiled mill = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(mill.ok) << mill.diags;
+  // No second M06, the spindle keeps turning; Z comes down again with H21. The third LOADTL
+  // names the register in force: nothing is written.
+  EXPECT_THAT(mill.output, HasSubstr("\nN70 G94 G01 X10. Z0. F100.\nN80 G91 G28 Z0.\nN90 G90 G00 X10. Y0.\n"
+                                     "N100 G43 H21 Z50.\nN110 X0.\nN120 G94 G01 X10. Z0. F100.\nN130 Z-10.\n"));
+  EXPECT_EQ(mill.output.find("M06", mill.output.find("M06") + 1), std::string::npos);
+  verifies(cl, machine("fanuc-mill"));
+  std::string turn = cl;
+  for (size_t at; (at = turn.find("ADJUST")) != std::string::npos;) turn.replace(at, 6, "OSETNO");
+  Compiled lathe = compile_text(turn, machine("fanuc-lathe"));
+  ASSERT_TRUE(lathe.ok) << lathe.diags;
+  EXPECT_THAT(lathe.output, HasSubstr("\nN60 G98 G01 X20. Z0. F100.\nN70 G28 U0. W0.\nN80 T0121 (T1)\n"));
+  EXPECT_EQ(lathe.output.find("T0121", lathe.output.find("T0121") + 1), std::string::npos);
+  verifies(turn, machine("fanuc-lathe"));
+}
+
 // A cutting speed on a mill (CATIA writes SPINDL/v,SMM when the speed is given as one) is the
 // rpm at the cutter's diameter, n = 1000 v / (pi D): 200 m/min on a 10 mm cutter is 6366 rpm;
 // 500 ft/min on a 1/2 inch cutter is 3820 rpm (the shop's 3.82 x SFM / D). Without a diameter,
