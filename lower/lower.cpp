@@ -72,6 +72,13 @@ void Lowerer::record(const Record& r) {
       motion_not_read(r, motion_hint(r.major));
       return;
     }
+    if (r.id != MajorId::Unknown) {
+      d_.warning(r.loc, "'" + head_and_major(r) + "': the words before " + upper(r.major) +
+                            " are not read (the record is passed through as a comment)",
+                 "ignored-word");
+      passthrough(r);
+      return;
+    }
     unknown(r, "unknown record", true);
     return;
   }

@@ -548,7 +548,8 @@ TEST(CamSystems, WordsBeforeARecordThatCutsAreRefusedNotDropped) {
   Compiled text = compile_text(head + "XX,PPRINT/HELLO\nXX,FOO/1\nGOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
   ASSERT_TRUE(text.ok) << text.diags;
   EXPECT_EQ(messages(text.diags),
-            "part.cls:6:1: warning: unknown record 'PPRINT' (passed through as a comment) [-Wunknown-record]\n"
+            "part.cls:6:1: warning: 'XX,PPRINT': the words before PPRINT are not read (the record is passed through as a "
+            "comment) [-Wignored-word]\n"
             "part.cls:7:1: warning: unknown record 'FOO' (passed through as a comment) [-Wunknown-record]\n");
   EXPECT_THAT(text.output, HasSubstr("\n(CL: XX,PPRINT/HELLO)\n(CL: XX,FOO/1)\nN60 X5. Y5.\n"));
 }
