@@ -118,12 +118,28 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
   ir::Vec3 rp = radial(p), re = radial(arc->end), rs = radial(arc->start);
   if (std::abs(rp.norm() - arc->radius) > tol) return false;
   if ((p - arc->end).norm() < tol) return false;
-  // Same sense: the turn from the previous point on the arc to its end, and from its end to
-  // p, have the same sign about the axis; and the whole stays within one turn.
-  ir::Vec3 rprev = arc->via_count ? radial(op_.points[arc->via_begin + arc->via_count - 1]) : rs;
-  double s1 = n.dot(rprev.cross(re));
-  double s2 = n.dot(re.cross(rp));
-  if (s1 * s2 <= 0) return false;
+  // Same sense: every step along the arc turns the same way about the axis, and the whole
+  // stays within one turn. A half turn (a step to the point opposite, as from one quadrant
+  // point to the next but one) has no sense of its own, whatever sign the CL's rounding gives
+  // it: it follows the arc's other steps, or, where the arc has none yet, the CAM system's
+  // convention about the CIRCLE's axis.
+  auto sense = [&](const ir::Vec3& a, const ir::Vec3& b) {
+    double s = n.dot(a.cross(b));
+    if (std::abs(s) > tol * arc->radius) return s > 0 ? 1 : -1;
+    return a.dot(b) < 0 ? 0 : 2;  // 0: a half turn; 2: no step at all
+  };
+  int arc_sense = 0;
+  ir::Vec3 from = rs;
+  for (uint32_t k = 0; k <= arc->via_count && arc_sense == 0; ++k) {
+    ir::Vec3 to = k < arc->via_count ? radial(op_.points[arc->via_begin + k]) : re;
+    arc_sense = sense(from, to);
+    from = to;
+  }
+  if (arc_sense == 0) arc_sense = arc->hint == ir::ArcDir::Ccw ? 1 : arc->hint == ir::ArcDir::Cw ? -1 : 0;
+  const int step_sense = sense(re, rp);
+  if (arc_sense == 2 || step_sense == 2) return false;
+  if (arc_sense != 0 && step_sense != 0 && arc_sense != step_sense) return false;
+  if (arc_sense == 0 && step_sense == 0) return false;
   // Creo writes an arc's intermediate points as far apart as it likes (the evidence for joining
   // them). Other systems' CL (APT's points after a CIRCLE) keeps each chord within the CAM
   // tolerance of the arc, so a step whose chord leaves the arc by more than 0.01 mm is a

@@ -105,6 +105,37 @@ TEST(Lower, CreoIntermediatePointsJoinTheArc) {
                           "feed (20, 0, 0)"));
 }
 
+// A step to the opposite point (a half turn: a quadrant point to the next but one) has no sense
+// of its own; the sign of its cross product is zero, or whatever the CL's rounding makes it. It
+// follows the arc's other steps, or the convention where the arc has none yet. It was refused
+// as "not the same sense", and the rest of the arc was cut as a chord (through the centre).
+TEST(Lower, AHalfTurnStepFollowsTheArc) {
+  const std::string creo = "$$-> MFGNO / 1\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\n";
+  // First step a half turn: the next point, further round counter-clockwise, joins.
+  EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (0, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (-10, 0, 0)",
+                          "feed (0, -10, 5)"));
+  // The same with the half turn's end rounded to either side of the diameter.
+  for (const char* y : {"0.0001", "-0.0001"})
+    EXPECT_THAT(instrs(creo + "GOTO/-10," + y + ",0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
+                ElementsAre("feed (10, 0, 0)", HasSubstr("arc ? to (0, -10, 0)"), "feed (0, -10, 5)"))
+        << y;
+  // A half turn after a quarter: it continues the quarter's sense.
+  EXPECT_THAT(instrs(creo + "GOTO/0,10,0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
+              ElementsAre("feed (10, 0, 0)",
+                          "arc ? to (0, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (0, 10, 0)",
+                          "feed (0, -10, 5)"));
+  // A point that lies behind the half turn in the convention's sense does not join: counter-
+  // clockwise, (0, 10) comes before (-10, 0). It is a straight move.
+  EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/0,10,0\n"),
+              ElementsAre("feed (10, 0, 0)", "arc ? to (-10, 0, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
+                          "feed (0, 10, 0)"));
+  // Two half turns are back at the start: no arc of less than a turn.
+  EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/10,0,0\n"),
+              ElementsAre("feed (10, 0, 0)", HasSubstr("arc ? to (-10, 0, 0)"), "feed (10, 0, 0)"));
+}
+
 TEST(Lower, RetractAfterArcIsNotAnIntermediatePoint) {
   EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nGOTO/0,10,5\n"),
               ElementsAre("feed (10, 0, 0)", "arc ? to (0, 10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
