@@ -36,7 +36,7 @@ void Lowerer::forget_the_last_tools_state() {
 void Lowerer::lower_spindle(const Record& r) {
   ParamReader ps(r, d_);
   ir::Spindle s;
-  bool have_speed = false, off = false, on = false;
+  bool have_speed = false, off = false, on = false, dir_given = false;
   double per_unit = 1;  // surface speed words convert to m/min
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
@@ -53,8 +53,8 @@ void Lowerer::lower_spindle(const Record& r) {
     if (w == "RPM") s.mode = ir::SpindleMode::Rpm;
     else if (w == "SFM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 0.3048; }
     else if (w == "SMM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 1; }
-    else if (w == "CLW") s.dir = ir::SpindleDir::Cw;
-    else if (w == "CCLW") s.dir = ir::SpindleDir::Ccw;
+    else if (w == "CLW") { s.dir = ir::SpindleDir::Cw; dir_given = true; }
+    else if (w == "CCLW") { s.dir = ir::SpindleDir::Ccw; dir_given = true; }
     else if (w == "OFF") off = true;
     else if (w == "ON") on = true;
     else if (w == "MAXRPM") {
@@ -113,6 +113,9 @@ void Lowerer::lower_spindle(const Record& r) {
     return;
   }
   s.speed *= per_unit;
+  // No CLW/CCLW: the direction last given holds (a new speed is no reversal); clockwise when
+  // the file has given none.
+  if (!dir_given && last_spindle_) s.dir = last_spindle_->dir;
   last_spindle_ = s;
   spindle_running_ = true;
   push(r.loc, s);

@@ -185,6 +185,11 @@ TEST(Lower, SpindleBothOrdersAndKinds) {
                      "SPINDL/OFF\nSPINDL/ON\nSPINDL/750\n"),
               ElementsAre("spindle 1000 rpm cw", "spindle 2000 rpm ccw", "spindle 200 m/min cw max 3000",
                           "spindle 152.4 m/min cw", "spindle off", "spindle 152.4 m/min cw", "spindle 750 rpm cw"));
+  // No direction word: the one last given holds (a new speed never reverses the spindle; it
+  // did, to clockwise, under a left-hand tool), also across a stop and a tool change.
+  EXPECT_THAT(instrs("SPINDL/RPM,1000,CCLW\nSPINDL/RPM,500\nSPINDL/OFF\nSPINDL/800\nLOADTL/2\nSPINDL/SMM,90\n"),
+              ElementsAre("spindle 1000 rpm ccw", "spindle 500 rpm ccw", "spindle off", "spindle 800 rpm ccw",
+                          "tool-change T2", "spindle 90 m/min ccw"));
 }
 
 TEST(Lower, FeedBothOrdersAndUnits) {
