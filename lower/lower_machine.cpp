@@ -191,28 +191,50 @@ void Lowerer::lower_feed(const Record& r) {
 }
 
 void Lowerer::lower_coolant(const Record& r) {
-  // Coolant carries no motion: a record clpc cannot read is a warning, never a stop.
+  // Coolant carries no motion: a record clpc cannot read is a warning, never a stop. Every word
+  // is read: OFF anywhere turns the coolant off (COOLNT/MIST,OFF is no M07), ON with a kind is
+  // that kind, and a word left over is said (-Wignored-word).
   ir::Coolant c;
   if (r.params.empty()) {
     d_.warning(r.loc, "COOLNT with no word (ON, OFF, FLOOD, ...) says nothing; ignored", "coolant");
     return;
   }
-  if (!r.params[0].is_word()) {
-    not_read(r, "COOLNT: expected ON, OFF, FLOOD, MIST, THRU, AIR or TAP", "coolant");
+  std::optional<ir::CoolantKind> kind;
+  const Param* kind_word = nullptr;
+  bool on = false, off = false;
+  std::vector<const Param*> ignored;
+  for (const Param& p : r.params) {
+    std::optional<ir::CoolantKind> k;
+    if (p.is("ON")) on = true;
+    else if (p.is("OFF")) off = true;
+    else if (p.is("FLOOD")) k = ir::CoolantKind::Flood;
+    else if (p.is("MIST")) k = ir::CoolantKind::Mist;
+    else if (p.is("THRU") || p.is("THROUGH")) k = ir::CoolantKind::Thru;
+    else if (p.is("AIR")) k = ir::CoolantKind::Air;
+    else if (p.is("TAP")) k = ir::CoolantKind::Tap;
+    else ignored.push_back(&p);
+    if (!k) continue;
+    if (kind && *kind != *k) {
+      not_read(r, "COOLNT: two coolants, '" + std::string(kind_word->text) + "' and '" + std::string(p.text) + "'",
+               "coolant");
+      return;
+    }
+    kind = k;
+    kind_word = &p;
+  }
+  if (on && off) {
+    not_read(r, "COOLNT: both ON and OFF", "coolant");
     return;
   }
-  std::string w = upper(r.params[0].text);
-  if (w == "ON") c.kind = ir::CoolantKind::On;
-  else if (w == "OFF") c.kind = ir::CoolantKind::Off;
-  else if (w == "FLOOD") c.kind = ir::CoolantKind::Flood;
-  else if (w == "MIST") c.kind = ir::CoolantKind::Mist;
-  else if (w == "THRU" || w == "THROUGH") c.kind = ir::CoolantKind::Thru;
-  else if (w == "AIR") c.kind = ir::CoolantKind::Air;
-  else if (w == "TAP") c.kind = ir::CoolantKind::Tap;
-  else {
-    not_read(r, "COOLNT: unknown coolant '" + std::string(r.params[0].text) + "'", "coolant");
+  if (!on && !off && !kind) {
+    not_read(r, ignored.front()->is_word() ? "COOLNT: unknown coolant '" + std::string(ignored.front()->text) + "'"
+                                           : std::string("COOLNT: expected ON, OFF, FLOOD, MIST, THRU, AIR or TAP"),
+             "coolant");
     return;
   }
+  for (const Param* p : ignored)
+    d_.warning(p->loc, "COOLNT: '" + std::string(p->text) + "' is not read", "ignored-word");
+  c.kind = off ? ir::CoolantKind::Off : kind ? *kind : ir::CoolantKind::On;
   ensure_operation(r.loc);
   push(r.loc, c);
 }

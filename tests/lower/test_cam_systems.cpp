@@ -672,6 +672,24 @@ TEST(CamSystems, TheSameToolLoadedWithAnotherOffsetWritesTheNewOffset) {
   verifies(turn, machine("fanuc-lathe"));
 }
 
+// COOLNT with more than one word: every word is read. Only the first was: COOLNT/MIST,OFF
+// turned the mist on (M07), COOLNT/ON,MIST gave flood. A word left over is said; two coolants,
+// or ON with OFF, are passed through with a warning (coolant carries no motion).
+TEST(CamSystems, EveryWordOfACoolantRecordIsRead) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100\nCOOLNT/ON,MIST\nRAPID\nGOTO/0,0,5\n"
+                         "COOLNT/MIST,OFF\nGOTO/0,0,-1\nCOOLNT/FLOOD,HIGH\nGOTO/10,0,-1\nCOOLNT/FLOOD,MIST\n"
+                         "COOLNT/ON,OFF\nCOOLNT/OFF,FLOOD\nGOTO/20,0,-1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN50 M07\nN60 G54 G00 X0. Y0.\nN70 G43 H01 Z5.\nN80 M09\n"
+                                  "N90 G94 G01 Z-1. F100.\nN100 M08\nN110 X10.\n(CL: COOLNT/FLOOD,MIST)\n"
+                                  "(CL: COOLNT/ON,OFF)\nN120 M09\nN130 X20.\n"));
+  EXPECT_EQ(messages(c.diags),
+            "part.cls:10:14: warning: COOLNT: 'HIGH' is not read [-Wignored-word]\n"
+            "part.cls:12:1: warning: COOLNT: two coolants, 'FLOOD' and 'MIST' (passed through as a comment) [-Wcoolant]\n"
+            "part.cls:13:1: warning: COOLNT: both ON and OFF (passed through as a comment) [-Wcoolant]\n");
+}
+
 // A cutting speed on a mill (CATIA writes SPINDL/v,SMM when the speed is given as one) is the
 // rpm at the cutter's diameter, n = 1000 v / (pi D): 200 m/min on a 10 mm cutter is 6366 rpm;
 // 500 ft/min on a 1/2 inch cutter is 3820 rpm (the shop's 3.82 x SFM / D). Without a diameter,
