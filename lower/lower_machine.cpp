@@ -186,6 +186,15 @@ void Lowerer::lower_feed(const Record& r) {
                "feed-unit");
   if (worded) last_feed_unit_ = FeedUnit{f.mode, to_program, r.loc};
   if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
+  if (rapid_next_) {
+    // RAPID, then FEDRAT, then the move: APT posts read RAPID as the next move's only (the move
+    // is rapid) or as in force until a FEDRAT (it is fed). Fed is the reading that cannot drive
+    // the tool into the part at rapid.
+    d_.warning(r.loc, "FEDRAT after RAPID and before the move: the move is fed, not rapid (some posts keep RAPID "
+                      "for the next move; write the FEDRAT after it if that is meant)",
+               "rapid-cancelled");
+    rapid_next_ = false;
+  }
   ensure_operation(r.loc);
   push(r.loc, f);
 }

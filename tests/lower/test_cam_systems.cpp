@@ -690,6 +690,20 @@ TEST(CamSystems, EveryWordOfACoolantRecordIsRead) {
             "part.cls:13:1: warning: COOLNT: both ON and OFF (passed through as a comment) [-Wcoolant]\n");
 }
 
+// RAPID, FEDRAT, then the move: posts read RAPID as the next move's only, or as in force until
+// a FEDRAT. The move was rapid (a plunge into the part at G00); it is now fed, with a warning.
+TEST(CamSystems, AFedratBetweenRapidAndItsMoveFeedsTheMove) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100\nRAPID\nGOTO/0,0,5\nRAPID\nFEDRAT/MMPM,50\n"
+                         "GOTO/0,0,-1\nRAPID\nGOTO/0,0,5\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN60 G43 H01 Z5.\nN70 G94 G01 Z-1. F50.\nN80 G00 Z5.\n"));
+  EXPECT_EQ(messages(c.diags),
+            "part.cls:8:1: warning: FEDRAT after RAPID and before the move: the move is fed, not rapid (some posts keep "
+            "RAPID for the next move; write the FEDRAT after it if that is meant) [-Wrapid-cancelled]\n");
+  verifies(cl, machine("fanuc-mill"));
+}
+
 // A cutting speed on a mill (CATIA writes SPINDL/v,SMM when the speed is given as one) is the
 // rpm at the cutter's diameter, n = 1000 v / (pi D): 200 m/min on a 10 mm cutter is 6366 rpm;
 // 500 ft/min on a 1/2 inch cutter is 3820 rpm (the shop's 3.82 x SFM / D). Without a diameter,
