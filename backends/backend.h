@@ -80,6 +80,9 @@ class ProgramWriter : public Backend {
   // For a cutting block: the feed-mode code when it changed (before the motion code) and
   // the F word when the feed changed (after the coordinates).
   void feed_mode_code();
+  // A cycle's own feed mode (CYCLE/...,MMPR), written where it changes. The CL's mode stays what
+  // its FEDRAT set, so the plain moves after the cycle go back to it.
+  void feed_mode_code(ir::FeedMode mode);
   bool feed_word(SourceLoc loc);
   // F in the format of its kind (feeds.*), refused where rounding makes it zero or changes it by
   // more than feeds.max_rounding; `cl` is the record the feed came from.

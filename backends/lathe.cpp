@@ -110,12 +110,6 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   return false;
 }
 
-void LatheBackend::cycle_feed_mode(ir::FeedMode mode) {
-  if (feed_mode_known_ && written_feed_mode_ == mode) return;
-  feed_mode_ = mode;
-  feed_mode_code();
-}
-
 bool LatheBackend::changed(char letter, double value) const {
   return !m_.modal.coordinates || e_.differs(letter, value);
 }
@@ -233,7 +227,7 @@ void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, So
   e_.word('R', s.retract * k_);
   e_.end();
   e_.begin(loc);
-  cycle_feed_mode(mode);
+  feed_mode_code(mode);
   e_.code(code);
   e_.word('X', g.end.x() * k_);
   e_.word('Z', g.end.z() * k_);

@@ -24,7 +24,6 @@ class LatheBackend : public ProgramWriter {
   void write_rough(const ir::Operation& op, size_t at, SourceLoc loc) override;  // backends/lathe_rough.cpp
 
   void motion_code(Motion mo);
-  void cycle_feed_mode(ir::FeedMode mode);  // a cycle's block: its feed mode code, where it changes
   bool in_plane(const ir::Vec3& p, SourceLoc loc);
   bool changed(char letter, double value) const;
 

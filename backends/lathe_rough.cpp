@@ -115,7 +115,7 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
   e_.argument('R', m.retract * k_, len);
   e_.end();
   e_.begin(loc);
-  cycle_feed_mode(mode);
+  feed_mode_code(mode);
   e_.code(code);
   e_.argument('P', double(np), seq);
   e_.argument('Q', double(nq), seq);

@@ -491,10 +491,7 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
       e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
       need_length_offset_ = false;
     }
-    if (feed_mode_ != mode || !feed_mode_known_ || written_feed_mode_ != mode) {
-      feed_mode_ = mode;
-      feed_mode_code();
-    }
+    feed_mode_code(mode);
     e_.code(m_.cycles.return_initial ? k.cycle_return_initial : k.cycle_return_r);
     e_.code(*code);
     e_.word('X', o.x());

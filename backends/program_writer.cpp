@@ -415,10 +415,12 @@ void ProgramWriter::write_feed_mode(ir::FeedMode mode) {
   e_.code(t);
 }
 
-void ProgramWriter::feed_mode_code() {
-  if (feed_mode_known_ && written_feed_mode_ == feed_mode_) return;
-  write_feed_mode(feed_mode_);
-  written_feed_mode_ = feed_mode_;
+void ProgramWriter::feed_mode_code() { feed_mode_code(feed_mode_); }
+
+void ProgramWriter::feed_mode_code(ir::FeedMode mode) {
+  if (feed_mode_known_ && written_feed_mode_ == mode) return;
+  write_feed_mode(mode);
+  written_feed_mode_ = mode;
   feed_mode_known_ = true;
   feed_written_ = false;
 }

@@ -64,6 +64,20 @@ TEST(Cycles, FeedFromFedratWhenTheCycleGivesNone) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEPTH,5,CLEAR,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN80 X30.\nN90 G80");
 }
 
+// A cycle's own feed per revolution changes the control's mode, not the CL's: the moves after
+// it go back to the FEDRAT's per-minute feed with G94. They were written F100 under the cycle's
+// G95 (100 mm per revolution), and the compile was refused by verify.
+TEST(Cycles, TheMovesAfterACyclesFeedPerRevolutionFeedPerMinuteAgain) {
+  const std::string cl = std::string(kHead) + "CYCLE/DRILL,FEDTO,5,MMPR,0.1,RAPTO,2\nGOTO/10,10,0\nCYCLE/OFF\n"
+                                              "GOTO/30,10,20\nGOTO/30,10,0\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN70 G95 G98 G81 X10. Y10. Z-5. R2. F0.1\nN80 G80\nN90 G94 G01 X30. F100.\nN100 Z0.\n"));
+  Compiled haas = compile_text(cl, machine("haas-umc750"));
+  ASSERT_TRUE(haas.ok) << haas.diags;
+  EXPECT_THAT(haas.output, HasSubstr("G94 G01 X1.1811 F3.94\n"));
+}
+
 TEST(Cycles, InchFeedConvertedToAMetricProgram) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,DEPTH,5,IPM,10,CLEAR,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F254.\nN80 X30.\nN90 G80");
 }
