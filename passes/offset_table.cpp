@@ -291,9 +291,15 @@ class OffsetTablePass : public Pass {
       if ((*a - z_model).norm() > 1e-9) indexed_ = false;
     }
     if (!indexed_) {
+      // Five-axis motion (the tool axis leaves the frame's Z) is left to the kinematics pass, in
+      // the program frame. The register selected holds this frame's origin (and the read-back,
+      // under TCPC, does not add it): written in the program frame under it, every point would
+      // be off by the origin. Refused until the frame is carried into the five-axis motion.
       if (!frame_.is_identity(1e-9))
-        ctx.diags.warning(loc, "this operation's tool axis is not its frame's Z: it is written in the base frame, for the "
-                               "kinematics pass", "not-3plus2");
+        ctx.diags.error(loc, "this operation's tool axis leaves its frame's Z (five-axis motion), and its work offset "
+                             "(register " + std::to_string(w->index) + ", the frame of line " + std::to_string(w->loc.line) +
+                             ") is not the program's frame: clpc writes five-axis motion only in the program's frame; "
+                             "have the CAM system write this operation there");
       return;
     }
     transform_ = true;
@@ -301,9 +307,22 @@ class OffsetTablePass : public Pass {
       out.insert(at, {loc, ir::RotaryPosition{w->rotary, true}});
       T_ = kin::table_rotation(k_, w->rotary);
     } else {
-      T_ = frame_.rotation.transpose();
+      // The part is set up with the frame's axes along the machine's. In one setup it stands one
+      // way: the first frame of the setup says which. Another frame of that setup turned about
+      // Z from it would need the turn in its register, which holds an origin only.
+      if (w->setup <= 1) {
+        if (!first_setup_turn_) first_setup_turn_ = {frame_.rotation, w->loc};
+        else if (!frame_.rotation.isApprox(first_setup_turn_->first, 1e-9))
+          ctx.diags.error(loc, "this operation's frame (line " + std::to_string(w->loc.line) + ") is turned about Z from the frame of line " +
+                                   std::to_string(first_setup_turn_->second.line) + ", in the same setup: work offset register " +
+                                   std::to_string(w->index) + " holds its origin, not its turn, on a machine without rotary "
+                                   "axes; have the CAM system write both operations in frames turned alike");
+      }
+      T_ = frame_.rotation.transpose();  // the frame's own coordinates: the part turned to it
     }
   }
+
+  std::optional<std::pair<ir::Mat3, SourceLoc>> first_setup_turn_;  // the first frame of setup 1, without rotaries
 
   Vec3 point(const Vec3& p) const { return T_ * (p - frame_.origin); }
   Vec3 dir(const Vec3& v) const { return T_ * v; }

@@ -40,7 +40,6 @@ const std::vector<WarningName>& warning_names() {
       {"insert", "an INSERT that is no block the control reads, written as a comment; one with axis words, not checked"},
       {"invalid-utf8", "a byte of a one-byte code page in a comment or text"},
       {"motion-before-tool", "a rapid before the first tool change, taken as the start point"},
-      {"not-3plus2", "an operation in a tilted frame whose tool axis is not the frame's Z"},
       {"not-a-record", "a line that is no CL record, skipped"},
       {"not-supported", "a record none of clpc's machines can act on"},
       {"rapid-arc", "RAPID before an arc, which is cut at the feed rate"},

@@ -376,6 +376,42 @@ TEST(OffsetTable, TiltedFrameOnAThreeAxisMachineNeedsNoTable) {
   EXPECT_THAT(c.output, HasSubstr("G43 H01 Z10.\n"));
 }
 
+// Five-axis motion in a frame only shifted from the program's: the kinematics pass writes it in
+// the program frame, so under the frame's register (holding its origin) every point was off by
+// the origin, and certified (the read-back under TCPC did not add it). Refused now.
+TEST(OffsetTable, FiveAxisMotionUnderAnotherFramesRegisterIsRefused) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nSET/55\n" + camera(rz(0), Vec3(100, 50, -10)) +
+                         "MULTAX/ON\nRAPID\nGOTO/110,50,20,0,0,1\nFEDRAT/MMPM,200\nGOTO/110,50,-12,0.5,0,0.8660254\nFINI\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr(":9:1: error: this operation's tool axis leaves its frame's Z (five-axis motion), and its "
+                                 "work offset (register 2, the frame of line 5) is not the program's frame"));
+  // In the program's frame it is posted as before.
+  std::string base = cl;
+  base.replace(base.find("SET/55"), 7, "");
+  base.replace(base.find("CAMERA"), base.find("MULTAX") - base.find("CAMERA"), "");
+  Compiled b = compile_text(base, machine("haas-umc750"));
+  ASSERT_TRUE(b.ok) << b.diags;
+  EXPECT_THAT(b.output, HasSubstr("G00 X4.3307 Y1.9685 B0. C0.\n"));
+}
+
+// On a machine without rotaries, frames with Z up are one setup: the part is set with the first
+// one's axes along the machine's. A second frame turned about Z from it was written in its own
+// turned coordinates under a register that holds only its origin (the tool 14 mm off). Refused;
+// one turned frame alone is still the part's setup.
+TEST(OffsetTable, FramesTurnedAboutZInOneSetupAreRefusedWithoutRotaries) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/200\n";
+  const std::string second = "SET/56\n" + camera(rz(90), Vec3(200, 0, 0)) + "RAPID\nGOTO/210,0,20\nGOTO/210,10,-2\n";
+  Compiled one = compile_text(head + second + "FINI\n", machine("fanuc-mill"));
+  ASSERT_TRUE(one.ok) << one.diags;
+  EXPECT_THAT(one.output, HasSubstr("G56 G00 X0. Y-10.\n"));
+  Compiled two = compile_text(head + "SET/55\n" + camera(rz(0), Vec3(100, 50, 0)) + "RAPID\nGOTO/110,50,20\n" + second + "FINI\n",
+                              machine("fanuc-mill"));
+  EXPECT_FALSE(two.ok);
+  EXPECT_THAT(two.diags, HasSubstr(":14:1: error: this operation's frame (line 11) is turned about Z from the frame of line 6, in "
+                                   "the same setup: work offset register 3 holds its origin, not its turn"));
+}
+
 // SET with no frame record names the register of the frame in force; the table lists every
 // register the program uses, for the operator.
 TEST(OffsetTable, SetWithoutFrameSelectsItsRegister) {
