@@ -112,6 +112,9 @@ class ProgramWriter : public Backend {
   double feed_ = 0;  // program units
   bool feed_known_ = false;
   SourceLoc feed_loc_;      // the FEDRAT the feed came from
+  // The CL record whose move the last inverse-time F (FEDRAT/INVERS) was written for, and the
+  // last one refused: a record's move split into blocks must not give each block its time.
+  SourceLoc inverse_for_{}, inverse_refused_{};
   bool in_cycle_ = false;  // between a CycleOn and its CycleOff
   size_t resume_at_ = 0;   // the operation's next instruction to write (past a section written whole)
   bool feed_written_ = false;

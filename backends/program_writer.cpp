@@ -432,6 +432,20 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
     feed_ = 0;
     return false;
   }
+  if (feed_mode_ == ir::FeedMode::InverseTime) {
+    // G93's F is one over the block's minutes: the CL gave it for one move. Where the post
+    // writes that move as several blocks (an arc made lines, a turn of the table inserted),
+    // each would take the whole move's time.
+    if (inverse_for_.valid() && loc == inverse_for_) {
+      if (!(loc == inverse_refused_))
+        d_.error(loc, "an inverse-time feed (FEDRAT/INVERS) for a move the program writes as more than one block: "
+                      "each block would take the whole move's time; have the CAM system write a feed per minute "
+                      "here (or the move as the blocks it writes)");
+      inverse_refused_ = loc;
+      return false;
+    }
+    inverse_for_ = loc;
+  }
   double f = feed_mode_ == ir::FeedMode::InverseTime ? feed_ : feed_ * k_;
   if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerMinute && f > m_.max_feed) f = m_.max_feed;
   if (!m_.modal.feed || !feed_written_ || feed_mode_ == ir::FeedMode::InverseTime) {

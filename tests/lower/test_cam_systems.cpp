@@ -401,6 +401,24 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
   EXPECT_THAT(inverse.output, HasSubstr(" G93 G01 Z0.0394 F10.\nN55 G94 X0.3937 F7.87\n"));
 }
 
+// G93's F is one over the block's minutes, given by the CL for one move. A move the program
+// writes as several blocks (an arc cut in quarters, an arc made lines under TCPC) gave each
+// block the whole move's F: four quarters took four times the CL's time, certified. Refused;
+// a move written as one block keeps its F.
+TEST(CamSystems, AnInverseTimeFeedIsNotCopiedOntoTheBlocksOfASplitMove) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,10,50\nFEDRAT/MMPM,100\nGOTO/0,10,0\n"
+                         "FEDRAT/INVERS,4\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,10,0\nFINI\n";
+  Compiled whole = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(whole.ok) << whole.diags;
+  EXPECT_THAT(whole.output, HasSubstr("\nN80 G17 G93 G03 I0. J-10. F4.\n"));
+  Compiled quarters = compile_text(cl, machine("m", "[m]\ninherits = \"fanuc-mill\"\n[m.arcs]\nmax_sweep = 90\n"));
+  EXPECT_FALSE(quarters.ok);
+  EXPECT_EQ(messages(quarters.diags),
+            "part.cls:9:1: error: an inverse-time feed (FEDRAT/INVERS) for a move the program writes as more than one "
+            "block: each block would take the whole move's time; have the CAM system write a feed per minute here (or "
+            "the move as the blocks it writes)\n");
+}
+
 // Cutter compensation left on at the end (CUTCOM/OFF with no move after it, or never turned
 // off) is cancelled before the finish's retract: G40 alone, then the finish.
 TEST(CamSystems, CompensationStillOnAtTheEndIsCancelledBeforeTheFinish) {
