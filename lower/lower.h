@@ -86,7 +86,7 @@ class Lowerer : public RecordSink {
   void lower_tlaxis(const Record& r);
   void push_arc(ir::Arc& a, SourceLoc loc, const char* what);
   void move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written);
-  bool extend_arc(const ir::Vec3& p);
+  bool extend_arc(const ir::Vec3& p, SourceLoc loc);
   bool on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end);
 
   // lower_machine.cpp
@@ -158,6 +158,7 @@ class Lowerer : public RecordSink {
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
   std::optional<ir::CutterComp> last_comp_;  // the last CUTCOM/LEFT|RIGHT, which CUTCOM/ON resumes
+  bool inverse_time_ = false;  // the feed in force is inverse time (FEDRAT/INVERS)
   bool spindle_running_ = false;  // the last SPINDL turned the spindle on
   double pending_max_rpm_ = 0;    // SPINDL/MAXRPM,n alone: the clamp for surface speeds after it
   // The last FEDRAT's mode and unit (factor to program units), which a FEDRAT without a unit

@@ -101,6 +101,7 @@ void Lowerer::lower_spindle(const Record& r) {
   if (!have_speed) {
     if (on && last_spindle_) {
       if (ps.has("MAXRPM")) last_spindle_->max_rpm = s.max_rpm;  // SPINDL/ON,MAXRPM,n: the new clamp
+      if (dir_given) last_spindle_->dir = s.dir;                 // SPINDL/ON,CCLW: the last speed, this way
       spindle_running_ = true;
       push(r.loc, *last_spindle_);
       return;
@@ -186,6 +187,7 @@ void Lowerer::lower_feed(const Record& r) {
                "feed-unit");
   if (worded) last_feed_unit_ = FeedUnit{f.mode, to_program, r.loc};
   if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
+  inverse_time_ = f.mode == ir::FeedMode::InverseTime;
   if (rapid_next_) {
     // RAPID, then FEDRAT, then the move: APT posts read RAPID as the next move's only (the move
     // is rapid) or as in force until a FEDRAT (it is fed). Fed is the reading that cannot drive
@@ -202,7 +204,8 @@ void Lowerer::lower_feed(const Record& r) {
 void Lowerer::lower_coolant(const Record& r) {
   // Coolant carries no motion: a record clpc cannot read is a warning, never a stop. Every word
   // is read: OFF anywhere turns the coolant off (COOLNT/MIST,OFF is no M07), ON with a kind is
-  // that kind, and a word left over is said (-Wignored-word).
+  // that kind, a second kind is said and not turned on, and a word left over is said
+  // (-Wignored-word).
   ir::Coolant c;
   if (r.params.empty()) {
     d_.warning(r.loc, "COOLNT with no word (ON, OFF, FLOOD, ...) says nothing; ignored", "coolant");
@@ -224,9 +227,11 @@ void Lowerer::lower_coolant(const Record& r) {
     else ignored.push_back(&p);
     if (!k) continue;
     if (kind && *kind != *k) {
-      not_read(r, "COOLNT: two coolants, '" + std::string(kind_word->text) + "' and '" + std::string(p.text) + "'",
-               "coolant");
-      return;
+      // Never none where the CL asks for two: the first is turned on, the other said.
+      d_.warning(p.loc, "COOLNT: two coolants, '" + std::string(kind_word->text) + "' and '" + std::string(p.text) +
+                            "': only '" + std::string(kind_word->text) + "' is turned on",
+                 "coolant");
+      continue;
     }
     kind = k;
     kind_word = &p;

@@ -58,7 +58,7 @@ void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool 
     pos_ = p;
     return;
   }
-  if (arc_open_ && kind == ir::MoveKind::Feed && !axis_written && extend_arc(p)) {
+  if (arc_open_ && kind == ir::MoveKind::Feed && !axis_written && extend_arc(p, loc)) {
     pos_ = p;
     return;
   }
@@ -102,7 +102,7 @@ bool Lowerer::on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end) {
 // Creo may write intermediate points of an arc as further GOTOs. A point joins the arc when it
 // lies on the circle, in the arc's plane, and carries the rotation on in the same sense;
 // otherwise it is a move of its own (see docs/arcs.md).
-bool Lowerer::extend_arc(const ir::Vec3& p) {
+bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
   auto* arc = std::get_if<ir::Arc>(&op_.body.back().op);
   if (!arc || arc->extra_turns != 0) return false;
   const ir::Vec3 n = arc->axis;
@@ -121,8 +121,8 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
   // Same sense: every step along the arc turns the same way about the axis, and the whole
   // stays within one turn. A half turn (a step to the point opposite, as from one quadrant
   // point to the next but one) has no sense of its own, whatever sign the CL's rounding gives
-  // it: it follows the arc's other steps, or, where the arc has none yet, the CAM system's
-  // convention about the CIRCLE's axis.
+  // it. Inside the arc (its first step, CIRCLE to its end) it follows the other steps, or the
+  // CAM system's convention about the CIRCLE's axis; a half turn after the end is refused below.
   auto sense = [&](const ir::Vec3& a, const ir::Vec3& b) {
     double s = n.dot(a.cross(b));
     if (std::abs(s) > tol * arc->radius) return s > 0 ? 1 : -1;
@@ -139,7 +139,6 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
   const int step_sense = sense(re, rp);
   if (arc_sense == 2 || step_sense == 2) return false;
   if (arc_sense != 0 && step_sense != 0 && arc_sense != step_sense) return false;
-  if (arc_sense == 0 && step_sense == 0) return false;
   // Creo writes an arc's intermediate points as far apart as it likes (the evidence for joining
   // them). Other systems' CL (APT's points after a CIRCLE) keeps each chord within the CAM
   // tolerance of the arc, so a step whose chord leaves the arc by more than 0.01 mm is a
@@ -157,7 +156,26 @@ bool Lowerer::extend_arc(const ir::Vec3& p) {
     q = v;
   }
   turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
-  if (turned >= 2 * 3.14159265358979323846) return false;
+  if (turned >= 2 * 3.14159265358979323846) return false;  // no arc: a move of its own
+  if (step_sense == 0) {
+    // The next point opposite the arc's end: half a turn further round, or a straight move
+    // across the centre (a pass over a round face). The CL does not tell them apart, and each
+    // cut where the other was meant leaves the path by the radius.
+    d_.error(loc, "this point lies opposite the end of the arc before it, on its circle: half a turn further round or a "
+                  "straight move through the centre, which the CL does not tell apart; have the CAM system write the "
+                  "arc's points closer, or another point between");
+    return true;  // taken: refused, not cut either way
+  }
+  if (inverse_time_) {
+    // Under FEDRAT/INVERS each CL move has its own time (one over its minutes): moves joined
+    // into one block would share one. A step whose chord stays within 0.01 mm of the arc is
+    // its own move; a wider one (Creo's) is the arc, which no one F can time.
+    const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
+    if (arc->radius * (1 - std::cos(step / 2)) <= 0.01 / ir::mm_per_unit(info_.units)) return false;
+    d_.error(loc, "an inverse-time feed (FEDRAT/INVERS) on an arc given by more than one point: the arc is one block, "
+                  "and one F cannot give each point's move its time; have the CAM system write a feed per minute here");
+    return true;  // taken: refused, not cut as a chord
+  }
   op_.points.push_back(arc->end);
   if (arc->via_count == 0) arc->via_begin = uint32_t(op_.points.size() - 1);
   ++arc->via_count;

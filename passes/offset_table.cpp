@@ -20,6 +20,7 @@
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
 // is offset_table_pass() at the end of this file.
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "machine/kinematics.h"
@@ -310,19 +311,17 @@ class OffsetTablePass : public Pass {
       // The part is set up with the frame's axes along the machine's. In one setup it stands one
       // way: the first frame of the setup says which. Another frame of that setup turned about
       // Z from it would need the turn in its register, which holds an origin only.
-      if (w->setup <= 1) {
-        if (!first_setup_turn_) first_setup_turn_ = {frame_.rotation, w->loc};
-        else if (!frame_.rotation.isApprox(first_setup_turn_->first, 1e-9))
-          ctx.diags.error(loc, "this operation's frame (line " + std::to_string(w->loc.line) + ") is turned about Z from the frame of line " +
-                                   std::to_string(first_setup_turn_->second.line) + ", in the same setup: work offset register " +
-                                   std::to_string(w->index) + " holds its origin, not its turn, on a machine without rotary "
-                                   "axes; have the CAM system write both operations in frames turned alike");
-      }
+      auto [first, fresh] = setup_turn_.try_emplace(w->setup, frame_.rotation, w->loc);
+      if (!fresh && !frame_.rotation.isApprox(first->second.first, 1e-9))
+        ctx.diags.error(loc, "this operation's frame (line " + std::to_string(w->loc.line) + ") is turned about Z from the frame of line " +
+                                 std::to_string(first->second.second.line) + ", in the same setup: work offset register " +
+                                 std::to_string(w->index) + " holds its origin, not its turn, on a machine without rotary "
+                                 "axes; have the CAM system write both operations in frames turned alike");
       T_ = frame_.rotation.transpose();  // the frame's own coordinates: the part turned to it
     }
   }
 
-  std::optional<std::pair<ir::Mat3, SourceLoc>> first_setup_turn_;  // the first frame of setup 1, without rotaries
+  std::map<int, std::pair<ir::Mat3, SourceLoc>> setup_turn_;  // each setup's first frame, without rotaries
 
   Vec3 point(const Vec3& p) const { return T_ * (p - frame_.origin); }
   Vec3 dir(const Vec3& v) const { return T_ * v; }

@@ -691,8 +691,8 @@ TEST(CamSystems, TheSameToolLoadedWithAnotherOffsetWritesTheNewOffset) {
 }
 
 // COOLNT with more than one word: every word is read. Only the first was: COOLNT/MIST,OFF
-// turned the mist on (M07), COOLNT/ON,MIST gave flood. A word left over is said; two coolants,
-// or ON with OFF, are passed through with a warning (coolant carries no motion).
+// turned the mist on (M07), COOLNT/ON,MIST gave flood. A word left over is said; of two
+// coolants the first is turned on (never none), and ON with OFF is passed through with a warning.
 TEST(CamSystems, EveryWordOfACoolantRecordIsRead) {
   const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100\nCOOLNT/ON,MIST\nRAPID\nGOTO/0,0,5\n"
                          "COOLNT/MIST,OFF\nGOTO/0,0,-1\nCOOLNT/FLOOD,HIGH\nGOTO/10,0,-1\nCOOLNT/FLOOD,MIST\n"
@@ -700,11 +700,11 @@ TEST(CamSystems, EveryWordOfACoolantRecordIsRead) {
   Compiled c = compile_text(cl, machine("fanuc-mill"));
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("\nN50 M07\nN60 G54 G00 X0. Y0.\nN70 G43 H01 Z5.\nN80 M09\n"
-                                  "N90 G94 G01 Z-1. F100.\nN100 M08\nN110 X10.\n(CL: COOLNT/FLOOD,MIST)\n"
-                                  "(CL: COOLNT/ON,OFF)\nN120 M09\nN130 X20.\n"));
+                                  "N90 G94 G01 Z-1. F100.\nN100 M08\nN110 X10.\nN120 M08\n"
+                                  "(CL: COOLNT/ON,OFF)\nN130 M09\nN140 X20.\n"));
   EXPECT_EQ(messages(c.diags),
             "part.cls:10:14: warning: COOLNT: 'HIGH' is not read [-Wignored-word]\n"
-            "part.cls:12:1: warning: COOLNT: two coolants, 'FLOOD' and 'MIST' (passed through as a comment) [-Wcoolant]\n"
+            "part.cls:12:14: warning: COOLNT: two coolants, 'FLOOD' and 'MIST': only 'FLOOD' is turned on [-Wcoolant]\n"
             "part.cls:13:1: warning: COOLNT: both ON and OFF (passed through as a comment) [-Wcoolant]\n");
 }
 

@@ -121,11 +121,22 @@ TEST(Lower, AHalfTurnStepFollowsTheArc) {
     EXPECT_THAT(instrs(creo + "GOTO/-10," + y + ",0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
                 ElementsAre("feed (10, 0, 0)", HasSubstr("arc ? to (0, -10, 0)"), "feed (0, -10, 5)"))
         << y;
-  // A half turn after a quarter: it continues the quarter's sense.
-  EXPECT_THAT(instrs(creo + "GOTO/0,10,0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
-              ElementsAre("feed (10, 0, 0)",
-                          "arc ? to (0, -10, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7 via (0, 10, 0)",
-                          "feed (0, -10, 5)"));
+  // A half turn after the arc's end: half a turn further round, or a straight pass across the
+  // centre (over a round face)? The CL does not say: refused where the point stands.
+  EXPECT_EQ(err(creo + "GOTO/0,10,0\nGOTO/0,-10,0\nGOTO/0,-10,5\n"),
+            "5:1: this point lies opposite the end of the arc before it, on its circle: half a turn further round or a "
+            "straight move through the centre, which the CL does not tell apart; have the CAM system write the arc's "
+            "points closer, or another point between");
+  // Under an inverse-time feed each CL move keeps its own block and time: points close to the
+  // arc stay lines; Creo's wide steps, the arc itself, are refused (one F cannot time them).
+  EXPECT_THAT(instrs("FEDRAT/INVERS,100\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/9.993908,0.348995,0\n"
+                     "GOTO/9.975641,0.697565,0\n"),
+              ElementsAre("feed-rate 100 inverse-time", "feed (10, 0, 0)",
+                          "arc ? to (9.993908, 0.348995, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
+                          "feed (9.975641, 0.697565, 0)"));
+  EXPECT_EQ(err("FEDRAT/INVERS,4\n" + creo + "GOTO/0,10,0\nGOTO/-10,0,0\n"),
+            "6:1: an inverse-time feed (FEDRAT/INVERS) on an arc given by more than one point: the arc is one block, and "
+            "one F cannot give each point's move its time; have the CAM system write a feed per minute here");
   // A point that lies behind the half turn in the convention's sense does not join: counter-
   // clockwise, (0, 10) comes before (-10, 0). It is a straight move.
   EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/0,10,0\n"),
@@ -190,6 +201,9 @@ TEST(Lower, SpindleBothOrdersAndKinds) {
   EXPECT_THAT(instrs("SPINDL/RPM,1000,CCLW\nSPINDL/RPM,500\nSPINDL/OFF\nSPINDL/800\nLOADTL/2\nSPINDL/SMM,90\n"),
               ElementsAre("spindle 1000 rpm ccw", "spindle 500 rpm ccw", "spindle off", "spindle 800 rpm ccw",
                           "tool-change T2", "spindle 90 m/min ccw"));
+  // SPINDL/ON with a direction: the last speed, that way (the word was dropped).
+  EXPECT_THAT(instrs("SPINDL/RPM,1000,CLW\nSPINDL/OFF\nSPINDL/ON,CCLW\nSPINDL/RPM,800\n"),
+              ElementsAre("spindle 1000 rpm cw", "spindle off", "spindle 1000 rpm ccw", "spindle 800 rpm ccw"));
 }
 
 TEST(Lower, FeedBothOrdersAndUnits) {

@@ -410,6 +410,13 @@ TEST(OffsetTable, FramesTurnedAboutZInOneSetupAreRefusedWithoutRotaries) {
   EXPECT_FALSE(two.ok);
   EXPECT_THAT(two.diags, HasSubstr(":14:1: error: this operation's frame (line 11) is turned about Z from the frame of line 6, in "
                                    "the same setup: work offset register 3 holds its origin, not its turn"));
+  // The same in a later setup (the part turned over: both frames' Z down), where it was missed.
+  const std::string under = "SET/55\n" + camera(rx(180) * rz(90), Vec3(100, 0, 0)) + "RAPID\nGOTO/100,0,-20\nSET/56\n" +
+                            camera(rx(180), Vec3(100, 0, 0)) + "RAPID\nGOTO/110,0,-20\nFINI\n";
+  Compiled turned_over = compile_text(head + under, machine("fanuc-mill"));
+  EXPECT_FALSE(turned_over.ok);
+  EXPECT_THAT(turned_over.diags, HasSubstr(":14:1: error: this operation's frame (line 11) is turned about Z from the frame of line "
+                                           "6, in the same setup"));
 }
 
 // SET with no frame record names the register of the frame in force; the table lists every
