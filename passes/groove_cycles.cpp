@@ -274,6 +274,12 @@ class GrooveCycles : public Pass {
     const Station& s0 = st[chosen.front()];
     for (size_t c : chosen)
       if (st[c].feed != s0.feed || st[c].feed_mode != s0.feed_mode || !eq(st[c].level, s0.level)) return false;
+    // The cycle shifts at rapid. Without a record asking for the cycle, a shift the CL feeds
+    // (it may touch the stock) keeps its motion: no collapse.
+    if (!record)
+      for (size_t c : chosen)
+        for (size_t t = st[c].first; t <= st[c].last; ++t)
+          if (!items[t].rapid && !eq(sh(items[t].from, face), sh(items[t].to, face))) return false;
 
     // Start at the end of the run nearest where the tool is.
     double here = sh(items[std::min(prefix_end, items.size() - 1)].from, face);

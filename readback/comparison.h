@@ -282,14 +282,16 @@ class Comparison : public ProgramSink {
 
   // --- lathe grooves: the cycle's order is its own; every CL cut must be on its path --------
 
-  void begin_groove();
+  // `record`: the CYCLE/FACE|RADIUS record of the section, null for a GRV section.
+  void begin_groove(const ir::GrooveSpec* record = nullptr);
 
   // A groove's CL feed move: its end and its middle must each lie on a feed of the program
   // (the cycle pecks in its own order, so the order is not checked).
   void groove_point(const Vec3& p, bool rapid);
 
-  // Is `q` (on the CL move to `p`) on a cutting move of the program? False, reported, if not.
-  bool groove_cut(const Vec3& q, const Vec3& p);
+  // Is `q` (on the CL move to `p`) on a cutting move of the program (or, `cycle_shift_ok`, on a
+  // groove cycle's own rapid shift)? False, reported, if not.
+  bool groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok);
 
   void end_groove();
 
@@ -361,6 +363,8 @@ class Comparison : public ProgramSink {
   bool cycle_on_ = false;
   Vec3 incoming_ = Vec3::Zero();  // the last CL feed move (zero after a rapid or a hole)
   bool groove_ = false;
+  bool groove_record_ = false;  // the section is a CYCLE/FACE|RADIUS record's
+  bool groove_face_ = false;    // ... of a face groove (plunges along Z)
   size_t groove_reach_ = 0;
   bool thread_on_ = false;
   std::optional<ir::RoughMark> rough_;  // a CYCLE/ROUGH section being read: its profile is kept

@@ -95,7 +95,7 @@ void Comparison::operation(const ir::Operation& op) {
             if (x.begin) begin_thread(x);
             else if (thread_on_) end_thread();
           } else if constexpr (std::is_same_v<T, ir::GrooveOn>) {
-            begin_groove();
+            begin_groove(&op.grooves.at(x.spec));
           } else if constexpr (std::is_same_v<T, ir::GrooveMark>) {
             if (x.begin) begin_groove();
             else end_groove();

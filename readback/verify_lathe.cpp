@@ -108,9 +108,11 @@ void Comparison::skip_cycle_segments() {
   }
 }
 
-void Comparison::begin_groove() {
+void Comparison::begin_groove(const ir::GrooveSpec* record) {
   groove_ = true;
   groove_reach_ = 0;
+  groove_record_ = record != nullptr;
+  groove_face_ = record && record->face;
 }
 
 void Comparison::groove_point(const Vec3& p, bool rapid) {
@@ -120,10 +122,15 @@ void Comparison::groove_point(const Vec3& p, bool rapid) {
   have_prev_ = true;
   if (rapid) return;
   ++rep_.cl_groove_points;
-  if (groove_cut(p, p) && have_from && (p - from).norm() > 2 * tol_) groove_cut((from + p) / 2, p);
+  // A CYCLE/FACE|RADIUS record asks for the control's cycle, which shifts at rapid along its
+  // start level between plunges: a CL feed along the shift axis only may be made by such a
+  // shift of the cycle. Anywhere else (Creo's GRV sections, plain motion) a feed stays a feed.
+  const double plunge_from = groove_face_ ? from.z() : from.x(), plunge_to = groove_face_ ? p.z() : p.x();
+  const bool shift = groove_record_ && have_from && std::abs(plunge_to - plunge_from) <= tol_;
+  if (groove_cut(p, p, shift) && have_from && (p - from).norm() > 2 * tol_) groove_cut((from + p) / 2, p, shift);
 }
 
-bool Comparison::groove_cut(const Vec3& q, const Vec3& p) {
+bool Comparison::groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok) {
   double best = kInf;
   size_t best_at = 0;
   int rapid_line = 0;  // a rapid through the cut, while no feed made it
@@ -133,6 +140,13 @@ bool Comparison::groove_cut(const Vec3& q, const Vec3& p) {
     if (!finite(s->start) || !finite(s->end)) continue;
     double d = point_segment(q, s->start, s->end);
     if (s->raw.kind == gcode::Segment::Kind::Rapid) {
+      const bool cycle_shift = cycle_shift_ok && s->raw.from_cycle &&
+                               std::abs(groove_face_ ? s->end.z() - s->start.z() : s->end.x() - s->start.x()) <= tol_;
+      if (d <= tol_ && cycle_shift) {
+        best = d;
+        best_at = j;
+        break;
+      }
       if (d <= tol_ && !rapid_line) rapid_line = s->raw.line;
       continue;
     }
@@ -204,7 +218,7 @@ void Comparison::thread_point(const Vec3& p, bool rapid) {
   if (!along_thread(from, p)) {
     if ((p - from).norm() <= tol_) return;  // no move
     ++rep_.cl_groove_points;  // an infeed or pull-out at feed: on the path, like a groove's
-    groove_cut(p, p);
+    groove_cut(p, p, false);
     return;
   }
   ++rep_.cl_thread_cuts;
