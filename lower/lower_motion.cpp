@@ -139,15 +139,14 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
   const int step_sense = sense(re, rp);
   if (arc_sense == 2 || step_sense == 2) return false;
   if (arc_sense != 0 && step_sense != 0 && arc_sense != step_sense) return false;
+  const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));  // this step's angle
+  const bool within_chord_tolerance = arc->radius * (1 - std::cos(step / 2)) <= 0.01 / ir::mm_per_unit(info_.units);
   // Creo writes an arc's intermediate points as far apart as it likes (the evidence for joining
   // them). Other systems' CL (APT's points after a CIRCLE) keeps each chord within the CAM
   // tolerance of the arc, so a step whose chord leaves the arc by more than 0.01 mm is a
   // straight move that ends on the circle (a hexagon's edge after a corner arc), never an
   // arc: cut round, it would gouge by its sagitta. A closer step is the same cut either way.
-  if (info_.cam != ir::CamSystem::Creo) {
-    const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
-    if (arc->radius * (1 - std::cos(step / 2)) > 0.01 / ir::mm_per_unit(info_.units)) return false;
-  }
+  if (info_.cam != ir::CamSystem::Creo && !within_chord_tolerance) return false;
   double turned = 0;
   ir::Vec3 q = rs;
   for (uint32_t k = 0; k < arc->via_count; ++k) {
@@ -155,7 +154,7 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
     turned += std::atan2(std::abs(n.dot(q.cross(v))), q.dot(v));
     q = v;
   }
-  turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
+  turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + step;
   if (turned >= 2 * 3.14159265358979323846) return false;  // no arc: a move of its own
   if (step_sense == 0) {
     // The next point opposite the arc's end: half a turn further round, or a straight move
@@ -170,8 +169,7 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
     // Under FEDRAT/INVERS each CL move has its own time (one over its minutes): moves joined
     // into one block would share one. A step whose chord stays within 0.01 mm of the arc is
     // its own move; a wider one (Creo's) is the arc, which no one F can time.
-    const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));
-    if (arc->radius * (1 - std::cos(step / 2)) <= 0.01 / ir::mm_per_unit(info_.units)) return false;
+    if (within_chord_tolerance) return false;
     d_.error(loc, "an inverse-time feed (FEDRAT/INVERS) on an arc given by more than one point: the arc is one block, "
                   "and one F cannot give each point's move its time; have the CAM system write a feed per minute here");
     return true;  // taken: refused, not cut as a chord
