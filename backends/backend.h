@@ -75,6 +75,10 @@ class ProgramWriter : public Backend {
   void write_cutter_comp(const ir::CutterComp& c, SourceLoc loc);
   void blocks(const std::vector<CodeTemplate>& list, SourceLoc loc);
   void after_template(const CodeTemplate& t);
+  // Follows the plane codes in a template's or an inserted block's words (off_xy_plane_).
+  void note_plane_codes(std::string_view text);
+  // A mill's cycles and compensation: G17 first where the control may be in another plane.
+  void xy_plane_code();
   // Motion blocks are absolute: restores G90 after a template left the control incremental.
   void absolute_code();
   // For a cutting block: the feed-mode code when it changed (before the motion code) and
@@ -106,6 +110,10 @@ class ProgramWriter : public Backend {
   int work_offset_ = 0;  // 0 = the machine's default register
   enum class Motion : uint8_t { None, Rapid, Linear, Cw, Ccw } motion_ = Motion::None;
   enum class Plane : uint8_t { None, XY, ZX, YZ } plane_ = Plane::None;
+  // The control may be in G18/G19 (an arc, a template or an inserted block put it there). A
+  // mill's drilling cycles and cutter compensation work in G17: they write it first. plane_
+  // forgets after a template; this does not.
+  bool off_xy_plane_ = false;
   ir::FeedMode feed_mode_ = ir::FeedMode::PerMinute;  // as programmed
   ir::FeedMode written_feed_mode_ = ir::FeedMode::PerMinute;  // as the control has it
   bool feed_mode_known_ = false;

@@ -394,6 +394,7 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
   if (plane_ != p.plane) {
     e_.code(p.plane == Plane::XY ? m_.codes.plane_xy : p.plane == Plane::ZX ? m_.codes.plane_zx : m_.codes.plane_yz);
     plane_ = p.plane;
+    off_xy_plane_ = p.plane != Plane::XY;
   }
   feed_mode_code();
   motion_code(ccw ? Motion::Ccw : Motion::Cw);
@@ -491,6 +492,7 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
       e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
       need_length_offset_ = false;
     }
+    xy_plane_code();  // the drilling axis is the one square to the plane
     feed_mode_code(mode);
     e_.code(m_.cycles.return_initial ? k.cycle_return_initial : k.cycle_return_r);
     e_.code(*code);

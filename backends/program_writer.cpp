@@ -101,6 +101,7 @@ void ProgramWriter::after_template(const CodeTemplate& t) {
     if (w[0].literal == m_.codes.incremental.text) incremental_ = true;
     else if (w[0].literal == m_.codes.absolute.text) incremental_ = false;
   }
+  note_plane_codes(t.text);
   if (t.has_g_code()) {
     motion_ = Motion::None;
     plane_ = Plane::None;
@@ -259,6 +260,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
                                 "): it is written as given, and what it moves is not checked against the CL "
                                 "(the certificate follows the CL's own moves)", "insert");
           e_.line(text);
+          note_plane_codes(text);
           // The inserted line may do anything: write every modal word again after it.
           motion_ = Motion::None;
           e_.forget_all();
@@ -555,12 +557,35 @@ void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
   e_.end();
 }
 
+void ProgramWriter::note_plane_codes(std::string_view text) {
+  auto has = [&](const CodeTemplate& code) {
+    if (code.text.empty()) return false;
+    for (size_t at = text.find(code.text); at != std::string_view::npos; at = text.find(code.text, at + 1)) {
+      const size_t end = at + code.text.size();
+      const bool starts = at == 0 || !std::isalnum(static_cast<unsigned char>(text[at - 1]));
+      const bool ends = end == text.size() || !(std::isdigit(static_cast<unsigned char>(text[end])) || text[end] == '.');
+      if (starts && ends) return true;
+    }
+    return false;
+  };
+  if (has(m_.codes.plane_zx) || has(m_.codes.plane_yz)) off_xy_plane_ = true;
+  else if (has(m_.codes.plane_xy)) off_xy_plane_ = false;
+}
+
+void ProgramWriter::xy_plane_code() {
+  if (m_.is_lathe() || !off_xy_plane_) return;
+  e_.code(m_.codes.plane_xy);
+  plane_ = Plane::XY;
+  off_xy_plane_ = false;
+}
+
 void ProgramWriter::comp_code() {
   if (!comp_pending_set_) return;
   const ir::CutterComp& c = comp_pending_;
   if (c.side == ir::CompSide::Off) {
     e_.code(m_.codes.comp_off);
   } else {
+    xy_plane_code();
     int reg = c.reg > 0 ? c.reg : tool_;
     e_.code(c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right,
             TemplateVars().with(Var::Register, reg).with(Var::Tip, m_.lathe.tip));

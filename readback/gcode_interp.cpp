@@ -239,6 +239,16 @@ class Interp {
                       "CL (written by an INSERT or PREFUN? compile with --no-verify to take it unchecked)");
     }
     if (motion_word && !new_cycle) cycle_ = 0, cycle_on_ = false;  // a motion code cancels a canned cycle
+    // A mill drills along the axis square to the plane, and compensates in the plane: clpc's
+    // reader follows both in G17 only.
+    if (!lathe && plane_ != 17 && (new_cycle || (cycle_on_ && (has('X') || has('Y')))))
+      problem(line, "a drilling cycle in G" + std::to_string(plane_) + ": the control drills along the axis square to that "
+                    "plane, not Z; G17 first");
+    const bool comp_off_plane = !lathe && plane_ != 17 && comp_ != 0;
+    if (comp_off_plane && !comp_off_plane_said_)
+      problem(line, "cutter compensation (G41/G42) in G" + std::to_string(plane_) + ": the control offsets the path in that "
+                    "plane; G17 first");
+    comp_off_plane_said_ = comp_off_plane;  // once until compensation or the plane is right again
     if (new_offset > 0) work_offset_ = new_offset;
     if (new_offset < 0) {
       if (!has('P')) problem(line, "G54.1/G154 without P");
@@ -1031,6 +1041,7 @@ class Interp {
   bool tcp_ = false, dwo_ = false;
   std::shared_ptr<const PlaneFrame> tilted_;  // the plane in force
   int comp_ = 0;
+  bool comp_off_plane_said_ = false;
   int cycle_ = 0;
   int groove_ = 0;
   double groove_retract_ = 0;

@@ -747,3 +747,33 @@ TEST(CamSystems, ACuttingSpeedOnAMillIsTheRpmAtTheCuttersDiameter) {
                                     "cutter's diameter, and tool 1 has no diameter (CUTTER, TLDATA): give the speed in RPM, "
                                     "or the tool's diameter"));
 }
+
+// A mill drills along the axis square to the plane and compensates in the plane. After an arc
+// in ZX or YZ the control stayed in G18/G19, and the next drilling cycle (and G41) ran in it:
+// G81 Z-12 in G18 rapids 17 mm down in Z and drills along Y. G17 comes first now, and the
+// reader refuses a cycle or compensation in another plane.
+TEST(CamSystems, CyclesAndCompensationAfterAnArcInAnotherPlaneAreInG17) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nCUTTER/10\nSPINDL/1000,RPM,CLW\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,50\n"
+                           "RAPID\nGOTO/0,0,20\nGOTO/10,0,5\nCIRCLE/0,0,5,0,1,0,10\nGOTO/0,0,15\nRAPID\nGOTO/0,0,20\n";
+  const std::string drill = head + "CYCLE/DRILL,FEDTO,12,RAPTO,3,MMPM,100\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n";
+  Compiled c = compile_text(drill, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G18 G03 X0. Z15. K0. I-10.\nN100 G00 Z20.\nN110 G17 G98 G81 X0. Y0. Z-12. R3. F100.\n"));
+  verifies(drill, machine("fanuc-mill"));
+  const std::string comp = head + "CUTCOM/LEFT,1\nGOTO/10,0,15\nGOTO/10,10,15\nCUTCOM/OFF\nFINI\n";
+  Compiled k = compile_text(comp, machine("fanuc-mill"));
+  ASSERT_TRUE(k.ok) << k.diags;
+  EXPECT_THAT(k.output, HasSubstr("N110 G17 G41 D1 G01 X10. Z15.\n"));
+  // The program as it was written before: refused by the reader, at the cycle's block.
+  TempDir t;
+  write_file(t.path("part.cl"), drill);
+  std::string before = c.output;
+  before.replace(before.find("G17 G98 G81"), 4, "");
+  write_file(t.path("before.nc"), before);
+  VerifyOptions given;
+  given.program = t.path("before.nc");
+  std::ostringstream err;
+  EXPECT_FALSE(verify_file(t.path("part.cl"), machine("fanuc-mill"), given, err).ok);
+  EXPECT_THAT(err.str(), HasSubstr("part.cl:14:1: error: the program: a drilling cycle in G18: the control drills along the "
+                                   "axis square to that plane, not Z; G17 first [G-code line 17]"));
+}
