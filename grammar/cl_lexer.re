@@ -451,6 +451,27 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
   if (b < e && *b == '/') ++b;
   while (b < e && (*b == ' ' || *b == '\t')) ++b;
   while (e > b && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) --e;
+  // A '$' at the end of free text joins the next line to it (CATIA continues PPRINT at column
+  // 72). A joined line that is a record of its own (GOTO/..., FEDRAT/...) would be lost in the
+  // text: refused where it stands.
+  for (size_t i = splice_head_; i < splices_.size(); ++i) {
+    const uint64_t at = splices_[i].at;
+    if (at <= abs(b)) continue;
+    if (at >= abs(e)) break;
+    const unsigned char* q = b + (at - abs(b));
+    while (q < e && (*q == ' ' || *q == '\t')) ++q;
+    const unsigned char* w = q;
+    while (w < e && std::isalpha(*w)) ++w;
+    const unsigned char* slash = w;
+    while (slash < e && (*slash == ' ' || *slash == '\t')) ++slash;
+    if (w == q || slash >= e || *slash != '/') continue;
+    const MajorId joined = major_id(std::string_view(reinterpret_cast<const char*>(q), size_t(w - q)));
+    if (joined == MajorId::Unknown || joined == MajorId::Pprint || joined == MajorId::Partno || joined == MajorId::Remark ||
+        joined == MajorId::Tprint || joined == MajorId::Insert)
+      continue;
+    return error_token(loc_of(q), "a '$' at the end of the line before joins this " + std::string(major_spelling(joined)) +
+                                      " record to its text, where it would be lost: end the text without '$'");
+  }
   check_text(b, e, "text");
   Symbol m = major(id, tok_, tok_ + keyword_len);
   pending_.emplace(Parser::make_TEXT(keep(b, e), loc_of(b)));

@@ -72,6 +72,7 @@ void Lowerer::record(const Record& r) {
       motion_not_read(r, motion_hint(r.major));
       return;
     }
+    if (r.id == MajorId::Unknown && blank_joined_record(r)) return;
     if (r.id != MajorId::Unknown) {
       d_.warning(r.loc, "'" + head_and_major(r) + "': the words before " + upper(r.major) +
                             " are not read (the record is passed through as a comment)",
@@ -221,6 +222,7 @@ void Lowerer::record(const Record& r) {
       return;
     case MajorId::Origin: lower_origin(r); return;
     case MajorId::Unknown:
+      if (blank_joined_record(r)) return;
       if (motion_word(r.major)) {
         if (iequals(r.major, "TRANS") && no_shift(r)) return;  // TRANS/0,0,0 shifts nothing, as ORIGIN/0,0,0
         motion_not_read(r, motion_hint(r.major));
@@ -240,6 +242,41 @@ void Lowerer::record(const Record& r) {
       unknown(r, "unknown record", true);
       return;
   }
+}
+
+// A record name of several words (`RAPID GOTO/...`, `TLON GOFWD/...`, `GO TO/...`): APT
+// separates the words before the major word with commas, and ignores blanks inside a word. If
+// one of the words, or the words run together, name a record that moves the tool or changes how
+// it cuts, the record is refused where it stands: passed through as a comment, its motion would
+// be lost. True when refused.
+bool Lowerer::blank_joined_record(const Record& r) {
+  const std::string_view name = r.major;
+  if (name.find_first_of(" \t") == std::string_view::npos) return false;
+  std::string joined;
+  std::vector<std::string_view> words;
+  for (size_t i = 0; i < name.size();) {
+    while (i < name.size() && (name[i] == ' ' || name[i] == '\t')) ++i;
+    size_t j = i;
+    while (j < name.size() && name[j] != ' ' && name[j] != '\t') ++j;
+    if (j > i) {
+      words.push_back(name.substr(i, j - i));
+      joined += name.substr(i, j - i);
+    }
+    i = j;
+  }
+  words.insert(words.begin(), joined);  // GO TO: the word APT reads
+  for (size_t k = 0; k < words.size(); ++k) {
+    const std::string_view w = words[k];
+    const MajorId id = major_id(w);
+    if ((id != MajorId::Unknown && !carries_nothing_to_cut(id)) || motion_word(w)) {
+      d_.error(r.loc, "'" + upper(name) + "': a record name of several words, and " + upper(w) +
+                          " moves the tool or changes how it cuts: APT separates the words before the major word with "
+                          "commas (TLON,GOFWD/...) and ignores blanks inside a word; write the record as " +
+                          (k == 0 ? upper(joined) : "records of their own"));
+      return true;
+    }
+  }
+  return false;
 }
 
 // The record's name as written: its head words, then its major (TLON,GOFWD).
@@ -426,6 +463,9 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   arc_open_ = false;
   if (retract_pending_) [[unlikely]]
     check_retract(loc, op);
+  if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
+  else if (const auto* m = std::get_if<ir::Move>(&op)) cut_since_tool_change_ |= m->kind != ir::MoveKind::From;
+  else if (std::holds_alternative<ir::Arc>(op)) cut_since_tool_change_ = true;
   make_room();
   op_.body.push_back(ir::Instr{loc, std::move(op)});
   return op_.body.back();

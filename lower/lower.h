@@ -70,6 +70,7 @@ class Lowerer : public RecordSink {
   void flush_chunk();
   void say_another_diameter(const Record& r);
   void unknown(const Record& r, std::string_view why, bool warn);
+  bool blank_joined_record(const Record& r);
   void passthrough(const Record& r);
 
   // lower_motion.cpp
@@ -146,6 +147,7 @@ class Lowerer : public RecordSink {
 
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
+  bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;

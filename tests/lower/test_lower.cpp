@@ -34,8 +34,12 @@ TEST(Lower, GotoThreeAndSixValuesToolAxisPersists) {
               ElementsAre("feed (1, 2, 3)", "feed (4, 5, 6) axis (0, 0.6, 0.8)", "feed (7, 8, 9) axis (0, 0.6, 0.8)"));
 }
 
+// An axis written to few digits is made a unit vector; one far from length 1 is no axis (six
+// values that are two points, as under MULTAX/OFF) and is refused, not made one at a guess.
 TEST(Lower, ToolAxisIsNormalised) {
-  EXPECT_THAT(instrs("GOTO/1,2,3,0,0,2\n"), ElementsAre("feed (1, 2, 3) axis (0, 0, 1)"));
+  EXPECT_THAT(instrs("GOTO/1,2,3,0,0,1.004\n"), ElementsAre("feed (1, 2, 3) axis (0, 0, 1)"));
+  EXPECT_EQ(err("MULTAX/OFF\nGOTO/10,0,5,20,0,5\n"),
+            "2:13: GOTO: the tool axis (i,j,k) is not a unit vector (its length is 20.6155): these are not a tool axis's values");
 }
 
 TEST(Lower, RapidIsOneShot) {
@@ -416,4 +420,42 @@ TEST(Lower, CircleConventionByCamSystem) {
   Lowered l = lower_text("$$*CATIA0\n" + arc);
   EXPECT_EQ(l.info.cam, ir::CamSystem::Catia);
   EXPECT_EQ(l.info.cam_evidence, "line 1: $$*CATIA0");
+}
+
+// A record name of several words (blanks where APT wants a comma, or blanks inside a word)
+// whose words name a motion: refused where it stands, never a comment that loses the move.
+TEST(Lower, ARecordNameOfSeveralWordsThatMovesIsRefused) {
+  const std::string why = ": a record name of several words, and ";
+  EXPECT_EQ(err("GOTO/0,0,5\nRAPID GOTO/10,0,50\n"),
+            "2:1: 'RAPID GOTO'" + why + "RAPID moves the tool or changes how it cuts: APT separates the words before the major "
+            "word with commas (TLON,GOFWD/...) and ignores blanks inside a word; write the record as records of their own");
+  EXPECT_EQ(err("GOTO/0,0,5\nGO TO/10,0,5\n"),
+            "2:1: 'GO TO'" + why + "GOTO moves the tool or changes how it cuts: APT separates the words before the major "
+            "word with commas (TLON,GOFWD/...) and ignores blanks inside a word; write the record as GOTO");
+  EXPECT_THAT(err("GOTO/0,0,5\nTLON GOFWD/(CIRCLE/0,0,5,10),ON,(LINE/0,0,5,-1,1,5)\n"), HasSubstr("2:1: 'TLON GOFWD'" + why + "GOFWD"));
+  // Words that name nothing that cuts stay a comment, with a warning.
+  Lowered l = lower_text("GOTO/0,0,5\nMY WORDS/1,2\n");
+  EXPECT_EQ(first_error(l.diags), "");
+}
+
+// A '$' at the end of free text joins the next line to it (CATIA's PPRINT at column 72). A
+// joined line that is a record of its own is refused where it stands, not lost in the text.
+TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
+  for (const char* head : {"PPRINT COST IN $\n", "REMARK NOTE $\n", "INSERT/G04 $\n", "TPRINT/T1 $\n"}) {
+    EXPECT_EQ(err(std::string("GOTO/0,0,5\n") + head + "GOTO/10,0,5\nGOTO/10,10,5\n"),
+              "3:1: a '$' at the end of the line before joins this GOTO record to its text, where it would be lost: end "
+              "the text without '$'")
+        << head;
+  }
+  EXPECT_EQ(err("PPRINT/(=========$\n=====)\nGOTO/0,0,5\n"), "");  // text continued by text
+}
+
+// FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
+// jump the CL does not give: refused. At the start, or after a tool change, it is read.
+TEST(Lower, FromAfterMotionElsewhereIsRefused) {
+  EXPECT_EQ(err("GOTO/20,0,5\nFROM/0,0,100\nGOTO/0,0,5\n"),
+            "2:1: FROM after motion puts the tool at (0, 0, 100), but the CL left it at (20, 0, 5): the move between is not "
+            "in the CL; have the CAM system write it (a GOTO)");
+  EXPECT_EQ(err("GOTO/20,0,5\nFROM/20,0,5\nGOTO/0,0,5\n"), "");
+  EXPECT_EQ(err("LOADTL/1\nGOTO/20,0,5\nLOADTL/2\nFROM/0,0,100\nGOTO/0,0,5\n"), "");
 }
