@@ -1,6 +1,9 @@
 #include "backends/block_check.h"
 
 #include <cctype>
+#include <charconv>
+
+#include "support/decimal.h"
 
 namespace clpc {
 
@@ -130,6 +133,27 @@ std::string axis_words(std::string_view t) {
       letters.push_back(c);
   }
   return dwell ? std::string() : letters;
+}
+
+std::vector<double> code_numbers(std::string_view t, char letter) {
+  std::vector<double> out;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (t[i] == '(') {
+      const size_t close = t.find(')', i);
+      if (close == std::string_view::npos) break;
+      i = close;
+      continue;
+    }
+    if (t[i] != letter || (i > 0 && upper_letter(t[i - 1]))) continue;
+    size_t v = i + 1;
+    while (v < t.size() && (digit(t[v]) || t[v] == '.')) ++v;
+    if (v == i + 1) continue;
+    double n = 0;
+    if (from_chars_double(t.data() + i + 1, t.data() + v, n).ec != std::errc()) continue;
+    out.push_back(n);
+    i = v - 1;
+  }
+  return out;
 }
 
 }  // namespace clpc

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace clpc {
 
@@ -16,5 +17,9 @@ bool is_control_block(std::string_view text, std::string& why);
 // The axis letters (X Y Z A B C U V W) that stand as address words in a control block, outside
 // comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.
 std::string axis_words(std::string_view block);
+
+// The numbers of the address words with `letter` (G or M) in a control block, outside comments,
+// in the order met (G68.2 -> 68.2).
+std::vector<double> code_numbers(std::string_view block, char letter);
 
 }  // namespace clpc

@@ -255,13 +255,24 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             e_.comment(text);
             return;
           }
+          if (const std::string why_not = unkept_code(text); !why_not.empty()) {
+            d_.error(loc, "the block '" + std::string(text) + "' (INSERT, PREFUN or AUXFUN) " + why_not);
+            return;
+          }
           if (const std::string axes = axis_words(text); !axes.empty())
             d_.warning(loc, "INSERT '" + std::string(text) + "' holds axis words (" + axes +
                                 "): it is written as given, and what it moves is not checked against the CL "
                                 "(the certificate follows the CL's own moves)", "insert");
           e_.line(text);
           note_plane_codes(text);
-          // The inserted line may do anything: write every modal word again after it.
+          // The inserted line may do anything: write every modal word again after it, and
+          // the plane (with the next arc), distance mode, work offset and feed mode it sets.
+          for (double g : code_numbers(text, 'G')) {
+            if (g > 16.5 && g < 19.5) plane_ = Plane::None;
+            if (std::abs(g - 91) < 1e-6) incremental_ = true;  // G90 with the next motion block
+            if ((g > 53.5 && g < 59.5) || std::abs(g - 154) < 1e-6) need_work_offset_ = true;
+            if (g > 92.5 && g < 99.5) feed_mode_known_ = false;  // G93-G95, a lathe's G98/G99
+          }
           motion_ = Motion::None;
           e_.forget_all();
           feed_written_ = false;
@@ -555,6 +566,46 @@ void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
   e_.begin(loc);
   e_.code(m_.codes.dwell, TemplateVars().with(Var::Seconds, seconds).with(Var::Milliseconds, seconds * 1000));
   e_.end();
+}
+
+// What a block written as given (INSERT, PREFUN, AUXFUN) may not do: set a state the post
+// neither keeps nor writes again after it, so that every move after it would be off (or the
+// program would go elsewhere). "" when none. The post writes again after an inserted block
+// the plane, distance mode, feed mode and work offset; it cannot undo these.
+std::string ProgramWriter::unkept_code(std::string_view text) const {
+  const bool lathe = m_.is_lathe();
+  auto is = [](double g, double want) { return std::abs(g - want) < 1e-6; };
+  for (double g : code_numbers(text, 'G')) {
+    const std::string code = "G" + num_text(g);
+    if (is(g, 41) || is(g, 42))
+      return "turns cutter compensation on (" + code + "), which moves every point after it off the CL's: CUTCOM gives it";
+    if (is(g, 40) && comp_on_)
+      return "cancels the cutter compensation (G40) that a CUTCOM turned on: CUTCOM/OFF gives it";
+    if (is(g, 20) || is(g, 21)) return "changes the program's units (" + code + "), which the post writes for the machine";
+    if (is(g, 10) || is(g, 52) || (!lathe && (is(g, 92) || is(g, 16) || is(g, 51) || is(g, 51.1) || is(g, 68) ||
+                                              is(g, 68.2) || is(g, 68.3) || is(g, 68.4))))
+      return "changes the coordinate system or its offsets (" + code + "), so the program's positions would mean "
+             "other places: the frames (SET, CAMERA, MSYS) give them";
+    if (!lathe && (is(g, 43) || is(g, 44) || is(g, 43.4) || is(g, 43.5) || is(g, 234)))
+      return "applies a tool length offset (" + code + "), which the post applies from LOADTL (and MULTAX)";
+    if (!lathe && is(g, 49) && tool_ >= 0)
+      return "cancels the tool length offset (G49): every Z after it is off by the tool's length";
+    if (!lathe && (is(g, 73) || is(g, 74) || is(g, 76) || (g > 80.5 && g < 89.5)))
+      return "starts a drilling cycle (" + code + "): CYCLE records give it";
+    if (lathe && (is(g, 32) || is(g, 34) || (g > 69.5 && g < 76.5) || is(g, 90) || is(g, 92) || is(g, 94)))
+      return "starts a cycle or a thread cut (" + code + "): CYCLE and THREAD records give it";
+  }
+  for (double mc : code_numbers(text, 'M')) {
+    const int n = int(std::lround(mc));
+    if (n == 98 || n == 99)
+      return "calls or returns from a subprogram (M" + std::to_string(n) + "): in a main program M99 starts it again "
+             "from the top, endlessly; the post writes no subprograms";
+    if (n == 6) return "changes the tool (M06): LOADTL gives it";
+    if (n == 3 || n == 4 || n == 5 || n == 19)
+      return "turns, stops or orients the spindle (M" + std::to_string(n) + ") where the post's spindle state does not "
+             "follow: SPINDL gives it";
+  }
+  return {};
 }
 
 void ProgramWriter::note_plane_codes(std::string_view text) {

@@ -777,3 +777,38 @@ TEST(CamSystems, CyclesAndCompensationAfterAnArcInAnotherPlaneAreInG17) {
   EXPECT_THAT(err.str(), HasSubstr("part.cl:14:1: error: the program: a drilling cycle in G18: the control drills along the "
                                    "axis square to that plane, not Z; G17 first [G-code line 17]"));
 }
+
+// A block written as given (INSERT, PREFUN, AUXFUN) that sets a state the post neither keeps
+// nor writes again is refused at its record: G49 (every Z off by the tool's length), G41 with
+// no CUTCOM (every point off by the radius), M99 (the program again, endlessly), M05 (the cuts
+// after it with the spindle stopped). What the post keeps it writes again after the block.
+TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\n";
+  const std::string tail = "GOTO/10,0,5\nGOTO/10,10,5\nFINI\n";
+  const std::pair<const char*, const char*> refused[] = {
+      {"PREFUN/49", "the block 'G49' (INSERT, PREFUN or AUXFUN) cancels the tool length offset (G49): every Z after it is "
+                    "off by the tool's length"},
+      {"INSERT/G41 D1", "the block 'G41 D1' (INSERT, PREFUN or AUXFUN) turns cutter compensation on (G41), which moves "
+                        "every point after it off the CL's: CUTCOM gives it"},
+      {"AUXFUN/99", "the block 'M99' (INSERT, PREFUN or AUXFUN) calls or returns from a subprogram (M99): in a main "
+                    "program M99 starts it again from the top, endlessly; the post writes no subprograms"},
+      {"AUXFUN/5", "the block 'M5' (INSERT, PREFUN or AUXFUN) turns, stops or orients the spindle (M5) where the post's "
+                   "spindle state does not follow: SPINDL gives it"},
+      {"INSERT/G68 X0 Y0 R30", "the block 'G68 X0 Y0 R30' (INSERT, PREFUN or AUXFUN) changes the coordinate system or "
+                               "its offsets (G68), so the program's positions would mean other places: the frames "
+                               "(SET, CAMERA, MSYS) give them"},
+  };
+  for (const auto& [record, message] : refused) {
+    Compiled c = compile_text(head + record + "\n" + tail, machine("fanuc-mill"));
+    EXPECT_FALSE(c.ok) << record;
+    EXPECT_THAT(c.diags, HasSubstr(std::string("part.cls:7:1: error: ") + message)) << record;
+  }
+  // Undone: G91 (G90 with the next block), another register (G54 again), G95 (G94 again).
+  Compiled u = compile_text(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
+  ASSERT_TRUE(u.ok) << u.diags;
+  EXPECT_THAT(u.output, HasSubstr("\nG91\nG55\nG95\nN70 G90 G54 G94 G01 X10. Y0. Z5. F500.\n"));
+  verifies(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
+  // G49 before any tool is loaded (a safe start) is written.
+  Compiled s = compile_text("UNITS/MM\nPREFUN/49\n" + head.substr(9) + tail, machine("fanuc-mill"));
+  ASSERT_TRUE(s.ok) << s.diags;
+}
