@@ -79,6 +79,7 @@ class ProgramWriter : public Backend {
   void note_plane_codes(std::string_view text);
   // Why an inserted block may not be written (a state it sets that the post does not keep), or "".
   std::string unkept_code(std::string_view text) const;
+  virtual bool tcp_in_force() const { return false; }
   // A mill's cycles and compensation: G17 first where the control may be in another plane.
   void xy_plane_code();
   // Motion blocks are absolute: restores G90 after a template left the control incremental.

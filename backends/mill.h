@@ -47,6 +47,7 @@ class MillBackend : public ProgramWriter {
   ActiveCycle cycle_;
   bool clamped_ = false;
   bool tcp_on_ = false;
+  bool tcp_in_force() const override { return tcp_on_; }
   bool at_safe_height_ = true;  // nothing moved since the last safe retract
   void retract_for_stop(SourceLoc loc) override {
     if (!at_safe_height_ && tool_ >= 0) retract(loc);

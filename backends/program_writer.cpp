@@ -272,6 +272,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             if (std::abs(g - 91) < 1e-6) incremental_ = true;  // G90 with the next motion block
             if ((g > 53.5 && g < 59.5) || std::abs(g - 154) < 1e-6) need_work_offset_ = true;
             if (g > 92.5 && g < 99.5) feed_mode_known_ = false;  // G93-G95, a lathe's G98/G99
+            // G49 with a tool loaded (a safety line before a tool change): the length offset
+            // again with the next move.
+            if (!m_.is_lathe() && std::abs(g - 49) < 1e-6 && tool_ >= 0 && !m_.codes.length_offset.empty())
+              need_length_offset_ = true;
           }
           motion_ = Motion::None;
           e_.forget_all();
@@ -588,8 +592,8 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
              "other places: the frames (SET, CAMERA, MSYS) give them";
     if (!lathe && (is(g, 43) || is(g, 44) || is(g, 43.4) || is(g, 43.5) || is(g, 234)))
       return "applies a tool length offset (" + code + "), which the post applies from LOADTL (and MULTAX)";
-    if (!lathe && is(g, 49) && tool_ >= 0)
-      return "cancels the tool length offset (G49): every Z after it is off by the tool's length";
+    if (!lathe && is(g, 49) && tcp_in_force())
+      return "cancels tool centre point control (G49), which MULTAX motion is written for";
     if (!lathe && (is(g, 73) || is(g, 74) || is(g, 76) || (g > 80.5 && g < 89.5)))
       return "starts a drilling cycle (" + code + "): CYCLE records give it";
     if (lathe && (is(g, 32) || is(g, 34) || (g > 69.5 && g < 76.5) || is(g, 90) || is(g, 92) || is(g, 94)))
@@ -609,14 +613,12 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
 }
 
 void ProgramWriter::note_plane_codes(std::string_view text) {
+  // By the G numbers, as the control reads them: outside comments, G018 as G18.
+  const std::vector<double> gs = code_numbers(text, 'G');
   auto has = [&](const CodeTemplate& code) {
-    if (code.text.empty()) return false;
-    for (size_t at = text.find(code.text); at != std::string_view::npos; at = text.find(code.text, at + 1)) {
-      const size_t end = at + code.text.size();
-      const bool starts = at == 0 || !std::isalnum(static_cast<unsigned char>(text[at - 1]));
-      const bool ends = end == text.size() || !(std::isdigit(static_cast<unsigned char>(text[end])) || text[end] == '.');
-      if (starts && ends) return true;
-    }
+    for (double want : code_numbers(code.text, 'G'))
+      for (double g : gs)
+        if (std::abs(g - want) < 1e-6) return true;
     return false;
   };
   if (has(m_.codes.plane_zx) || has(m_.codes.plane_yz)) off_xy_plane_ = true;

@@ -464,8 +464,13 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   if (retract_pending_) [[unlikely]]
     check_retract(loc, op);
   if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
-  else if (const auto* m = std::get_if<ir::Move>(&op)) cut_since_tool_change_ |= m->kind != ir::MoveKind::From;
-  else if (std::holds_alternative<ir::Arc>(op)) cut_since_tool_change_ = true;
+  else if (const auto* m = std::get_if<ir::Move>(&op)) {
+    cut_since_tool_change_ |= m->kind != ir::MoveKind::From;
+    if (m->kind != ir::MoveKind::From) last_move_rapid_ = m->kind == ir::MoveKind::Rapid;
+  } else if (std::holds_alternative<ir::Arc>(op) || std::holds_alternative<ir::Hole>(op)) {
+    cut_since_tool_change_ = true;
+    last_move_rapid_ = false;
+  }
   make_room();
   op_.body.push_back(ir::Instr{loc, std::move(op)});
   return op_.body.back();

@@ -148,6 +148,7 @@ class Lowerer : public RecordSink {
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
+  bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;

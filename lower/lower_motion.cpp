@@ -33,10 +33,10 @@ bool read_point(const Record& r, Diagnostics& d, ir::Vec3& p, ir::Vec3& axis, bo
       d.error(ps[3].loc, std::string(r.major) + ": the tool axis (i,j,k) must not be zero");
       return false;
     }
-    // CAM systems write the axis as a unit vector, to however few digits (0.001 each leaves it
-    // within 0.2 %). One far from length 1 is no axis (six values read as two points, a
+    // CAM systems write the axis as a unit vector, to however few digits (one digit, 0.7,0,0.7,
+    // leaves it within 1.1 %). One far from length 1 (over 5 %) is no axis (six values read as two points, a
     // MULTAX/OFF file's own form): made one, it would tilt the tool at a guess.
-    if (std::abs(n - 1) > 0.01) {
+    if (std::abs(n - 1) > 0.05) {
       d.error(ps[3].loc, std::string(r.major) + ": the tool axis (i,j,k) is not a unit vector (its length is " +
                              num_text(std::round(n * 1e4) / 1e4) + "): these are not a tool axis's values");
       return false;
@@ -229,10 +229,11 @@ void Lowerer::lower_from(const Record& r) {
   bool has_axis = false;
   if (!read_point(r, d_, p, a, has_axis)) return;
   p = xf_point(p);
-  // FROM says where the tool stands; it moves nothing. After motion (the tool is where the CL
-  // left it, not at a tool change) a FROM elsewhere asks for a jump no post can make: the
-  // move between is not in the CL. Refused rather than guessed (a rapid could cut the part).
-  if (cut_since_tool_change_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
+  // FROM says where the tool stands; it moves nothing. After a cut (the tool is where the CL
+  // left it, maybe in the material: not after a tool change, a rapid or a GOHOME) a FROM
+  // elsewhere asks for a jump no post can make: the move between is not in the CL. Refused
+  // rather than guessed (the next move, made from where the tool is, could cut the part).
+  if (cut_since_tool_change_ && !last_move_rapid_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
     d_.error(r.loc, "FROM after motion puts the tool at (" + num_text(p.x()) + ", " + num_text(p.y()) + ", " +
                         num_text(p.z()) + "), but the CL left it at (" + num_text(pos_.x()) + ", " + num_text(pos_.y()) +
                         ", " + num_text(pos_.z()) + "): the move between is not in the CL; have the CAM system write "

@@ -151,7 +151,6 @@ class OffsetTablePass : public Pass {
       ir::Instr& in = op.body[i];
       if (auto* f = std::get_if<ir::SetFrame>(&in.op)) {
         frame_ = f->frame;
-        frame_loc_ = in.loc;
         source_ = f->source;
         reg_ = pending_;
         pending_ = 0;
@@ -241,14 +240,12 @@ class OffsetTablePass : public Pass {
     transform_ = false;
     const ir::WorkOffset* w = find(ctx.info.offsets, frame_, reg_);
     if (!w) {
-      if (!ctx.machine.offsets.per_frame && reg_ == 0 && selected_ && !selected_frame_.same_as(frame_, 1e-6, 1e-9)) {
-        // A frame record with no SET after a SET's frame: the register selected stays in force
-        // on the control and holds the other frame's origin, while this frame's points are
-        // written without it.
-        ctx.diags.error(frame_loc_, "this frame record has no SET, and no register holds its frame: the register in "
-                                    "force (register " + std::to_string(selected_) + ") holds the frame of line " +
-                                    std::to_string(selected_loc_.line) + "; give it a SET/n record (or "
-                                    "offsets.per_frame = true)");
+      if (!ctx.machine.offsets.per_frame && reg_ == 0 && selected_ && selected_ != ctx.machine.offsets.default_index) {
+        // A frame record with no SET after a SET's frame: its points are in the part frame (as
+        // lowering puts every point), which the default register holds; the register selected
+        // before holds the other frame's origin and would stay in force on the control.
+        out.push_back({loc, ir::SelectOffset{0, ctx.machine.offsets.default_index}});
+        selected_ = ctx.machine.offsets.default_index;
         return;
       }
       if (ctx.machine.offsets.per_frame) {
@@ -256,7 +253,7 @@ class OffsetTablePass : public Pass {
                              "frame record of a file without TOOL PATH or FEATNO records?)");
       } else if (reg_) {
         out.push_back({loc, ir::SelectOffset{reg_, ir::register_index(reg_)}});
-        select(ir::register_index(reg_), frame_, frame_loc_);
+        selected_ = ir::register_index(reg_);
       }
       return;
     }
@@ -290,7 +287,7 @@ class OffsetTablePass : public Pass {
       setup_ = w->setup;
     }
     at = out.insert(at, {loc, ir::SelectOffset{w->set_register, w->index}}) + 1;
-    select(w->index, w->frame, w->loc);
+    selected_ = w->index;
     // The frame's Z in the program frame, where lowering puts every point and tool axis.
     const Vec3 z_model = frame_.rotation.col(2);
     indexed_ = true;
@@ -355,12 +352,6 @@ class OffsetTablePass : public Pass {
     }
   }
 
-  void select(int index, const ir::Frame& f, SourceLoc loc) {
-    selected_ = index;
-    selected_frame_ = f;
-    selected_loc_ = loc;
-  }
-
   static bool along_z(const ir::Instr& in) {
     const Vec3* a = nullptr;
     if (auto* m = std::get_if<ir::Move>(&in.op)) a = &m->axis;
@@ -372,10 +363,7 @@ class OffsetTablePass : public Pass {
   KinematicsSettings k_;
   std::vector<ir::Instr> scratch_;
   ir::Frame frame_;
-  SourceLoc frame_loc_;  // the frame record of frame_
-  int selected_ = 0;     // the register last selected (0: none yet), its frame and that frame's record
-  ir::Frame selected_frame_;
-  SourceLoc selected_loc_;
+  int selected_ = 0;     // the register last selected (0: none yet)
   ir::FrameSource source_ = ir::FrameSource::Csys;
   int reg_ = 0;       // the SET register in force (0: none)
   bool setups_ = false;  // frames become setups (a machine without rotaries)

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "driver/readback_commands.h"
 #include "lower/params.h"
 #include "ir/printer.h"
 #include "passes/pass_manager.h"
@@ -242,6 +243,21 @@ std::string first_error(const std::vector<Diagnostic>& d) {
 
 size_t count(const std::vector<Diagnostic>& d, Severity s) {
   return size_t(std::count_if(d.begin(), d.end(), [&](const Diagnostic& x) { return x.severity == s; }));
+}
+
+Compiled verify_text(const std::string& cl, const Machine& m, const std::string& program) {
+  TempDir t;
+  write_file(t.path("part.cl"), cl);
+  VerifyOptions opt;
+  if (!program.empty()) {
+    write_file(t.path("given.nc"), program);
+    opt.program = t.path("given.nc");
+  }
+  std::ostringstream err;
+  Compiled v;
+  v.ok = verify_file(t.path("part.cl"), m, opt, err).ok;
+  v.diags = err.str();
+  return v;
 }
 
 }  // namespace clpc::test

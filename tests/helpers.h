@@ -68,6 +68,9 @@ struct Compiled {
 };
 Compiled compile_text(const std::string& cl, const Machine& m, CompileOptions opt = {});
 Compiled compile_path(const std::string& path, const Machine& m, CompileOptions opt = {});
+// Verifies a CL text (written as part.cl in a temporary directory) for `m`: clpc's own
+// program, or `program` (G-code text) when given. ok, and the diagnostics as printed.
+Compiled verify_text(const std::string& cl, const Machine& m, const std::string& program = {});
 
 // Runs the clpc binary with arguments (shell-quoted by the caller); captures both streams.
 struct RunResult {

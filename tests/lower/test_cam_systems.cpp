@@ -765,29 +765,22 @@ TEST(CamSystems, CyclesAndCompensationAfterAnArcInAnotherPlaneAreInG17) {
   ASSERT_TRUE(k.ok) << k.diags;
   EXPECT_THAT(k.output, HasSubstr("N110 G17 G41 D1 G01 X10. Z15.\n"));
   // The program as it was written before: refused by the reader, at the cycle's block.
-  TempDir t;
-  write_file(t.path("part.cl"), drill);
   std::string before = c.output;
   before.replace(before.find("G17 G98 G81"), 4, "");
-  write_file(t.path("before.nc"), before);
-  VerifyOptions given;
-  given.program = t.path("before.nc");
-  std::ostringstream err;
-  EXPECT_FALSE(verify_file(t.path("part.cl"), machine("fanuc-mill"), given, err).ok);
-  EXPECT_THAT(err.str(), HasSubstr("part.cl:14:1: error: the program: a drilling cycle in G18: the control drills along the "
-                                   "axis square to that plane, not Z; G17 first [G-code line 17]"));
+  Compiled v = verify_text(drill, machine("fanuc-mill"), before);
+  EXPECT_FALSE(v.ok);
+  EXPECT_THAT(v.diags, HasSubstr("part.cl:14:1: error: the program: a drilling cycle in G18: the control drills along the "
+"axis square to that plane, not Z; G17 first [G-code line 17]"));
 }
 
 // A block written as given (INSERT, PREFUN, AUXFUN) that sets a state the post neither keeps
-// nor writes again is refused at its record: G49 (every Z off by the tool's length), G41 with
-// no CUTCOM (every point off by the radius), M99 (the program again, endlessly), M05 (the cuts
-// after it with the spindle stopped). What the post keeps it writes again after the block.
+// nor writes again is refused at its record: G41 with no CUTCOM (every point off by the radius), M99 (the program again, endlessly), M05 (the cuts
+// after it with the spindle stopped). What the post keeps it writes again after the block
+// (G49 was certified with every Z after it off by the tool's length: G43 H comes again).
 TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\n";
   const std::string tail = "GOTO/10,0,5\nGOTO/10,10,5\nFINI\n";
   const std::pair<const char*, const char*> refused[] = {
-      {"PREFUN/49", "the block 'G49' (INSERT, PREFUN or AUXFUN) cancels the tool length offset (G49): every Z after it is "
-                    "off by the tool's length"},
       {"INSERT/G41 D1", "the block 'G41 D1' (INSERT, PREFUN or AUXFUN) turns cutter compensation on (G41), which moves "
                         "every point after it off the CL's: CUTCOM gives it"},
       {"AUXFUN/99", "the block 'M99' (INSERT, PREFUN or AUXFUN) calls or returns from a subprogram (M99): in a main "
@@ -808,7 +801,11 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   ASSERT_TRUE(u.ok) << u.diags;
   EXPECT_THAT(u.output, HasSubstr("\nG91\nG55\nG95\nN70 G90 G54 G94 G01 X10. Y0. Z5. F500.\n"));
   verifies(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
-  // G49 before any tool is loaded (a safe start) is written.
-  Compiled s = compile_text("UNITS/MM\nPREFUN/49\n" + head.substr(9) + tail, machine("fanuc-mill"));
+  // G49 (a safety line): the length offset again with the next move; a comment names no code.
+  const std::string g49 = head + "PREFUN/49\nINSERT/G18\nINSERT/M01 (G17 NEXT)\nCYCLE/DRILL,FEDTO,2,RAPTO,1,MMPM,100\n"
+                          "GOTO/10,10,0\nCYCLE/OFF\n" + tail;
+  Compiled s = compile_text(g49, machine("fanuc-mill"));
   ASSERT_TRUE(s.ok) << s.diags;
+  EXPECT_THAT(s.output, HasSubstr("\nG49\nG18\nM01 (G17 NEXT)\nN70 G43 H01 G17 G94 G98 G81 X10. Y10. Z-2. R1. F100.\n"));
+  verifies(g49, machine("fanuc-mill"));
 }

@@ -451,11 +451,13 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
 }
 
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
-// jump the CL does not give: refused. At the start, or after a tool change, it is read.
+// jump the CL does not give: refused after a cut. At the start, after a tool change, a rapid or
+// a GOHOME (APT's GOHOME, then FROM at a new home), it is read.
 TEST(Lower, FromAfterMotionElsewhereIsRefused) {
   EXPECT_EQ(err("GOTO/20,0,5\nFROM/0,0,100\nGOTO/0,0,5\n"),
             "2:1: FROM after motion puts the tool at (0, 0, 100), but the CL left it at (20, 0, 5): the move between is not "
             "in the CL; have the CAM system write it (a GOTO)");
   EXPECT_EQ(err("GOTO/20,0,5\nFROM/20,0,5\nGOTO/0,0,5\n"), "");
   EXPECT_EQ(err("LOADTL/1\nGOTO/20,0,5\nLOADTL/2\nFROM/0,0,100\nGOTO/0,0,5\n"), "");
+  EXPECT_EQ(err("FROM/0,0,100\nGOTO/20,0,5\nGOHOME\nFROM/0,0,120\nGOTO/0,0,5\n"), "");
 }

@@ -2,7 +2,6 @@
 // CYCLE/FACE|RADIUS records, P/Q scaling, and every collapse the corpus produces read back
 // and compared with the CL motion it replaced.
 #include "readback/gcode_interp.h"
-#include "driver/readback_commands.h"
 #include "helpers.h"
 #include "ir/groove_model.h"
 #include "support/text.h"
@@ -213,23 +212,17 @@ TEST(GrooveRecords, ARecordsFedShiftsAreMadeByTheCyclesRapidShifts) {
     cl += "GOTO/25,0," + num_text(z) + "\nGOTO/30,0," + num_text(z) + "\n";
   }
   cl += "CYCLE/OFF\nFINI\n";
-  TempDir t;
-  write_file(t.path("part.cl"), cl);
-  std::ostringstream err;
-  VerifyReport r = verify_file(t.path("part.cl"), machine("fanuc-lathe"), VerifyOptions{}, err);
-  EXPECT_TRUE(r.ok) << err.str();
-  EXPECT_EQ(r.cl_groove_points, 9);
+  Compiled r = verify_text(cl, machine("fanuc-lathe"));
+  EXPECT_TRUE(r.ok) << r.diags;
+  EXPECT_EQ(groove_blocks(cl), "G75 R0.5\nN80 G75 X50. Z-16. P2000 Q3000 F0.05");
   // The same shifts made by plain G00 blocks (no cycle) are feeds made at rapid.
-  write_file(t.path("plain.nc"),
-             "%\nO2000\nN10 G21\nN20 G00 G18 G40 G80 G99\nN30 T0101\nN40 G97 S600 M03\nN50 G00 X64. Z-10.\n"
-             "N60 G01 X60. F0.1\nN70 X50. F0.05\nN80 X60.\nN90 G00 Z-13.\nN100 G01 X50.\nN110 X60.\nN120 G00 Z-16.\n"
-             "N130 G01 X50.\nN140 X60.\nN150 M05\nN160 M30\n%\n");
-  VerifyOptions given;
-  given.program = t.path("plain.nc");
-  std::ostringstream err2;
-  EXPECT_FALSE(verify_file(t.path("part.cl"), machine("fanuc-lathe"), given, err2).ok);
-  EXPECT_THAT(err2.str(), HasSubstr("part.cl:12:1: error: groove cut to (30.0000, 0.0000, -13.0000) is made at rapid "
-                                    "traverse (G00) [G-code line 11]"));
+  Compiled plain = verify_text(cl, machine("fanuc-lathe"),
+                               "%\nO2000\nN10 G21\nN20 G00 G18 G40 G80 G99\nN30 T0101\nN40 G97 S600 M03\nN50 G00 X64. Z-10.\n"
+                               "N60 G01 X60. F0.1\nN70 X50. F0.05\nN80 X60.\nN90 G00 Z-13.\nN100 G01 X50.\nN110 X60.\n"
+                               "N120 G00 Z-16.\nN130 G01 X50.\nN140 X60.\nN150 M05\nN160 M30\n%\n");
+  EXPECT_FALSE(plain.ok);
+  EXPECT_THAT(plain.diags, HasSubstr("part.cl:12:1: error: groove cut to (30.0000, 0.0000, -13.0000) is made at rapid "
+                                     "traverse (G00) [G-code line 11]"));
 }
 
 TEST(GrooveRecords, FaceInchKeywordsInAnotherOrder) {

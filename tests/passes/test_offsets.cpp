@@ -7,7 +7,6 @@
 #include <random>
 #include <regex>
 
-#include "driver/readback_commands.h"
 #include "readback/gcode_interp.h"
 #include "machine/kinematics.h"
 #include "helpers.h"
@@ -396,26 +395,23 @@ TEST(OffsetTable, FiveAxisMotionUnderAnotherFramesRegisterIsRefused) {
   EXPECT_THAT(b.output, HasSubstr("G00 X4.3307 Y1.9685 B0. C0.\n"));
 }
 
-// SET/55 with frame A, then a second CAMERA with no SET: G55 stays in force on the control,
-// holding A's origin, while B's points are written without it. Refused at B's record (before,
-// verify refused it with a "never reached" at every point and no cause). With a SET it posts.
-TEST(OffsetTable, AFrameWithoutSetAfterASetsFrameIsRefused) {
+// SET/55 with frame A, then a second CAMERA with no SET: its points are in the part frame,
+// which the default register holds. G55 stayed in force on the control, holding A's origin,
+// and verify refused the program with a "never reached" at every point. The default register
+// is selected again; with a SET of its own the frame gets its register.
+TEST(OffsetTable, AFrameWithoutSetAfterASetsFrameSelectsTheDefaultRegisterAgain) {
   const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/200\nSET/55\n" + camera(rz(0), Vec3(100, 50, -10)) +
                            "RAPID\nGOTO/110,50,20\nGOTO/110,60,-2\n";
   const std::string b = camera(rz(0), Vec3(200, 0, 0)) + "RAPID\nGOTO/210,0,20\nGOTO/210,10,-2\nFINI\n";
+  Compiled c = compile_text(head + b, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G55 G00 X10. Y0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N80 G54 G00 X210. Y0. Z20.\n"));
   for (const char* m : {"fanuc-mill", "haas-umc750"}) {
-    Compiled c = compile_text(head + b, machine(m));
-    EXPECT_FALSE(c.ok) << m;
-    EXPECT_THAT(c.diags, HasSubstr(":11:1: error: this frame record has no SET, and no register holds its frame: the "
-                                   "register in force (register 2) holds the frame of line 6; give it a SET/n record (or "
-                                   "offsets.per_frame = true)"))
-        << m;
-    Compiled set = compile_text(head + "SET/56\n" + b, machine(m));
-    ASSERT_TRUE(set.ok) << m << set.diags;
-    TempDir t;
-    write_file(t.path("part.cl"), head + "SET/56\n" + b);
-    std::ostringstream err;
-    EXPECT_TRUE(verify_file(t.path("part.cl"), machine(m), VerifyOptions{}, err).ok) << m << err.str();
+    Compiled v = verify_text(head + b, machine(m));
+    EXPECT_TRUE(v.ok) << m << v.diags;
+    Compiled set = verify_text(head + "SET/56\n" + b, machine(m));
+    EXPECT_TRUE(set.ok) << m << set.diags;
   }
 }
 
