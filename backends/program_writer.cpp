@@ -590,6 +590,13 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
                                               is(g, 68.2) || is(g, 68.3) || is(g, 68.4))))
       return "changes the coordinate system or its offsets (" + code + "), so the program's positions would mean "
              "other places: the frames (SET, CAMERA, MSYS) give them";
+    // A lathe's G50 with axis words sets the coordinate system where the tool stands (its G50 S
+    // is the spindle clamp, which moves nothing).
+    if (lathe && is(g, 50) &&
+        (!code_numbers(text, 'X').empty() || !code_numbers(text, 'Z').empty() || !code_numbers(text, 'U').empty() ||
+         !code_numbers(text, 'W').empty()))
+      return "sets the coordinate system where the tool stands (G50 with axis words), so the program's positions "
+             "would mean other places: the frames (SET, ORIGIN) give them";
     if (!lathe && (is(g, 43) || is(g, 44) || is(g, 43.4) || is(g, 43.5) || is(g, 234)))
       return "applies a tool length offset (" + code + "), which the post applies from LOADTL (and MULTAX)";
     if (!lathe && is(g, 49) && tcp_in_force())

@@ -808,4 +808,14 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   ASSERT_TRUE(s.ok) << s.diags;
   EXPECT_THAT(s.output, HasSubstr("\nG49\nG18\nM01 (G17 NEXT)\nN70 G43 H01 G17 G94 G98 G81 X10. Y10. Z-2. R1. F100.\n"));
   verifies(g49, machine("fanuc-mill"));
+  // A lathe's G50 with axis words sets the coordinate system; G50 S alone is the spindle clamp.
+  const std::string lathe_head = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/50,0,5\n";
+  const std::string lathe_tail = "GOTO/50,0,-20\nGOTO/60,0,-20\nFINI\n";
+  Compiled g50 = compile_text(lathe_head + "INSERT/G50 X100. Z5.\n" + lathe_tail, machine("fanuc-lathe"));
+  EXPECT_FALSE(g50.ok);
+  EXPECT_THAT(g50.diags, HasSubstr("part.cls:7:1: error: the block 'G50 X100. Z5.' (INSERT, PREFUN or AUXFUN) sets "
+                                   "the coordinate system where the tool stands (G50 with axis words)"));
+  Compiled clamp = compile_text(lathe_head + "INSERT/G50 S2500\n" + lathe_tail, machine("fanuc-lathe"));
+  ASSERT_TRUE(clamp.ok) << clamp.diags;
+  EXPECT_THAT(clamp.output, HasSubstr("\nG50 S2500\n"));
 }
