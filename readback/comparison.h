@@ -110,6 +110,8 @@ class Comparison : public ProgramSink {
   Vec3 model_dir(const Vec3& v) const { return indexing_.on ? Vec3(indexing_.rotation * v) : v; }
 
   bool axis_ok(const TipSegment& s, const Vec3& axis);
+  // A canned cycle's return: a move straight up the tool axis (away from the part).
+  bool returns_up_the_axis(const TipSegment& s) const;
 
   // May the walk pass over segment s on its way to the next CL point? Rapids and cycle
   // motion always; feeds only on `on_path`.

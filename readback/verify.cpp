@@ -318,6 +318,13 @@ void Comparison::tool_ok(const TipSegment& s) {
   }
 }
 
+bool Comparison::returns_up_the_axis(const TipSegment& s) const {
+  if (!finite(s.start) || !finite(s.end)) return false;
+  const Vec3 d = s.end - s.start;
+  const double along = d.dot(s.axis.normalized());
+  return along >= -tol_ && (d - along * s.axis.normalized()).norm() <= tol_;
+}
+
 void Comparison::reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, const std::vector<double>& passed) {
   for (size_t i = 0; i < j && i < passed.size(); ++i) deviate(passed[i], loc_, win_[i].raw.line);
   const TipSegment& s = win_[j];
@@ -329,8 +336,9 @@ void Comparison::reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, 
          "the tool axis at this CL point is off by " + fixed_text(kin::angle_between(s.axis, axis.normalized()), 4) + " degrees",
          0);
   // (A canned cycle's own return may bring the tool there: the CL's feed up from the last
-  // hole to where the cycle returned it is made by the cycle, at rapid, away from the part.)
-  if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !s.raw.from_cycle)
+  // hole to where the cycle returned it is made by the cycle, at rapid, away from the part,
+  // straight up the tool axis. Any other rapid of a cycle is no stand-in for a CL feed.)
+  if (!rapid && s.raw.kind == gcode::Segment::Kind::Rapid && !(s.raw.from_cycle && returns_up_the_axis(s)))
     fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
   for (size_t i = 0; i <= j && i < win_.size(); ++i)
     if (win_[i].raw.thread) {

@@ -153,6 +153,22 @@ TEST_F(VerifyPlate, RapidThroughACutFails) {
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:15:1: error: this CL feed move is made at rapid traverse (G00)"));
 }
 
+// A canned cycle's return up the tool axis may make the CL's feed up from the last hole; its
+// other rapids may not: here a cycle with no depth (Z = R) makes the CL's fed move across to
+// X20 with its positioning rapid. It passed before.
+TEST(Verify, ACyclesRapidAcrossIsNoStandInForAClFeed) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100,MMPM\nRAPID\nGOTO/0,0,5\n"
+                         "CYCLE/DRILL,FEDTO,2,RAPTO,0,MMPM,100\nGOTO/10,0,0\nCYCLE/OFF\nGOTO/20,0,5\nRAPID\nGOTO/20,0,50\nFINI\n";
+  const std::string head = "%\nO1000\nN10 G21\nN20 G00 G17 G40 G49 G80 G90\nN30 T1 M06\nN40 S1000 M03\n"
+                           "N50 G54 G00 X0. Y0.\nN60 G43 H01 Z5.\nN70 G94 G98 G81 X10. Y0. Z-2. R0. F100.\n";
+  const std::string tail = "N100 G00 Z50.\nN110 M05\nN120 G91 G28 Z0.\nN130 G90\nN140 M30\n%\n";
+  Compiled fed = verify_text(cl, machine("fanuc-mill"), head + "N80 G80\nN90 G01 X20. F100.\n" + tail);
+  EXPECT_TRUE(fed.ok) << fed.diags;
+  Compiled across = verify_text(cl, machine("fanuc-mill"), head + "N80 X20. Y0. Z5. R5.\nN90 G80\n" + tail);
+  EXPECT_FALSE(across.ok);
+  EXPECT_THAT(across.diags, HasSubstr("part.cl:10:1: error: this CL feed move is made at rapid traverse (G00) [G-code line 10]"));
+}
+
 TEST(Verify, RotaryBeyondItsLimitFails) {
   if (corpus_dir().empty()) GTEST_SKIP() << "no corpus";
   const std::string cl = corpus_dir() + "/nist/b45_face.ncl";
