@@ -41,6 +41,12 @@ ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_
     // Set by hand on the machine: the values clpc computed (and listed in the head).
     if (m.offsets.table == OffsetTable::None)
       for (const ir::WorkOffset& w : info.offsets) offsets_[w.index] = w.machine;
+    // The default register, when no frame of the CL is put in it, holds the part frame as the
+    // operator set it: untilted, its zero on the reference base (the offset the macro gives a
+    // frame at the part zero, A0 C0), not on the table centre.
+    bool default_listed = false;
+    for (const ir::WorkOffset& w : info.offsets) default_listed |= w.index == m.offsets.default_index;
+    if (!default_listed) offsets_[m.offsets.default_index] = Vec3(0, 0, reference_height_);
     // The frames the operator turns the part to: all of them without rotaries, the setups
     // beyond the rotaries' reach with.
     for (const ir::WorkOffset& w : info.offsets)

@@ -289,6 +289,23 @@ TEST(OffsetTable, ThreeFramesFollowTheClPath) {
   }
 }
 
+// The first operation in the part frame with no SET: its register (G54) is never set by the
+// program. On the macro and G10 machines the reader took that register's zero at the table
+// centre, not on the reference base (#503) where the part zero is, and refused the program
+// with "never reached" at every point of the operation.
+TEST(OffsetTable, AnUnsetDefaultRegisterHoldsThePartFrameOnTheReferenceBase) {
+  const std::string t = ac_toml();
+  std::string text = read_file(source_path("tests/offsets/three_frames.cls"));
+  const size_t set = text.find("SET/54\n");
+  ASSERT_NE(set, std::string::npos);
+  text.erase(set, 7);
+  for (const char* name : {"ac-trunnion", "ac-trunnion-g10", "ac-trunnion-none"}) {
+    Compiled c = compile_text(text, machine(name, t));
+    EXPECT_TRUE(c.ok) << name << c.diags;
+    EXPECT_THAT(c.output, HasSubstr("G54 X0. Y0.\n")) << name;
+  }
+}
+
 // --- corpus 3+2 files with one offset per distinct $$-> CSYS --------------------------------
 
 TEST(OffsetTable, CorpusOneOffsetPerDistinctCsys) {
