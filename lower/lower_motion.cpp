@@ -122,10 +122,27 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
   double h_start = (arc->start - arc->center).dot(n);
   double h_end = (arc->end - arc->center).dot(n);
   double h_p = (p - arc->center).dot(n);
-  if (std::abs(h_end - h_start) > tol || std::abs(h_p - h_start) > tol) return false;
   ir::Vec3 rp = radial(p), re = radial(arc->end), rs = radial(arc->start);
   if (std::abs(rp.norm() - arc->radius) > tol) return false;
   if ((p - arc->end).norm() < tol) return false;
+  const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));  // this step's angle
+  const bool within_chord_tolerance = arc->radius * (1 - std::cos(step / 2)) <= 0.01 / ir::mm_per_unit(info_.units);
+  // A Creo point on the arc's circle, far round it, that cannot join the arc: the CL does not
+  // tell the straight move it would be from the arc carried on, and cut straight where the arc
+  // was meant, it leaves the circle by the chord's sagitta.
+  const bool creo_wide = info_.cam == ir::CamSystem::Creo && !within_chord_tolerance;
+  auto refuse_wide = [&](const std::string& why) {
+    d_.error(loc, "this point lies on the circle of the arc before it, " + fixed_text(step * 180 / 3.14159265358979323846, 1) +
+                      " degrees round from its end, but " + why +
+                      ": the CL does not tell the arc carried on from a straight move across, and cut straight it "
+                      "would leave the circle by " + fixed_text(arc->radius * (1 - std::cos(step / 2)), 4) +
+                      "; have the CAM system write the arc with its own CIRCLE records");
+    return true;  // taken: refused, not cut either way
+  };
+  if (std::abs(h_end - h_start) > tol || std::abs(h_p - h_start) > tol) {
+    if (creo_wide) return refuse_wide("at another height along its axis (a helix goes on by its own CIRCLE records)");
+    return false;
+  }
   // Same sense: every step along the arc turns the same way about the axis, and the whole
   // stays within one turn. A half turn (a step to the point opposite, as from one quadrant
   // point to the next but one) has no sense of its own, whatever sign the CL's rounding gives
@@ -147,8 +164,6 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
   const int step_sense = sense(re, rp);
   if (arc_sense == 2 || step_sense == 2) return false;
   if (arc_sense != 0 && step_sense != 0 && arc_sense != step_sense) return false;
-  const double step = std::atan2(std::abs(n.dot(re.cross(rp))), re.dot(rp));  // this step's angle
-  const bool within_chord_tolerance = arc->radius * (1 - std::cos(step / 2)) <= 0.01 / ir::mm_per_unit(info_.units);
   // Creo writes an arc's intermediate points as far apart as it likes (the evidence for joining
   // them). Other systems' CL (APT's points after a CIRCLE) keeps each chord within the CAM
   // tolerance of the arc, so a step whose chord leaves the arc by more than 0.01 mm is a
@@ -163,7 +178,10 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
     q = v;
   }
   turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + step;
-  if (turned >= 2 * 3.14159265358979323846) return false;  // no arc: a move of its own
+  if (turned >= 2 * 3.14159265358979323846) {
+    if (creo_wide) return refuse_wide("joined, the arc would close a full turn or pass it");
+    return false;  // no arc: a move of its own (a step within the chord tolerance)
+  }
   if (step_sense == 0) {
     // The next point opposite the arc's end: half a turn further round, or a straight move
     // across the centre (a pass over a round face). The CL does not tell them apart, and each

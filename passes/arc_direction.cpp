@@ -100,6 +100,15 @@ class ArcDirection : public Pass {
     ir::ArcDir geo = e.geometry();
     if (a.hint != ir::ArcDir::Unknown) {
       a.dir = a.hint;
+      if (e.via != ir::ArcDir::Unknown && e.via != a.hint) {
+        // The CL's own points on the arc lie on the side the convention's arc does not pass:
+        // either reading misses CL points (a tangent alone may be a cusp; a point is a point).
+        ctx.diags.error(loc, "arc: " + convention_text(a, ctx.info.cam) + " says " + dir_word(a.hint) +
+                                 ", but the CL's points on the arc (the GOTOs between the CIRCLE and its end) lie "
+                                 "where it passes only if it turns " + dir_word(e.via) +
+                                 ": the CL contradicts itself, and either way some of its points are missed");
+        return;
+      }
       if (geo != ir::ArcDir::Unknown && geo != a.hint) {
         const std::string& why = geo == ir::ArcDir::Ccw ? e.ccw_why : e.cw_why;
         ctx.diags.warning(loc,
@@ -144,8 +153,8 @@ ArcEvidence arc_evidence(const ir::Operation& op, const ir::Arc& a, const ir::Ve
       if (!(v > 0 && v < end_ccw)) all_ccw = false;
       if (!(v > end_ccw)) all_cw = false;
     }
-    if (all_ccw && !all_cw) vote(e, ir::ArcDir::Ccw, "the arc passes through its intermediate points");
-    if (all_cw && !all_ccw) vote(e, ir::ArcDir::Cw, "the arc passes through its intermediate points");
+    if (all_ccw && !all_cw) vote(e, e.via = ir::ArcDir::Ccw, "the arc passes through its intermediate points");
+    if (all_cw && !all_ccw) vote(e, e.via = ir::ArcDir::Cw, "the arc passes through its intermediate points");
   }
   tangent_vote(e, a, in, a.axis.cross(rs), min_len, "the arc is tangent to the move entering it");
   tangent_vote(e, a, out, a.axis.cross(re), min_len, "the arc is tangent to the move leaving it");

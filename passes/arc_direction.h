@@ -11,6 +11,9 @@ namespace clpc {
 struct ArcEvidence {
   int ccw_votes = 0, cw_votes = 0;
   std::string ccw_why, cw_why;  // what voted (first reason), for messages
+  // The way the CL's own points on the arc (intermediate GOTOs) say it turns: cut the other
+  // way it never passes through them.
+  ir::ArcDir via = ir::ArcDir::Unknown;
   ir::ArcDir geometry() const {
     if (ccw_votes > 0 && cw_votes == 0) return ir::ArcDir::Ccw;
     if (cw_votes > 0 && ccw_votes == 0) return ir::ArcDir::Cw;

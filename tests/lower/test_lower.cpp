@@ -146,8 +146,26 @@ TEST(Lower, AHalfTurnStepFollowsTheArc) {
   EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/0,10,0\n"),
               ElementsAre("feed (10, 0, 0)", "arc ? to (-10, 0, 0) center (0, 0, 0) axis (0, 0, 1) r 10 hint ccw creo7",
                           "feed (0, 10, 0)"));
-  // Two half turns are back at the start: no arc of less than a turn.
-  EXPECT_THAT(instrs(creo + "GOTO/-10,0,0\nGOTO/10,0,0\n"),
+  // Two half turns are back at the start: the circle closed, or a straight move across the
+  // centre (a D-shaped outline)? The CL does not say, and either cut where the other was meant
+  // leaves the path by the radius. It was cut straight and certified; refused where it stands.
+  EXPECT_EQ(err(creo + "GOTO/-10,0,0\nGOTO/10,0,0\n"),
+            "5:1: this point lies on the circle of the arc before it, 180.0 degrees round from its end, but joined, "
+            "the arc would close a full turn or pass it: the CL does not tell the arc carried on from a straight move "
+            "across, and cut straight it would leave the circle by 10.0000; have the CAM system write the arc with its "
+            "own CIRCLE records");
+  // The same closed by quarter points (cut straight, the last quarter was a chord 2.93 mm inside
+  // the circle), and
+  // Creo points on the circle at another height (a helix written as points): refused.
+  EXPECT_THAT(err(creo + "GOTO/0,10,0\nGOTO/-10,0,0\nGOTO/0,-10,0\nGOTO/10,0,0\nGOTO/0,10,0\n"),
+              HasSubstr("7:1: this point lies on the circle of the arc before it, 90.0 degrees round from its end, but "
+                        "joined, the arc would close a full turn or pass it"));
+  EXPECT_THAT(err(creo + "GOTO/0,10,1\nGOTO/-10,0,2\n"),
+              HasSubstr("5:1: this point lies on the circle of the arc before it, 90.0 degrees round from its end, but at "
+                        "another height along its axis"));
+  // Outside Creo a point on the circle joins only within the chord tolerance: a wide step is a
+  // straight move (APT's points keep their chords within the CAM tolerance).
+  EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/-10,0,0\nGOTO/10,0,0\n"),
               ElementsAre("feed (10, 0, 0)", HasSubstr("arc ? to (-10, 0, 0)"), "feed (10, 0, 0)"));
 }
 

@@ -7,6 +7,7 @@
 
 using namespace clpc;
 using namespace clpc::test;
+using ::testing::HasSubstr;
 
 namespace {
 
@@ -179,6 +180,27 @@ TEST(ArcDirection, ConventionWinsOverGeometryWithAWarning) {
             "arc: the NX CLSF convention (the axis of clockwise rotation) says clockwise, and it is cut clockwise; but "
             "the arc is tangent to the move entering it only if it turns counter-clockwise (a cusp or a plunge onto the "
             "arc?)");
+}
+
+// The CL's own points on the arc (Creo's GOTOs between the CIRCLE and its end) lie on the side
+// the convention's arc does not pass: the arc was cut by the convention, through none of them,
+// with a warning, and certified (the certificate checks the arc's end). The CL contradicts
+// itself: an error at the CIRCLE.
+TEST(ArcDirection, IntermediatePointsAgainstTheConventionAreAnError) {
+  const std::string cl = "$$-> MFGNO / T\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,10\n"
+                         "FEDRAT/200,MMPM\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/7.0710678,-7.0710678,0\n"
+                         "GOTO/0,-10,0\nGOTO/-7.0710678,-7.0710678,0\nGOTO/-10,0,0\nGOTO/-20,0,0\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:9:1: error: arc: the right-hand rule about the CIRCLE's axis (Creo) says "
+                                 "counter-clockwise, but the CL's points on the arc (the GOTOs between the CIRCLE and its "
+                                 "end) lie where it passes only if it turns clockwise: the CL contradicts itself"));
+  // With the axis the points agree with, it is cut clockwise through them.
+  std::string agree = cl;
+  agree.replace(agree.find("0,0,1,10"), 8, "0,0,-1,10");
+  Compiled a = compile_text(agree, machine("fanuc-mill"));
+  ASSERT_TRUE(a.ok) << a.diags;
+  EXPECT_THAT(a.output, HasSubstr("G02 X-10. I-10. J0.\n"));
 }
 
 TEST(ArcDirection, NothingDecidesIsAnError) {
