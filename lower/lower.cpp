@@ -97,7 +97,19 @@ void Lowerer::record(const Record& r) {
       return;
     case MajorId::Indirv: lower_indirv(r); return;
     case MajorId::Tlaxis: lower_tlaxis(r); return;
-    case MajorId::Rapid: rapid_next_ = true; return;
+    case MajorId::Rapid:
+      // RAPID applies to the next motion record and takes no words: one it does not know
+      // (RAPID/OFF, RAPID/ON) may ask for the opposite, and the next move at rapid could be a
+      // cut at traverse speed.
+      if (!r.params.empty()) {
+        const Param& w = r.params[0];
+        d_.error(w.loc, "RAPID takes no words: '" + (w.is_number() ? num_text(w.number) : std::string(w.text)) +
+                            "' may ask for something else than the next move at rapid, which the CL cannot be read "
+                            "without; write RAPID alone before the move");
+        return;
+      }
+      rapid_next_ = true;
+      return;
 
     case MajorId::ToolPath: {
       close_operation();
@@ -463,8 +475,11 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   arc_open_ = false;
   if (retract_pending_) [[unlikely]]
     check_retract(loc, op);
+  if (from_gap_) [[unlikely]]
+    check_from_gap(loc, op);
   if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
   else if (const auto* m = std::get_if<ir::Move>(&op)) {
+    if (m->kind != ir::MoveKind::From) at_home_ = false;
     cut_since_tool_change_ |= m->kind != ir::MoveKind::From;
     if (m->kind != ir::MoveKind::From) last_move_rapid_ = m->kind == ir::MoveKind::Rapid;
   } else if (std::holds_alternative<ir::Arc>(op) || std::holds_alternative<ir::Hole>(op)) {
@@ -474,6 +489,27 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   make_room();
   op_.body.push_back(ir::Instr{loc, std::move(op)});
   return op_.body.back();
+}
+
+// After a FROM elsewhere than a rapid left the tool, the next motion: a rapid positions (the
+// post's business), a tool change takes the tool away; a cut would start where the tool really
+// is, not at the FROM, and run along a line the CL does not have (a diagonal plunge where it
+// plunges straight down).
+void Lowerer::check_from_gap(SourceLoc loc, const ir::Op& op) {
+  const auto* m = std::get_if<ir::Move>(&op);
+  if (m && m->kind == ir::MoveKind::From) return;
+  const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op) ||
+                   std::holds_alternative<ir::Hole>(op);
+  if (!m && !cut && !std::holds_alternative<ir::ToolChange>(op)) return;
+  if (cut) {
+    const ir::Vec3& q = from_gap_left_;
+    d_.error(loc, "this cut starts, by the FROM at line " + std::to_string(from_gap_->line) +
+                      ", elsewhere than the rapid before it left the tool, at (" + num_text(q.x()) + ", " +
+                      num_text(q.y()) + ", " + num_text(q.z()) +
+                      "): cut from there it would run along a line the CL does not have; have the CAM system "
+                      "write the move to the FROM point (a RAPID GOTO)");
+  }
+  from_gap_.reset();
 }
 
 void Lowerer::check_retract(SourceLoc loc, const ir::Op& op) {

@@ -50,6 +50,7 @@ class Lowerer : public RecordSink {
  private:
   // lower.cpp: operations and dispatch
   ir::Instr& push(SourceLoc loc, ir::Op op);
+  void check_from_gap(SourceLoc loc, const ir::Op& op);
   void check_retract(SourceLoc loc, const ir::Op& op);  // the move after a RETRCT
   // An instruction whose text goes in the operation's pool (Comment, Insert, Passthrough):
   // the pool and the instruction land in the same chunk.
@@ -149,6 +150,11 @@ class Lowerer : public RecordSink {
   bool has_pos_ = false;
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)
+  // A FROM after a rapid, elsewhere than the rapid left the tool: the next move must be a
+  // rapid too (positioning), since a cut would start from where the tool really is.
+  std::optional<SourceLoc> from_gap_;
+  bool at_home_ = false;  // the last move was GOHOME
+  ir::Vec3 from_gap_left_ = ir::Vec3::Zero();
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;

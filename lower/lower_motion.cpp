@@ -258,6 +258,15 @@ void Lowerer::lower_from(const Record& r) {
                         "it (a GOTO)");
     return;
   }
+  // FROM is a motion record (APT's CLDATA): a RAPID before it is used up by it, and the move
+  // after it is a feed unless a RAPID of its own says otherwise. Carried on, it made the plunge
+  // after FROM a rapid into the part.
+  rapid_next_ = false;
+  from_gap_.reset();
+  if (cut_since_tool_change_ && !at_home_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
+    from_gap_ = r.loc;
+    from_gap_left_ = pos_;
+  }
   if (has_axis) axis_ = a;
   from_ = p;
   has_from_ = true;
@@ -286,6 +295,7 @@ void Lowerer::lower_gohome(const Record& r) {
   ir::MoveKind kind = tool_ < 0 && !info_.tools.empty() ? ir::MoveKind::From : ir::MoveKind::Rapid;
   tool_ready(r.loc, kind);
   move_to(p, r.loc, kind, has_axis);
+  at_home_ = true;  // where the machine's home is, the CL may not know: a FROM after it says
 }
 
 void Lowerer::lower_godlta(const Record& r) {

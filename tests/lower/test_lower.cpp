@@ -478,4 +478,16 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
   EXPECT_EQ(err("GOTO/20,0,5\nFROM/20,0,5\nGOTO/0,0,5\n"), "");
   EXPECT_EQ(err("LOADTL/1\nGOTO/20,0,5\nLOADTL/2\nFROM/0,0,100\nGOTO/0,0,5\n"), "");
   EXPECT_EQ(err("FROM/0,0,100\nGOTO/20,0,5\nGOHOME\nFROM/0,0,120\nGOTO/0,0,5\n"), "");
+  // After a rapid, a FROM elsewhere: a rapid next positions; a cut next would start where the
+  // rapid left the tool and run diagonally where the CL plunges (it was certified). A RAPID
+  // before the FROM is used up by it: the move after is a feed (it was a rapid into the part).
+  EXPECT_EQ(err("RAPID\nGOTO/10,0,10\nFROM/50,50,10\nRAPID\nGOTO/50,50,2\nGOTO/50,50,-1\n"), "");
+  EXPECT_EQ(err("RAPID\nGOTO/10,0,10\nFROM/50,50,10\nGOTO/50,50,-1\n"),
+            "4:1: this cut starts, by the FROM at line 3, elsewhere than the rapid before it left the tool, at (10, 0, "
+            "10): cut from there it would run along a line the CL does not have; have the CAM system write the move to "
+            "the FROM point (a RAPID GOTO)");
+  EXPECT_THAT(instrs("RAPID\nFROM/0,0,50\nGOTO/0,0,-5\n"), ElementsAre("from (0, 0, 50)", "feed (0, 0, -5)"));
+  EXPECT_EQ(err("RAPID/OFF\nGOTO/0,0,-5\n"),
+            "1:7: RAPID takes no words: 'OFF' may ask for something else than the next move at rapid, which the CL "
+            "cannot be read without; write RAPID alone before the move");
 }
