@@ -501,14 +501,10 @@ void Lowerer::check_from_gap(SourceLoc loc, const ir::Op& op) {
   const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op) ||
                    std::holds_alternative<ir::Hole>(op);
   if (!m && !cut && !std::holds_alternative<ir::ToolChange>(op)) return;
-  if (cut) {
-    const ir::Vec3& q = from_gap_left_;
-    d_.error(loc, "this cut starts, by the FROM at line " + std::to_string(from_gap_->line) +
-                      ", elsewhere than the rapid before it left the tool, at (" + num_text(q.x()) + ", " +
-                      num_text(q.y()) + ", " + num_text(q.z()) +
-                      "): cut from there it would run along a line the CL does not have; have the CAM system "
-                      "write the move to the FROM point (a RAPID GOTO)");
-  }
+  if (cut)
+    d_.error(loc, "this cut starts " + from_gap_what_ +
+                      ": cut from there it would run along a line the CL does not have; have the CAM system "
+                      "write the move to where the cut starts (a RAPID GOTO)");
   from_gap_.reset();
 }
 

@@ -153,8 +153,9 @@ class Lowerer : public RecordSink {
   // A FROM after a rapid, elsewhere than the rapid left the tool: the next move must be a
   // rapid too (positioning), since a cut would start from where the tool really is.
   std::optional<SourceLoc> from_gap_;
+  std::string from_gap_what_;  // where the cut would start from, and why, for the message
+  int loaded_offset_ = -1;      // the length register the loaded tool was loaded with
   bool at_home_ = false;  // the last move was GOHOME
-  ir::Vec3 from_gap_left_ = ir::Vec3::Zero();
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;
@@ -166,6 +167,7 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
+  std::optional<SourceLoc> comp_on_at_;  // the CUTCOM/LEFT|RIGHT in force (none after CUTCOM/OFF)
   std::optional<ir::CutterComp> last_comp_;  // the last CUTCOM/LEFT|RIGHT, which CUTCOM/ON resumes
   bool inverse_time_ = false;  // the feed in force is inverse time (FEDRAT/INVERS)
   bool spindle_running_ = false;  // the last SPINDL turned the spindle on

@@ -15,6 +15,33 @@ void Lowerer::lower_tool_change(const Record& r) {
     push(r.loc, ir::ToolPreselect{t.number});
     return;
   }
+  // Tool 0: NX's number for a tool nobody numbered (nx-course/APT_Zig_Zag_Smoothed.cls, with
+  // ADJUST,1). Its length register must come from the record: offset 0 (H00, T0000) is none,
+  // and every cut would be off by the tool's length.
+  if (t.number == 0 && t.length_offset <= 0) {
+    d_.error(r.loc, "tool 0 with no length register: its offset would be 0 (H00, T0000), which is none, so every cut "
+                    "after it would be off by the tool's length; number the tool in the CAM system, or give the "
+                    "register (LOAD/TOOL,n,ADJUST,h; LOADTL/n,OSETNO,h)");
+    tool_ = 0;  // (no cascade of "no tool" errors after it)
+    return;
+  }
+  if (t.number == 0)
+    d_.warning(r.loc, "tool number 0 (the CAM system's tool was not numbered): T0 is written, which many controls "
+                      "refuse or take as 'no tool'; the length offset is register " + std::to_string(t.length_offset) +
+                      "; number the tool in the CAM system",
+               "tool-number");
+  if (comp_on_at_) {
+    d_.error(r.loc, "a tool change with cutter compensation on (CUTCOM at line " + std::to_string(comp_on_at_->line) +
+                        "): the control keeps it with the last tool's register, so the new tool would cut offset by "
+                        "the last one's radius; CUTCOM/OFF before the change, CUTCOM/LEFT or RIGHT after it");
+    comp_on_at_.reset();
+  }
+  const int offset = t.length_offset > 0 ? t.length_offset : t.number;
+  // The tool in the spindle loaded again with another length register, after a cut: the post
+  // takes the tool up and brings it back with the new offset, so a cut next would start from
+  // up there (a diagonal feed back into the part where the CL cuts on along its line).
+  const bool reloaded_in_cut = t.number == tool_ && offset != loaded_offset_ && cut_since_tool_change_ && !last_move_rapid_;
+  loaded_offset_ = offset;
   ir::ToolChange tc;
   tc.tool = t.number;
   tc.length_offset = t.length_offset;
@@ -23,6 +50,11 @@ void Lowerer::lower_tool_change(const Record& r) {
   tool_ = t.number;
   forget_the_last_tools_state();
   push(r.loc, tc);
+  if (reloaded_in_cut) {
+    from_gap_ = r.loc;
+    from_gap_what_ = "after the reload of T" + std::to_string(t.number) + " with another length register at line " +
+                     std::to_string(r.loc.line) + ", which takes the tool up from the cut and back";
+  }
 }
 
 // The new tool starts from nothing of the last one's: its spindle is started by a SPINDL of
@@ -286,6 +318,8 @@ void Lowerer::lower_cutcom(const Record& r) {
     return;
   }
   if (c.side != ir::CompSide::Off) last_comp_ = c;
+  if (c.side != ir::CompSide::Off) comp_on_at_ = r.loc;
+  else comp_on_at_.reset();
   ensure_operation(r.loc);
   push(r.loc, c);
 }

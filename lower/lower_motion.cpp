@@ -265,7 +265,8 @@ void Lowerer::lower_from(const Record& r) {
   from_gap_.reset();
   if (cut_since_tool_change_ && !at_home_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
     from_gap_ = r.loc;
-    from_gap_left_ = pos_;
+    from_gap_what_ = "by the FROM at line " + std::to_string(r.loc.line) + ", elsewhere than the rapid before it left the tool, at (" +
+                     num_text(pos_.x()) + ", " + num_text(pos_.y()) + ", " + num_text(pos_.z()) + ")";
   }
   if (has_axis) axis_ = a;
   from_ = p;

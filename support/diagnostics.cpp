@@ -56,6 +56,7 @@ const std::vector<WarningName>& warning_names() {
       {"tool-geometry", "a tool number given another diameter than before: the tool list keeps the first"},
       {"tool-offset", "a number read as a corrector (TURRET/5,12), or a CUTCOM register the machine's G41 has no place for"},
       {"tool-by-name", "an operation that names a tool without loading it by number"},
+      {"tool-number", "a tool loaded as number 0 (not numbered in the CAM system), with its length register"},
       {"unknown-record", "a record without motion that clpc does not know, passed through as a comment"},
       {"units", "units not given, or numbers that look like the other unit"},
   };

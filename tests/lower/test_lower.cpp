@@ -471,6 +471,29 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
 // jump the CL does not give: refused after a cut. At the start, after a tool change, a rapid or
 // a GOHOME (APT's GOHOME, then FROM at a new home), it is read.
+// Tool changes the post cannot make as the CL means them. The tool in the spindle reloaded with
+// another length register in the middle of a cut: the post takes it up and brings it back, so
+// the cut after came back diagonally from up there (certified). A tool change with CUTCOM on:
+// the new tool cut with the last one's D register. Tool 0 with no register: H00, no offset.
+TEST(Lower, ToolChangesThePostCannotMakeAsTheClMeansThemAreRefused) {
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nGOTO/20,0,-1\n"),
+            "6:1: this cut starts after the reload of T1 with another length register at line 5, which takes the tool "
+            "up from the cut and back: cut from there it would run along a line the CL does not have; have the CAM "
+            "system write the move to where the cut starts (a RAPID GOTO)");
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nRAPID\nGOTO/0,0,5\nGOTO/20,0,-1\n"), "");
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1\nGOTO/20,0,-1\n"), "");
+  EXPECT_EQ(err("LOADTL/1\nCUTCOM/LEFT\nGOTO/0,0,-1\nLOADTL/2\nGOTO/20,0,-1\n"),
+            "4:1: a tool change with cutter compensation on (CUTCOM at line 2): the control keeps it with the last "
+            "tool's register, so the new tool would cut offset by the last one's radius; CUTCOM/OFF before the "
+            "change, CUTCOM/LEFT or RIGHT after it");
+  EXPECT_EQ(err("LOADTL/1\nCUTCOM/LEFT\nGOTO/0,0,-1\nCUTCOM/OFF\nLOADTL/2\nGOTO/20,0,-1\n"), "");
+  EXPECT_EQ(err("LOADTL/0\nGOTO/20,0,-1\n"),
+            "1:1: tool 0 with no length register: its offset would be 0 (H00, T0000), which is none, so every cut after "
+            "it would be off by the tool's length; number the tool in the CAM system, or give the register "
+            "(LOAD/TOOL,n,ADJUST,h; LOADTL/n,OSETNO,h)");
+  EXPECT_EQ(err("LOAD/TOOL,0,ADJUST,1\nGOTO/20,0,-1\n"), "");  // NX's unnumbered tool: T0 with H01, a warning
+}
+
 TEST(Lower, FromAfterMotionElsewhereIsRefused) {
   EXPECT_EQ(err("GOTO/20,0,5\nFROM/0,0,100\nGOTO/0,0,5\n"),
             "2:1: FROM after motion puts the tool at (0, 0, 100), but the CL left it at (20, 0, 5): the move between is not "
@@ -483,9 +506,9 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
   // before the FROM is used up by it: the move after is a feed (it was a rapid into the part).
   EXPECT_EQ(err("RAPID\nGOTO/10,0,10\nFROM/50,50,10\nRAPID\nGOTO/50,50,2\nGOTO/50,50,-1\n"), "");
   EXPECT_EQ(err("RAPID\nGOTO/10,0,10\nFROM/50,50,10\nGOTO/50,50,-1\n"),
-            "4:1: this cut starts, by the FROM at line 3, elsewhere than the rapid before it left the tool, at (10, 0, "
+            "4:1: this cut starts by the FROM at line 3, elsewhere than the rapid before it left the tool, at (10, 0, "
             "10): cut from there it would run along a line the CL does not have; have the CAM system write the move to "
-            "the FROM point (a RAPID GOTO)");
+            "where the cut starts (a RAPID GOTO)");
   EXPECT_THAT(instrs("RAPID\nFROM/0,0,50\nGOTO/0,0,-5\n"), ElementsAre("from (0, 0, 50)", "feed (0, 0, -5)"));
   EXPECT_EQ(err("RAPID/OFF\nGOTO/0,0,-5\n"),
             "1:7: RAPID takes no words: 'OFF' may ask for something else than the next move at rapid, which the CL "
