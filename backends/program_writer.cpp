@@ -606,8 +606,19 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
     if (lathe && (is(g, 32) || is(g, 34) || (g > 69.5 && g < 76.5) || is(g, 90) || is(g, 92) || is(g, 94)))
       return "starts a cycle or a thread cut (" + code + "): CYCLE and THREAD records give it";
   }
+  // An H alone changes the length offset in force on a mill (G43 stays modal with the new
+  // register): every Z after it would be off by the two registers' difference.
+  if (!lathe && !code_numbers(text, 'H').empty())
+    return "changes the tool length register (H), which the post selects from LOADTL: every Z after it would be off";
+  if (!code_numbers(text, 'D').empty() && comp_on_)
+    return "changes the cutter compensation register (D) while a CUTCOM is on: every point after it would be off";
   for (double mc : code_numbers(text, 'M')) {
     const int n = int(std::lround(mc));
+    if (n == 2 || n == 30)
+      return "ends the program (M" + std::to_string(n) + "): the blocks after it would never run; the post ends it";
+    if (n == 97)
+      return "calls a local subprogram (M97, Haas): the control jumps to the N number it names, and the post writes "
+             "no subprograms";
     if (n == 98 || n == 99)
       return "calls or returns from a subprogram (M" + std::to_string(n) + "): in a main program M99 starts it again "
              "from the top, endlessly; the post writes no subprograms";

@@ -790,6 +790,12 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
       {"INSERT/G68 X0 Y0 R30", "the block 'G68 X0 Y0 R30' (INSERT, PREFUN or AUXFUN) changes the coordinate system or "
                                "its offsets (G68), so the program's positions would mean other places: the frames "
                                "(SET, CAMERA, MSYS) give them"},
+      {"INSERT/H05", "the block 'H05' (INSERT, PREFUN or AUXFUN) changes the tool length register (H), which the post "
+                     "selects from LOADTL: every Z after it would be off"},
+      {"INSERT/M97 P65", "the block 'M97 P65' (INSERT, PREFUN or AUXFUN) calls a local subprogram (M97, Haas): the "
+                         "control jumps to the N number it names, and the post writes no subprograms"},
+      {"AUXFUN/30", "the block 'M30' (INSERT, PREFUN or AUXFUN) ends the program (M30): the blocks after it would never "
+                    "run; the post ends it"},
   };
   for (const auto& [record, message] : refused) {
     Compiled c = compile_text(head + record + "\n" + tail, machine("fanuc-mill"));
