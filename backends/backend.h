@@ -79,6 +79,8 @@ class ProgramWriter : public Backend {
   void note_plane_codes(std::string_view text);
   // Why an inserted block may not be written (a state it sets that the post does not keep), or "".
   std::string unkept_code(std::string_view text) const;
+  // A cut (a feed move, an arc, a hole) with the spindle stopped: a warning (-Wspindle-stopped).
+  void warn_spindle_stopped(SourceLoc loc, const char* what);
   virtual bool tcp_in_force() const { return false; }
   // A mill's cycles and compensation: G17 first where the control may be in another plane.
   void xy_plane_code();

@@ -120,6 +120,7 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!in_plane(mv.point, loc)) return;
+  if (mv.kind == ir::MoveKind::Feed) warn_spindle_stopped(loc, "cutting move");
   // (No tool loaded is no error here, unlike on a mill: nothing cancels the offset of the tool
   // the turret holds, which a program without T cuts with; the mill's start block has G49.)
   if (thread_ && mv.kind == ir::MoveKind::Feed && is_thread_cut(pos_, mv.point)) {
@@ -146,6 +147,7 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
 }
 
 void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
+  warn_spindle_stopped(loc, "arc");
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
     return;

@@ -116,8 +116,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     for (size_t i = 0; i < rotaries.size() && i < 2; ++i) e_.modal_word(rotaries[i].name[0], rot[i]);
   };
   if (rotates) unclamp(loc);
-  if (!rapid && spindle_ == ir::SpindleDir::Off && tool_ >= 0)
-    d_.warning(loc, "cutting move with the spindle stopped", "spindle-stopped");
+  if (!rapid && tool_ >= 0) warn_spindle_stopped(loc, "cutting move");
 
   if (rapid && (need_length_offset_ || (at_safe_height_ && tool_ >= 0))) {
     // From the safe height: position in X Y (and the rotaries) with the work offset, then
@@ -336,6 +335,7 @@ void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
 void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
   if (!check_axis(a.tool_axis, loc)) return;
   if (!tool_loaded_for_cut(loc)) return;
+  warn_spindle_stopped(loc, "arc");
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
     return;
@@ -434,6 +434,12 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
   const ir::CycleSpec& c = op.cycles.at(h.spec);
   if (!check_axis(h.axis, loc)) return;
   if (!tool_loaded_for_cut(loc)) return;
+  // A drill fed into the part without turning breaks: no reading of the CL makes this safe.
+  if (spindle_ == ir::SpindleDir::Off) {
+    d_.error(loc, "a hole drilled with the spindle stopped (no SPINDL since the tool change, or SPINDL/OFF): the tool "
+                  "would be fed into the part without turning");
+    return;
+  }
   const Codes& k = m_.codes;
   const CodeTemplate* code = nullptr;
   switch (c.kind) {

@@ -630,6 +630,10 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
   return {};
 }
 
+void ProgramWriter::warn_spindle_stopped(SourceLoc loc, const char* what) {
+  if (spindle_ == ir::SpindleDir::Off) d_.warning(loc, std::string(what) + " with the spindle stopped", "spindle-stopped");
+}
+
 void ProgramWriter::note_plane_codes(std::string_view text) {
   // By the G numbers, as the control reads them: outside comments, G018 as G18.
   const std::vector<double> gs = code_numbers(text, 'G');

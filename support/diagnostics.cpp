@@ -51,7 +51,7 @@ const std::vector<WarningName>& warning_names() {
       {"setup", "an operation cut in a setup of its own, after an operator stop"},
       {"spindle-clamp", "constant surface speed without MAXRPM, clamped at the machine's spindle limit"},
       {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
-      {"spindle-stopped", "a cutting move with the spindle stopped"},
+      {"spindle-stopped", "a cutting move or an arc with the spindle stopped (a hole drilled so is an error)"},
       {"subroutine", "INDEX and DEFSUB blocks that end or redefine others"},
       {"tool-geometry", "a tool number given another diameter than before: the tool list keeps the first"},
       {"tool-offset", "a number read as a corrector (TURRET/5,12), or a CUTCOM register the machine's G41 has no place for"},

@@ -825,3 +825,19 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   ASSERT_TRUE(clamp.ok) << clamp.diags;
   EXPECT_THAT(clamp.output, HasSubstr("\nG50 S2500\n"));
 }
+
+// Cuts with the spindle stopped: an arc said nothing (only straight feeds were warned), and a
+// drilling cycle with no SPINDL since the tool change was certified. A hole is an error: a
+// drill fed into the part without turning breaks. An arc warns, as a straight feed does.
+TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nRAPID\nGOTO/10,0,5\nFEDRAT/200,MMPM\n";
+  Compiled hole = compile_text(head + "CYCLE/DRILL,FEDTO,10,RAPTO,3,MMPM,100\nGOTO/10,0,0\nCYCLE/OFF\nFINI\n",
+                               machine("fanuc-mill"));
+  EXPECT_FALSE(hole.ok);
+  EXPECT_THAT(hole.diags, HasSubstr("part.cls:7:1: error: a hole drilled with the spindle stopped (no SPINDL since the "
+                                    "tool change, or SPINDL/OFF): the tool would be fed into the part without turning"));
+  Compiled arc = compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nCIRCLE/0,0,-1,0,0,1,10\nGOTO/-10,0,-1\nFINI\n",
+                              machine("fanuc-mill"));
+  ASSERT_TRUE(arc.ok) << arc.diags;
+  EXPECT_THAT(arc.diags, HasSubstr("part.cls:9:1: warning: arc with the spindle stopped [-Wspindle-stopped]"));
+}
