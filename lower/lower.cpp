@@ -140,9 +140,24 @@ void Lowerer::record(const Record& r) {
       close_operation();
       return;
 
-    case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Select:
+    case MajorId::Select:
+      // SELECT/TOOL,n preselects; SELECT/HEAD,..., SELECT/OFF and the like choose a head or end
+      // a choice on machines with several: no motion, nothing a single-head machine acts on.
+      if (r.params.empty() || !r.params[0].is("TOOL")) {
+        d_.warning(r.loc, "SELECT without TOOL is not read (clpc's machines have one head and one turret)",
+                   "not-supported");
+        return;
+      }
+      lower_tool_change(r);
+      return;
+    case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret:
       lower_tool_change(r); return;
-    case MajorId::Tldata: case MajorId::Cutter: read_tool_geometry(r, &d_); say_another_diameter(r); return;
+    case MajorId::Tldata: case MajorId::Cutter:
+      // CUTTER/OFF ends the cutter's display in APT: no geometry, no motion.
+      if (r.id == MajorId::Cutter && r.params.size() == 1 && r.params[0].is("OFF")) return;
+      read_tool_geometry(r, &d_);
+      say_another_diameter(r);
+      return;
     case MajorId::Spindl: lower_spindle(r); return;
     case MajorId::Fedrat: lower_feed(r); return;
     case MajorId::Coolnt: lower_coolant(r); return;

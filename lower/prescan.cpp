@@ -70,7 +70,9 @@ class TableBuilder : public RecordSink {
         break;
       case MajorId::EndOfPath: end_op(); break;
       case MajorId::End: if (r.data_comment) end_op(); break;
-      case MajorId::Select: info_.preselects_given = true; break;
+      case MajorId::Select:
+        if (!r.params.empty() && r.params[0].is("TOOL")) info_.preselects_given = true;
+        break;
       case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: {
         ToolRecord t = read_tool_record(r, nullptr);
         if (t.number < 0) break;

@@ -514,3 +514,11 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
             "1:7: RAPID takes no words: 'OFF' may ask for something else than the next move at rapid, which the CL "
             "cannot be read without; write RAPID alone before the move");
 }
+
+// Records without motion never stop a post: SELECT/HEAD,FRONT and SELECT/OFF (a head chosen on
+// machines with several) and CUTTER/OFF (APT: the cutter's display ended) stopped it with
+// "expected TOOL,n" and "expected the tool diameter".
+TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
+  EXPECT_EQ(err("SELECT/HEAD,FRONT\nLOADTL/1\nCUTTER/10\nGOTO/0,0,5\nSELECT/OFF\nCUTTER/OFF\nGOTO/10,0,5\n"), "");
+  EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
+}
