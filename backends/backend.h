@@ -129,6 +129,7 @@ class ProgramWriter : public Backend {
   // last one refused: a record's move split into blocks must not give each block its time.
   SourceLoc inverse_for_{}, inverse_refused_{};
   bool in_cycle_ = false;  // between a CycleOn and its CycleOff
+  SourceLoc feed_clamp_said_;  // the FEDRAT whose clamp to max_feed was warned
   size_t resume_at_ = 0;   // the operation's next instruction to write (past a section written whole)
   bool feed_written_ = false;
   ir::SpindleDir spindle_ = ir::SpindleDir::Off;

@@ -464,7 +464,16 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
     inverse_for_ = loc;
   }
   double f = feed_mode_ == ir::FeedMode::InverseTime ? feed_ : feed_ * k_;
-  if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerMinute && f > m_.max_feed) f = m_.max_feed;
+  if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerMinute && f > m_.max_feed) {
+    // The control clamps a feed above its limit as well; the CL's feed is not what is cut.
+    if (!(feed_loc_ == feed_clamp_said_))
+      d_.warning(feed_loc_.valid() ? feed_loc_ : loc,
+                 "feed " + num_text(f) + " is above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
+                     ": written as " + num_text(m_.max_feed) + ", slower than the CL asks",
+                 "feed-clamped");
+    feed_clamp_said_ = feed_loc_;
+    f = m_.max_feed;
+  }
   if (!m_.modal.feed || !feed_written_ || feed_mode_ == ir::FeedMode::InverseTime) {
     if (!write_feed(f, feed_mode_, feed_loc_.valid() ? feed_loc_ : loc)) return false;
     feed_written_ = true;

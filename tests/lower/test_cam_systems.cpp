@@ -841,3 +841,14 @@ TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
   ASSERT_TRUE(arc.ok) << arc.diags;
   EXPECT_THAT(arc.diags, HasSubstr("part.cls:9:1: warning: arc with the spindle stopped [-Wspindle-stopped]"));
 }
+
+// A feed above the machine's max_feed was written as max_feed without a word.
+TEST(CamSystems, AFeedAboveTheMachinesLimitIsClampedWithAWarning) {
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,99999\nGOTO/0,0,-1\n"
+                            "GOTO/10,0,-1\nFINI\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-1. F10000.\n"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:6:1: warning: feed 99999 is above machine 'fanuc-mill''s max_feed 10000: "
+                                 "written as 10000, slower than the CL asks [-Wfeed-clamped]"));
+}
