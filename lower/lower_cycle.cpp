@@ -292,6 +292,14 @@ void Lowerer::lower_cycle(const Record& r) {
     d_.error(r.loc, "CYCLE/BORE," + std::string(orient ? "ORIENT" : "BACK") + ": needs SHIFT,s (the tool's shift off the wall)");
     return;
   }
+  // A cycle with no feed of its own is cut at the feed in force; an inverse-time F is one
+  // move's time, not a cycle's feed (G81 in G93: the control alarms or cuts each hole in the
+  // time of the move before).
+  if (!(c.feed > 0) && inverse_time_) {
+    d_.error(r.loc, "CYCLE/" + kind + " with no feed of its own under an inverse-time feed (FEDRAT/INVERS): one "
+                    "move's time is no drilling feed; give the cycle its feed (MMPM, IPM, MMPR, IPR)");
+    return;
+  }
   if (cycle_open_) d_.warning(r.loc, "CYCLE replaces a cycle still on (no CYCLE/OFF before it)", "cycle");
   last_cycle_ = c;
   start_cycle(c, r.loc, kind);

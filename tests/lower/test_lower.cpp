@@ -522,3 +522,12 @@ TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_EQ(err("SELECT/HEAD,FRONT\nLOADTL/1\nCUTTER/10\nGOTO/0,0,5\nSELECT/OFF\nCUTTER/OFF\nGOTO/10,0,5\n"), "");
   EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
 }
+
+// A cycle with no feed of its own under FEDRAT/INVERS took the inverse-time F as its feed
+// (G93 in force into G81 F2, certified).
+TEST(Lower, ACycleWithoutAFeedUnderInverseTimeIsRefused) {
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/INVERS,2\nGOTO/0,0,19\nCYCLE/DRILL,FEDTO,10,RAPTO,3\nGOTO/0,0,0\nCYCLE/OFF\n"),
+            "4:1: CYCLE/DRILL with no feed of its own under an inverse-time feed (FEDRAT/INVERS): one move's time is no "
+            "drilling feed; give the cycle its feed (MMPM, IPM, MMPR, IPR)");
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/INVERS,2\nGOTO/0,0,19\nCYCLE/DRILL,FEDTO,10,RAPTO,3,MMPM,100\nGOTO/0,0,0\nCYCLE/OFF\n"), "");
+}
