@@ -617,9 +617,12 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
   }
   // An H alone changes the length offset in force on a mill (G43 stays modal with the new
   // register): every Z after it would be off by the two registers' difference.
-  if (!lathe && !code_numbers(text, 'H').empty())
+  // (In a macro call, G65, H and D are arguments: a probing macro's tolerance, a diameter.)
+  bool macro_call = false;
+  for (double g : code_numbers(text, 'G')) macro_call |= is(g, 65);
+  if (!lathe && !macro_call && !code_numbers(text, 'H').empty())
     return "changes the tool length register (H), which the post selects from LOADTL: every Z after it would be off";
-  if (!code_numbers(text, 'D').empty() && comp_on_)
+  if (!macro_call && !code_numbers(text, 'D').empty() && comp_on_)
     return "changes the cutter compensation register (D) while a CUTCOM is on: every point after it would be off";
   for (double mc : code_numbers(text, 'M')) {
     const int n = int(std::lround(mc));

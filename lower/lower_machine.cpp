@@ -30,7 +30,7 @@ void Lowerer::lower_tool_change(const Record& r) {
                       "refuse or take as 'no tool'; the length offset is register " + std::to_string(t.length_offset) +
                       "; number the tool in the CAM system",
                "tool-number");
-  if (comp_on_at_) {
+  if (comp_on_at_ && t.number != tool_) {
     d_.error(r.loc, "a tool change with cutter compensation on (CUTCOM at line " + std::to_string(comp_on_at_->line) +
                         "): the control keeps it with the last tool's register, so the new tool would cut offset by "
                         "the last one's radius; CUTCOM/OFF before the change, CUTCOM/LEFT or RIGHT after it");

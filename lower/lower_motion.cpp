@@ -153,14 +153,18 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
     if (std::abs(s) > tol * arc->radius) return s > 0 ? 1 : -1;
     return a.dot(b) < 0 ? 0 : 2;  // 0: a half turn; 2: no step at all
   };
+  // An arc given by its end alone turns the way the CL's convention says, however far (a
+  // 270-degree CIRCLE is not the short way round); its points, where it has them, tell.
   int arc_sense = 0;
+  const int hint_sense = arc->hint == ir::ArcDir::Ccw ? 1 : arc->hint == ir::ArcDir::Cw ? -1 : 0;
+  if (arc->via_count == 0) arc_sense = hint_sense;
   ir::Vec3 from = rs;
   for (uint32_t k = 0; k <= arc->via_count && arc_sense == 0; ++k) {
     ir::Vec3 to = k < arc->via_count ? radial(op_.points[arc->via_begin + k]) : re;
     arc_sense = sense(from, to);
     from = to;
   }
-  if (arc_sense == 0) arc_sense = arc->hint == ir::ArcDir::Ccw ? 1 : arc->hint == ir::ArcDir::Cw ? -1 : 0;
+  if (arc_sense == 0) arc_sense = hint_sense;
   const int step_sense = sense(re, rp);
   if (arc_sense == 2 || step_sense == 2) return false;
   if (arc_sense != 0 && step_sense != 0 && arc_sense != step_sense) return false;
@@ -170,15 +174,22 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
   // straight move that ends on the circle (a hexagon's edge after a corner arc), never an
   // arc: cut round, it would gouge by its sagitta. A closer step is the same cut either way.
   if (info_.cam != ir::CamSystem::Creo && !within_chord_tolerance) return false;
+  // How far round the arc has come, each step the way the arc turns (the first may be the long
+  // way), and this step with it. A point back on the start within rounding is a full turn.
+  constexpr double kTwoPi = 2 * 3.14159265358979323846;
+  auto directed = [&](const ir::Vec3& a, const ir::Vec3& b) {
+    double ang = std::atan2(n.dot(a.cross(b)), a.dot(b)) * (arc_sense < 0 ? -1 : 1);
+    return ang < -1e-12 ? ang + kTwoPi : std::max(ang, 0.0);
+  };
   double turned = 0;
   ir::Vec3 q = rs;
   for (uint32_t k = 0; k < arc->via_count; ++k) {
     ir::Vec3 v = radial(op_.points[arc->via_begin + k]);
-    turned += std::atan2(std::abs(n.dot(q.cross(v))), q.dot(v));
+    turned += arc_sense != 0 ? directed(q, v) : std::atan2(std::abs(n.dot(q.cross(v))), q.dot(v));
     q = v;
   }
-  turned += std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re)) + step;
-  if (turned >= 2 * 3.14159265358979323846) {
+  turned += (arc_sense != 0 ? directed(q, re) : std::atan2(std::abs(n.dot(q.cross(re))), q.dot(re))) + step;
+  if (turned >= kTwoPi - 1e-6) {
     if (creo_wide) return refuse_wide("joined, the arc would close a full turn or pass it");
     return false;  // no arc: a move of its own (a step within the chord tolerance)
   }
@@ -262,7 +273,6 @@ void Lowerer::lower_from(const Record& r) {
   // after it is a feed unless a RAPID of its own says otherwise. Carried on, it made the plunge
   // after FROM a rapid into the part.
   rapid_next_ = false;
-  from_gap_.reset();
   if (cut_since_tool_change_ && !at_home_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
     from_gap_ = r.loc;
     from_gap_what_ = "by the FROM at line " + std::to_string(r.loc.line) + ", elsewhere than the rapid before it left the tool, at (" +

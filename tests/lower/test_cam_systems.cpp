@@ -802,6 +802,10 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
     EXPECT_FALSE(c.ok) << record;
     EXPECT_THAT(c.diags, HasSubstr(std::string("part.cls:7:1: error: ") + message)) << record;
   }
+  // In a macro call H and D are arguments (a probing macro's tolerance): written.
+  Compiled probe = compile_text(head + "INSERT/G65 P9814 D50. Z-10. H.05\n" + tail, machine("fanuc-mill"));
+  ASSERT_TRUE(probe.ok) << probe.diags;
+  EXPECT_THAT(probe.output, HasSubstr("\nG65 P9814 D50. Z-10. H.05\n"));
   // Undone: G91 (G90 with the next block), another register (G54 again), G95 (G94 again).
   Compiled u = compile_text(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
   ASSERT_TRUE(u.ok) << u.diags;

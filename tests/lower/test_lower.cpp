@@ -163,6 +163,12 @@ TEST(Lower, AHalfTurnStepFollowsTheArc) {
   EXPECT_THAT(err(creo + "GOTO/0,10,1\nGOTO/-10,0,2\n"),
               HasSubstr("5:1: this point lies on the circle of the arc before it, 90.0 degrees round from its end, but at "
                         "another height along its axis"));
+  // Closed by twelve points written to 10 decimals: the sum of the steps lands on either side of
+  // a full turn by rounding; refused alike (it was joined into a "full circle" whose points read
+  // as clockwise, refused as a contradiction, for some radii and counts).
+  EXPECT_THAT(err("$$-> MFGNO / 1\nGOTO/15,0,0\nCIRCLE/0,0,0,0,0,1,15\nGOTO/12.9903810568,7.5000000000,0\nGOTO/7.5000000000,12.9903810568,0\nGOTO/0.0000000000,15.0000000000,0\nGOTO/-7.5000000000,12.9903810568,0\nGOTO/-12.9903810568,7.5000000000,0\nGOTO/-15.0000000000,0.0000000000,0\nGOTO/-12.9903810568,-7.5000000000,0\nGOTO/-7.5000000000,-12.9903810568,0\nGOTO/-0.0000000000,-15.0000000000,0\nGOTO/7.5000000000,-12.9903810568,0\nGOTO/12.9903810568,-7.5000000000,0\nGOTO/15.0000000000,-0.0000000000,0\n"),
+              HasSubstr("15:1: this point lies on the circle of the arc before it, 30.0 degrees round from its end, but "
+                        "joined, the arc would close a full turn or pass it"));
   // Outside Creo a point on the circle joins only within the chord tolerance: a wide step is a
   // straight move (APT's points keep their chords within the CAM tolerance).
   EXPECT_THAT(instrs("GOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/-10,0,0\nGOTO/10,0,0\n"),
@@ -492,6 +498,11 @@ TEST(Lower, ToolChangesThePostCannotMakeAsTheClMeansThemAreRefused) {
             "it would be off by the tool's length; number the tool in the CAM system, or give the register "
             "(LOAD/TOOL,n,ADJUST,h; LOADTL/n,OSETNO,h)");
   EXPECT_EQ(err("LOAD/TOOL,0,ADJUST,1\nGOTO/20,0,-1\n"), "");  // NX's unnumbered tool: T0 with H01, a warning
+  // The same tool loaded again (NX and CATIA load it at each operation) keeps its D: no error.
+  EXPECT_EQ(err("LOADTL/1\nCUTCOM/LEFT\nGOTO/0,0,-1\nLOADTL/1\nGOTO/20,0,-1\n"), "");
+  // A FROM after the reload does not make the retract's way back a CL move.
+  EXPECT_THAT(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nFROM/0,0,-1\nGOTO/20,0,-1\n"),
+              HasSubstr("7:1: this cut starts after the reload of T1"));
 }
 
 TEST(Lower, FromAfterMotionElsewhereIsRefused) {

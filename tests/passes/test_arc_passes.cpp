@@ -182,25 +182,30 @@ TEST(ArcDirection, ConventionWinsOverGeometryWithAWarning) {
             "arc?)");
 }
 
-// The CL's own points on the arc (Creo's GOTOs between the CIRCLE and its end) lie on the side
-// the convention's arc does not pass: the arc was cut by the convention, through none of them,
-// with a warning, and certified (the certificate checks the arc's end). The CL contradicts
-// itself: an error at the CIRCLE.
-TEST(ArcDirection, IntermediatePointsAgainstTheConventionAreAnError) {
+// Creo points that run against the CIRCLE's convention. The first GOTO is the arc's end, and
+// the arc turns the convention's way however far (here 315 degrees counter-clockwise, not the
+// short way clockwise); later points behind it in that sense are straight moves. They were
+// joined into a clockwise arc by the first step's short way round, which a 270-degree CIRCLE
+// with one GOTO then a straight chord also took for clockwise.
+TEST(ArcDirection, TheFirstGotoEndsTheArcTheConventionsWayRound) {
   const std::string cl = "$$-> MFGNO / T\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,10\n"
                          "FEDRAT/200,MMPM\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/7.0710678,-7.0710678,0\n"
                          "GOTO/0,-10,0\nGOTO/-7.0710678,-7.0710678,0\nGOTO/-10,0,0\nGOTO/-20,0,0\nFINI\n";
   Compiled c = compile_text(cl, machine("fanuc-mill"));
-  EXPECT_FALSE(c.ok);
-  EXPECT_THAT(c.diags, HasSubstr("part.cls:9:1: error: arc: the right-hand rule about the CIRCLE's axis (Creo) says "
-                                 "counter-clockwise, but the CL's points on the arc (the GOTOs between the CIRCLE and its "
-                                 "end) lie where it passes only if it turns clockwise: the CL contradicts itself"));
-  // With the axis the points agree with, it is cut clockwise through them.
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G03 X7.071 Y-7.071 I-10. J0.\nN90 G01 X0. Y-10.\n"));
+  // With the axis the points agree with, it is one clockwise arc through them.
   std::string agree = cl;
   agree.replace(agree.find("0,0,1,10"), 8, "0,0,-1,10");
   Compiled a = compile_text(agree, machine("fanuc-mill"));
   ASSERT_TRUE(a.ok) << a.diags;
   EXPECT_THAT(a.output, HasSubstr("G02 X-10. I-10. J0.\n"));
+  // 270 degrees counter-clockwise with one GOTO, then a straight chord back across.
+  Compiled r = compile_text("$$-> MFGNO / T\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,10\n"
+                            "FEDRAT/200,MMPM\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/0,-10,0\nGOTO/-10,0,0\nFINI\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(r.ok) << r.diags;
+  EXPECT_THAT(r.output, HasSubstr("G03 X0. Y-10. I-10. J0.\nN90 G01 X-10. Y0.\n"));
 }
 
 TEST(ArcDirection, NothingDecidesIsAnError) {
