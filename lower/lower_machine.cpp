@@ -30,6 +30,16 @@ void Lowerer::lower_tool_change(const Record& r) {
                       "refuse or take as 'no tool'; the length offset is register " + std::to_string(t.length_offset) +
                       "; number the tool in the CAM system",
                "tool-number");
+  if (cycle_open_ && t.number != tool_) {
+    // The GOTOs after it: holes for the new tool (APT: the cycle is on until CYCLE/OFF), or moves
+    // to where the new tool starts? The CL does not say, and either reading cuts wrongly if it
+    // is the other (a hole drilled at a positioning move, or holes never drilled).
+    d_.error(r.loc, "a tool change while a CYCLE is on (no CYCLE/OFF before it): whether the GOTOs after it "
+                    "are holes for the new tool or its moves is not known; end the cycle with CYCLE/OFF before the "
+                    "change, and give the CYCLE again after it for the new tool's holes");
+    cycle_open_ = false;
+    push(r.loc, ir::CycleOff{});
+  }
   if (comp_on_at_ && t.number != tool_) {
     d_.error(r.loc, "a tool change with cutter compensation on (CUTCOM at line " + std::to_string(comp_on_at_->line) +
                         "): the control keeps it with the last tool's register, so the new tool would cut offset by "
@@ -37,10 +47,11 @@ void Lowerer::lower_tool_change(const Record& r) {
     comp_on_at_.reset();
   }
   const int offset = t.length_offset > 0 ? t.length_offset : t.number;
-  // The tool in the spindle loaded again with another length register, after a cut: the post
-  // takes the tool up and brings it back with the new offset, so a cut next would start from
-  // up there (a diagonal feed back into the part where the CL cuts on along its line).
-  const bool reloaded_in_cut = t.number == tool_ && offset != loaded_offset_ && cut_since_tool_change_ && !last_move_rapid_;
+  // The tool in the spindle loaded again with another length register, after a move (a cut or
+  // a rapid) the CL left it at: the post takes the tool up and brings it back with the new
+  // offset, so a cut next would start from up there (a diagonal feed back into the part where
+  // the CL feeds on from where the tool was). After GOHOME the tool is up there already.
+  const bool reloaded_in_cut = t.number == tool_ && offset != loaded_offset_ && cut_since_tool_change_ && !at_home_;
   loaded_offset_ = offset;
   ir::ToolChange tc;
   tc.tool = t.number;

@@ -503,6 +503,17 @@ TEST(Lower, ToolChangesThePostCannotMakeAsTheClMeansThemAreRefused) {
   // A FROM after the reload does not make the retract's way back a CL move.
   EXPECT_THAT(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nFROM/0,0,-1\nGOTO/20,0,-1\n"),
               HasSubstr("7:1: this cut starts after the reload of T1"));
+  // Reloaded after a rapid down to the part: the cut next was fed back from up there (certified).
+  EXPECT_THAT(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nLOADTL/1,OSETNO,5\nGOTO/0,0,-1\n"),
+              HasSubstr("5:1: this cut starts after the reload of T1"));
+  EXPECT_EQ(err("FROM/0,0,100\nLOADTL/1\nRAPID\nGOTO/0,0,5\nGOHOME\nLOADTL/1,OSETNO,5\nGOTO/0,0,5\n"), "");
+  // A tool change inside a cycle: the GOTOs after it were drilled by the new tool as holes, or
+  // the cycle was dropped with the rapid after it. Which the CL means, it does not say.
+  EXPECT_EQ(err("LOADTL/1\nSPINDL/1000\nRAPID\nGOTO/0,0,50\nCYCLE/DRILL,10,3,100,MMPM\nGOTO/10,10,0\nLOADTL/2\n"
+                "SPINDL/1000\nRAPID\nGOTO/30,30,50\n"),
+            "7:1: a tool change while a CYCLE is on (no CYCLE/OFF before it): whether the GOTOs after it are holes for "
+            "the new tool or its moves is not known; end the cycle with CYCLE/OFF before the change, and give the "
+            "CYCLE again after it for the new tool's holes");
 }
 
 TEST(Lower, FromAfterMotionElsewhereIsRefused) {
