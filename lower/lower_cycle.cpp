@@ -8,6 +8,7 @@
 //               CYCLE/TAP,DEPTH,d,TPI,n,CLEAR,c
 //   CATIA       CYCLE/DRILL,DEPTH,d,MMPR,f,CLEAR,c,RETURN,t   (ICAM PP table: keywords)
 //               CYCLE/DRILL,d,c[,f,MMPM]                     (default PP table: by position)
+//   APT         CYCLE/DRILL,d,IPM,f,c                        (by position: depth, feed, clearance)
 //   APT, SolidWorks CAM
 //               CYCLE/INIT ... CYCLE/DEEP2,FEDTO,d,1STPECK,p,SUBPECK,q,MMPM,f,RAPTO,r,RTRCTO,t
 //               CYCLE/DEEP,FEDTO,d,INCR,q,...  ... CYCLE/OFF (or CYCLE/CLEAR)
@@ -91,7 +92,7 @@ void Lowerer::lower_cycle(const Record& r) {
   }
 
   bool depth = false, clear = false, pitch_given = false;
-  size_t first = 1;
+  size_t first = 1, end = ps.size();  // the keyword pairs read are [first, end)
   // CATIA's default PP table writes the values by position: depth, clearance, then perhaps the
   // feed and its unit (karlo_DEMO2: CYCLE/TAP, 50.786017, 1.000000 after an approach 1.0 above the
   // hole). A peck cycle's positions are not documented: refused.
@@ -101,29 +102,32 @@ void Lowerer::lower_cycle(const Record& r) {
                           "have the CAM system write keywords (DEPTH, STEP, CLEAR, ...)");
       return;
     }
-    if (ps.size() < 3 || !ps[2].is_number()) {
-      d_.error(ps.loc(2), "CYCLE/" + kind + ": by position, the depth and the clearance come first");
+    // By position: depth, clearance[, f, unit] (CATIA); APT's own form puts the feed between
+    // them: depth, unit, f, clearance.
+    const bool apt = ps.size() == 5 && ps[2].is_word() && feed_word(upper(ps[2].text)) && ps[3].is_number() &&
+                     ps[4].is_number();
+    if (!apt && (ps.size() < 3 || !ps[2].is_number())) {
+      d_.error(ps.loc(2), "CYCLE/" + kind + ": by position, the depth and the clearance come first (d,c[,f,MMPM]), or "
+                          "the depth, the feed and the clearance (d,MMPM,f,c)");
+      return;
+    }
+    if (!apt && ps.size() > 3 && !(ps.size() == 5 && ps[3].is_number() && ps[4].is_word() && feed_word(upper(ps[4].text)))) {
+      d_.error(ps[3].loc, "CYCLE/" + kind + ": by position, only a feed and its unit (MMPM, IPM, MMPR, IPR) may "
+                          "follow the depth and the clearance");
       return;
     }
     c.depth = ps[1].number;
-    c.clearance = ps[2].number;
+    c.clearance = apt ? ps[4].number : ps[2].number;
     if (c.depth < 0) {
       d_.error(ps[1].loc, "CYCLE: the depth must not be negative, found " + num_text(c.depth));
       return;
     }
     depth = clear = true;
-    first = 3;
-    if (ps.size() > 3) {
-      if (!(ps.size() == 5 && ps[3].is_number() && ps[4].is_word() && feed_word(upper(ps[4].text)))) {
-        d_.error(ps[3].loc, "CYCLE/" + kind + ": by position, only a feed and its unit (MMPM, IPM, MMPR, IPR) may "
-                            "follow the depth and the clearance");
-        return;
-      }
-      first = 3;  // the feed pair reads below, as a keyword pair turned round
-    }
+    first = apt ? 2 : 3;  // the feed pair reads below (CATIA's turned round: f, unit)
+    end = apt ? 4 : ps.size();
   }
 
-  for (size_t i = first; i < ps.size(); ++i) {
+  for (size_t i = first; i < end; ++i) {
     const Param& p = ps[i];
     double v = 0;
     const Param* vp = nullptr;

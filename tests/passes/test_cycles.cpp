@@ -37,6 +37,15 @@ TEST(Cycles, NxDrillKeywordsInAnotherOrder) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,MMPM,80,CLEAR,2,DEPTH,5"), cycle_blocks("CYCLE/DRILL,FEDTO,5,RAPTO,2,MMPM,80"));
 }
 
+// APT's positional form: depth, the feed with its unit, clearance (CYCLE/DRILL,d,IPM,f,c).
+TEST(Cycles, AptPositionalDepthFeedClearance) {
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,5,MMPM,80,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F80.\nN80 X30.\nN90 G80");
+  Compiled c = compile_text(std::string(kHead) + "CYCLE/DRILL,5,MMPM,80,2,7\nGOTO/10,10,0\nCYCLE/OFF\n",
+                            machine("fanuc-mill"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:7:15: error: CYCLE/DRILL: by position, the depth and the clearance come first "
+                                 "(d,c[,f,MMPM]), or the depth, the feed and the clearance (d,MMPM,f,c)"));
+}
+
 // NX writes FEDTO signed along the tool axis from the hole's top: a hole below is negative
 // (its posts put the bottom at the point + FEDTO x the tool axis). In a file NX wrote (its
 // TOOL PATH records say so) -12 is 12 deep; elsewhere a negative depth is still refused.
