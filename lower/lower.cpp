@@ -496,10 +496,14 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   else if (const auto* m = std::get_if<ir::Move>(&op)) {
     if (m->kind != ir::MoveKind::From) at_home_ = false;
     cut_since_tool_change_ |= m->kind != ir::MoveKind::From;
-    if (m->kind != ir::MoveKind::From) last_move_rapid_ = m->kind == ir::MoveKind::Rapid;
+    if (m->kind != ir::MoveKind::From) {
+      last_move_rapid_ = m->kind == ir::MoveKind::Rapid;
+      last_move_hole_ = cycle_open_;
+    }
   } else if (std::holds_alternative<ir::Arc>(op) || std::holds_alternative<ir::Hole>(op)) {
     cut_since_tool_change_ = true;
     last_move_rapid_ = false;
+    last_move_hole_ = false;
   }
   make_room();
   op_.body.push_back(ir::Instr{loc, std::move(op)});

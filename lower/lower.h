@@ -156,6 +156,7 @@ class Lowerer : public RecordSink {
   std::string from_gap_what_;  // where the cut would start from, and why, for the message
   int loaded_offset_ = -1;      // the length register the loaded tool was loaded with
   bool at_home_ = false;  // the last move was GOHOME
+  bool last_move_hole_ = false;  // the last move was a hole of a cycle (the tool is on its axis, returned)
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;

@@ -262,7 +262,13 @@ void Lowerer::lower_from(const Record& r) {
   // left it, maybe in the material: not after a tool change, a rapid or a GOHOME) a FROM
   // elsewhere asks for a jump no post can make: the move between is not in the CL. Refused
   // rather than guessed (the next move, made from where the tool is, could cut the part).
-  if (cut_since_tool_change_ && !last_move_rapid_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
+  const double tol = 0.001 / ir::mm_per_unit(info_.units);
+  // After a cycle's hole the tool is not at the hole's GOTO but returned up its axis: a FROM
+  // on that line says where (drill-cycles checks it against the level the cycle returns to).
+  const ir::Vec3 up = xf_dir(axis_);
+  const bool over_hole = last_move_hole_ && has_pos_ && (p - pos_).dot(up) > 0 &&
+                         ((p - pos_) - up * (p - pos_).dot(up)).norm() <= tol;
+  if (cut_since_tool_change_ && !last_move_rapid_ && !over_hole && has_pos_ && (p - pos_).norm() > tol) {
     d_.error(r.loc, "FROM after motion puts the tool at (" + num_text(p.x()) + ", " + num_text(p.y()) + ", " +
                         num_text(p.z()) + "), but the CL left it at (" + num_text(pos_.x()) + ", " + num_text(pos_.y()) +
                         ", " + num_text(pos_.z()) + "): the move between is not in the CL; have the CAM system write "
@@ -273,7 +279,7 @@ void Lowerer::lower_from(const Record& r) {
   // after it is a feed unless a RAPID of its own says otherwise. Carried on, it made the plunge
   // after FROM a rapid into the part.
   rapid_next_ = false;
-  if (cut_since_tool_change_ && !at_home_ && has_pos_ && (p - pos_).norm() > 0.001 / ir::mm_per_unit(info_.units)) {
+  if (cut_since_tool_change_ && !at_home_ && !over_hole && has_pos_ && (p - pos_).norm() > tol) {
     from_gap_ = r.loc;
     from_gap_what_ = "by the FROM at line " + std::to_string(r.loc.line) + ", elsewhere than the rapid before it left the tool, at (" +
                      num_text(pos_.x()) + ", " + num_text(pos_.y()) + ", " + num_text(pos_.z()) + ")";

@@ -14,6 +14,10 @@ namespace clpc {
 
 namespace {
 
+std::string point_text(const ir::Vec3& v) {
+  return num_text(v.x()) + ", " + num_text(v.y()) + ", " + num_text(v.z());
+}
+
 bool machine_has(const Codes& k, const ir::CycleSpec& c) {
   switch (c.kind) {
     case ir::CycleKind::Drill: return !k.cycle_drill.empty();
@@ -73,6 +77,24 @@ class DrillCycles : public Pass {
       if (auto* s = std::get_if<ir::Spindle>(&in.op)) spindle_ = *s;
       auto* m = std::get_if<ir::Move>(&in.op);
       if (!m || !active_ || m->kind == ir::MoveKind::From) {
+        if (m && m->kind == ir::MoveKind::From && returned_) {
+          // A FROM after the holes (lowering lets one on the last hole's axis through) says
+          // where the CL thinks the cycle left the tool. Where the cycle returns it, it is.
+          if ((m->point - pos_).norm() > 0.001 / ir::mm_per_unit(ctx.info.units)) {
+            from_off_return_ = in.loc;
+            from_what_ = m->point;
+          }
+          out.push_back(std::move(in));
+          continue;
+        }
+        if (from_off_return_ && (m || std::holds_alternative<ir::Arc>(in.op))) {
+          if (!m || m->kind == ir::MoveKind::Feed)
+            ctx.diags.error(in.loc, "this cut starts at the FROM at line " + std::to_string(from_off_return_->line) +
+                                        " (" + point_text(from_what_) + "), but the cycle before it returned the tool to (" +
+                                        point_text(pos_) + "): cut from there it would run along a line the CL does not "
+                                        "have; have the CAM system write the move to where the cut starts (a RAPID GOTO)");
+          from_off_return_.reset();
+        }
         if (m) {
           pos_ = m->point;
           have_pos_ = true;
@@ -154,6 +176,8 @@ class DrillCycles : public Pass {
  private:
   bool groove_open_ = false;  // a GrooveOn whose CYCLE/OFF has not come yet
   bool returned_ = false;     // the tool is where the last hole's cycle returned it
+  std::optional<SourceLoc> from_off_return_;  // a FROM after the holes, elsewhere than their return
+  ir::Vec3 from_what_ = ir::Vec3::Zero();
 
   // A canned cycle moves across to each hole at the level the tool is at, then down to the R
   // plane: a tool below that plane, and not already over the hole, would cross below the

@@ -46,6 +46,24 @@ TEST(Cycles, AptPositionalDepthFeedClearance) {
                                  "(d,c[,f,MMPM]), or the depth, the feed and the clearance (d,MMPM,f,c)"));
 }
 
+// After the holes the tool is up the last hole's axis, where the cycle returned it (G98: the
+// level it started from). A FROM there says so (it was refused as a jump); a FROM elsewhere on
+// that line, with a cut after it, would start the cut where the tool is not.
+TEST(Cycles, AFromUpTheLastHolesAxisSaysWhereTheCycleLeftTheTool) {
+  const std::string cycle = "CYCLE/DRILL,DEPTH,5,MMPM,80,CLEAR,2\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n";
+  Compiled c = compile_text(std::string(kHead) + cycle + "FROM/30,10,20\nGOTO/30,10,5\nGOTO/40,10,-1\n",
+                            machine("fanuc-mill"));
+  EXPECT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N90 G80\nN100 G01 Z5. F100.\nN110 X40. Z-1.\n"));
+  c = compile_text(std::string(kHead) + cycle + "FROM/30,10,30\nGOTO/30,10,5\n", machine("fanuc-mill"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:12:1: error: this cut starts at the FROM at line 11 (30, 10, 30), but the "
+                                 "cycle before it returned the tool to (30, 10, 20)"));
+  c = compile_text(std::string(kHead) + cycle + "FROM/30,10,30\nRAPID\nGOTO/30,10,5\n", machine("fanuc-mill"));
+  EXPECT_TRUE(c.ok) << c.diags;
+  c = compile_text(std::string(kHead) + cycle + "FROM/31,10,20\nGOTO/30,10,5\n", machine("fanuc-mill"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:11:1: error: FROM after motion puts the tool at (31, 10, 20)"));
+}
+
 // NX writes FEDTO signed along the tool axis from the hole's top: a hole below is negative
 // (its posts put the bottom at the point + FEDTO x the tool axis). In a file NX wrote (its
 // TOOL PATH records say so) -12 is 12 deep; elsewhere a negative depth is still refused.
