@@ -62,6 +62,10 @@ class ProgramWriter : public Backend {
   void after_tool_change(int tool, SourceLoc loc);
   // Before motion: the coolant a tool change turned off, on again (unless the CL said).
   void restore_coolant(SourceLoc loc);
+  // Before motion: the spindle and the coolant a tool change or a stop turned off, on again.
+  void restore_after_stop(SourceLoc loc);
+  // The control stopped the spindle (M06 on a mill; M00, M01 with the coolant too).
+  void control_stopped(bool coolant_too, bool tool_change);
   void write_smoothing(bool on);
   // In a straight move's block: G41/G42/G40 where a CUTCOM changed it.
   void comp_code();
@@ -144,7 +148,13 @@ class ProgramWriter : public Backend {
   bool position_known_ = false;
   bool cut_since_stop_ = false;     // something moved since the program start or the last M01
   bool stop_pending_ = false;       // optional_stop = "operation": M01 before the operation's first action
-  bool coolant_restore_ = false;    // coolant_around_tool_change: turn coolant_after_ on before motion
+  bool coolant_restore_ = false;    // turn coolant_after_ on before motion (a tool change or a stop turned it off)
+  // The CL's spindle runs until SPINDL/OFF; M06 (on a mill), M00 and M01 stop it on the
+  // machine. The last SPINDL that started it is started again before the next motion, unless
+  // the CL gives a SPINDL of its own first.
+  std::optional<ir::Spindle> spindle_on_;
+  bool spindle_restore_ = false;
+  bool spindle_restore_warn_ = false;  // the restore follows a tool change: the new tool runs at the last one's speed
   ir::CoolantKind coolant_after_ = ir::CoolantKind::Off;
   size_t tool_change_at_ = 0;       // where in info_->tool_changes the last change was
   ir::Vec3 pos_ = ir::Vec3::Zero();  // last programmed tool tip, program units

@@ -7,6 +7,7 @@
 #include <ctime>
 
 #include "backends/backend.h"
+#include "support/text.h"
 #include "machine/format.h"
 
 namespace clpc {
@@ -120,6 +121,7 @@ void ProgramWriter::before_tool_change(SourceLoc loc) {
     e_.begin(loc);
     e_.code(m_.codes.optional_stop);
     e_.end();
+    control_stopped(true, false);
     cut_since_stop_ = false;
   }
   stop_pending_ = false;
@@ -132,6 +134,7 @@ void ProgramWriter::optional_stop_between_operations(SourceLoc loc) {
   e_.begin(loc);
   e_.code(m_.codes.optional_stop);
   e_.end();
+  control_stopped(true, false);
   cut_since_stop_ = false;
 }
 
@@ -153,6 +156,32 @@ void ProgramWriter::after_tool_change(int tool, SourceLoc loc) {
   e_.begin(loc);
   e_.code(m_.codes.tool_preselect, TemplateVars().with(Var::Tool, seq[at + 1]));
   e_.end();
+}
+
+void ProgramWriter::control_stopped(bool coolant_too, bool tool_change) {
+  if (spindle_ != ir::SpindleDir::Off && spindle_on_) {
+    spindle_restore_ = true;
+    spindle_restore_warn_ = tool_change;
+  }
+  spindle_ = ir::SpindleDir::Off;
+  if (coolant_too && coolant_ != ir::CoolantKind::Off) {
+    coolant_after_ = coolant_;
+    coolant_restore_ = true;
+    coolant_ = ir::CoolantKind::Off;
+  }
+}
+
+void ProgramWriter::restore_after_stop(SourceLoc loc) {
+  if (spindle_restore_) {
+    spindle_restore_ = false;
+    if (spindle_restore_warn_)
+      d_.warning(loc, "the spindle is started again for T" + std::to_string(tool_) + " as the CL left it running (" +
+                          num_text(spindle_on_->speed) + (spindle_on_->mode == ir::SpindleMode::Rpm ? " rpm" : " surface speed") +
+                          "): the CL gives no SPINDL after the tool change, which stops it",
+                 "spindle-restart");
+    write_spindle(*spindle_on_, loc);
+  }
+  restore_coolant(loc);
 }
 
 void ProgramWriter::restore_coolant(SourceLoc loc) {

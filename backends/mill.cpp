@@ -43,7 +43,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   motion_ = Motion::None;
   e_.forget_linear();
   feed_written_ = false;
-  spindle_ = ir::SpindleDir::Off;  // M06 stops the spindle
+  control_stopped(false, true);  // M06 stops the spindle
   after_tool_change(t.tool, loc);
 }
 

@@ -148,15 +148,19 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         // Something that moves the tool: the coolant a tool change turned off comes back first.
         if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::Arc> || std::is_same_v<T, ir::Groove> ||
                       std::is_same_v<T, ir::ThreadCycle>) {
-          restore_coolant(loc);
+          restore_after_stop(loc);
           cut_since_stop_ = true;
         } else if constexpr (std::is_same_v<T, ir::Move>) {
           if (x.kind != ir::MoveKind::From) {
-            restore_coolant(loc);
+            restore_after_stop(loc);
             cut_since_stop_ = true;
           }
         } else if constexpr (std::is_same_v<T, ir::Coolant>) {
           coolant_restore_ = false;  // the CL says what it wants
+        } else if constexpr (std::is_same_v<T, ir::Spindle>) {
+          spindle_restore_ = false;  // the CL says what it wants
+          if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();
+          else spindle_on_ = x;
         }
         if constexpr (std::is_same_v<T, ir::Hole>) {
           write_hole(op, x, loc);
@@ -336,6 +340,7 @@ void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
     e_.begin(loc);
     e_.code(s.kind == ir::StopKind::Optional ? m_.codes.optional_stop : m_.codes.stop);
     e_.end();
+    control_stopped(true, false);  // M00 (M01 with the switch on) stops the spindle and the coolant
     return;
   }
   // The operator turns the part over: tool clear, spindle and coolant off, then on again.

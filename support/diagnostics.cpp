@@ -53,6 +53,7 @@ const std::vector<WarningName>& warning_names() {
       {"spindle-clamp", "constant surface speed without MAXRPM, clamped at the machine's spindle limit"},
       {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
       {"spindle-stopped", "a cutting move or an arc with the spindle stopped (a hole drilled so is an error)"},
+      {"spindle-restart", "the CL gives no SPINDL after a tool change: the spindle M06 stopped is started again at the CL's last speed"},
       {"subroutine", "INDEX and DEFSUB blocks that end or redefine others"},
       {"tool-geometry", "a tool number given another diameter than before: the tool list keeps the first"},
       {"tool-offset", "a number read as a corrector (TURRET/5,12), or a CUTCOM register the machine's G41 has no place for"},

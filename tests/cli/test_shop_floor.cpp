@@ -221,7 +221,10 @@ TEST(JobOptions, OptionalStopBeforeEachToolChange) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("N30 T1 M06 (T1)\n"));  // none before the first tool
   EXPECT_THAT(r.out, HasSubstr("N90 G91 G28 Z0.\nN100 M01\nN110 T2 M06 (T2)\n"));
-  EXPECT_THAT(r.out, HasSubstr("N160 G91 G28 Z0.\nN170 M01\nN180 T3 M06 (T3)\n"));
+  // M01 stops the coolant (and the spindle): T3's SPINDL starts its spindle, and the coolant,
+  // which the CL left on (no COOLNT for T3), is started again before its first move.
+  EXPECT_THAT(r.out, HasSubstr("N170 G91 G28 Z0.\nN180 M01\nN190 T3 M06 (T3)\nN200 S4000 M03\nN210 M08\n"
+                               "N220 G90 G54 G00 X30. Y0.\n"));
 }
 
 TEST(JobOptions, OptionalStopBetweenOperations) {

@@ -846,6 +846,32 @@ TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
   EXPECT_THAT(arc.diags, HasSubstr("part.cls:9:1: warning: arc with the spindle stopped [-Wspindle-stopped]"));
 }
 
+// APT's spindle runs until SPINDL/OFF; the machine's M06 (a mill's), M00 and M01 stop it. A CL
+// that writes SPINDL only when the speed changes (or before the LOADTL) had its next tools cut
+// with the spindle stopped, certified. The post starts it again, and the coolant after a stop.
+TEST(CamSystems, TheSpindleTheControlStopsIsStartedAgainAsTheClLeftIt) {
+  Compiled c = compile_text("UNITS/MM\nSPINDL/1000,RPM,CLW\nCOOLNT/FLOOD\nLOADTL/1\nRAPID\nGOTO/20,0,5\n"
+                            "FEDRAT/100,MMPM\nGOTO/20,0,-2\nRAPID\nGOTO/20,0,50\nLOADTL/2\nRAPID\nGOTO/30,0,5\n"
+                            "GOTO/30,0,-5\nRAPID\nGOTO/30,0,50\nSTOP\nRAPID\nGOTO/40,0,5\nGOTO/40,0,-5\nFINI\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 T1 M06 (T1)\nN60 S1000 M03\nN70 G54 G00 X20. Y0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N120 T2 M06 (T2)\nN130 S1000 M03\nN140 G90 G54 G00 X30. Y0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N180 M00\nN190 S1000 M03\nN200 M08\nN210 X40.\n"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:6:1: warning: the spindle is started again for T1 as the CL left it running "
+                                 "(1000 rpm): the CL gives no SPINDL after the tool change, which stops it "
+                                 "[-Wspindle-restart]"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:13:1: warning: the spindle is started again for T2"));
+  EXPECT_THAT(c.diags, Not(HasSubstr("spindle-stopped")));
+  // SPINDL/OFF before the change: nothing to start again.
+  Compiled off = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/20,0,5\nSPINDL/OFF\nLOADTL/2\n"
+                              "RAPID\nGOTO/30,0,5\nFINI\n",
+                              machine("fanuc-mill"));
+  ASSERT_TRUE(off.ok) << off.diags;
+  EXPECT_THAT(off.output, HasSubstr("N90 T2 M06 (T2)\nN100 G90 G54 G00 X30. Y0.\n"));
+  EXPECT_THAT(off.diags, Not(HasSubstr("spindle-restart")));
+}
+
 // A feed above the machine's max_feed was written as max_feed without a word.
 TEST(CamSystems, AFeedAboveTheMachinesLimitIsClampedWithAWarning) {
   Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,99999\nGOTO/0,0,-1\n"
