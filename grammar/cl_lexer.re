@@ -462,10 +462,30 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
     while (q < e && (*q == ' ' || *q == '\t')) ++q;
     const unsigned char* w = q;
     while (w < e && std::isalpha(*w)) ++w;
+    // The joined line ends at the next '$' join or at the text's end.
+    const unsigned char* line_end = e;
+    if (i + 1 < splices_.size() && splices_[i + 1].at < abs(e)) line_end = b + (splices_[i + 1].at - abs(b));
     const unsigned char* slash = w;
-    while (slash < e && (*slash == ' ' || *slash == '\t')) ++slash;
-    if (w == q || slash >= e || *slash != '/') continue;
-    const MajorId joined = major_id(std::string_view(reinterpret_cast<const char*>(q), size_t(w - q)));
+    while (slash < line_end && (*slash == ' ' || *slash == '\t')) ++slash;
+    if (w == q) continue;
+    // A record: the word and '/' (GOTO/...), a head before it (TLON,GOFWD/...), or the word
+    // alone on its line (RAPID, STOP, GOHOME).
+    const unsigned char *name = q, *name_end = w;
+    bool record = slash == line_end || *slash == '/';
+    if (!record && *slash == ',') {
+      // Words and commas up to a '/': the word before the '/' is the record's.
+      const unsigned char* sl = slash;
+      while (sl < line_end && (std::isalpha(*sl) || *sl == ',' || *sl == ' ' || *sl == '\t')) ++sl;
+      if (sl < line_end && *sl == '/') {
+        name_end = sl;
+        while (name_end > slash && (name_end[-1] == ' ' || name_end[-1] == '\t')) --name_end;
+        name = name_end;
+        while (name > slash && std::isalpha(name[-1])) --name;
+        record = name < name_end;
+      }
+    }
+    if (!record) continue;
+    const MajorId joined = major_id(std::string_view(reinterpret_cast<const char*>(name), size_t(name_end - name)));
     if (joined == MajorId::Unknown || joined == MajorId::Pprint || joined == MajorId::Partno || joined == MajorId::Remark ||
         joined == MajorId::Tprint || joined == MajorId::Insert)
       continue;

@@ -472,6 +472,16 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
         << head;
   }
   EXPECT_EQ(err("PPRINT/(=========$\n=====)\nGOTO/0,0,5\n"), "");  // text continued by text
+  // A record with a head, and a record that is its word alone: the arc was cut as a chord, the
+  // retract fed, the M00 lost (certified).
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT COST IN $\nTLON,GOFWD/(CIRCLE/0,0,5,10),ON,(LINE/0,0,5,-1,1,5)\n"),
+            "3:1: a '$' at the end of the line before joins this GOFWD record to its text, where it would be lost: end "
+            "the text without '$'");
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT BUDGET $\n  RAPID  \nGOTO/0,0,50\n"), HasSubstr("3:3: a '$' at the end of the line "
+                                                                                     "before joins this RAPID record"));
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT MEASURE $\nSTOP\n"), HasSubstr("3:1: a '$' at the end of the line before joins this STOP"));
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT ROUGH, FINISH $\nPASS, ROUGH/FINISH\nGOTO/0,0,50\n"), "");  // words, no record
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT FIRST $\nPASS\nGOTO/0,0,50\n"), "");
 }
 
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
