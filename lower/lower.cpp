@@ -155,6 +155,8 @@ void Lowerer::record(const Record& r) {
     case MajorId::Tldata: case MajorId::Cutter:
       // CUTTER/OFF ends the cutter's display in APT: no geometry, no motion.
       if (r.id == MajorId::Cutter && r.params.size() == 1 && r.params[0].is("OFF")) return;
+      // CUTTER/DISPLY,... (APT, NCL) says how the cutter is drawn: no tool, no motion.
+      if (r.id == MajorId::Cutter && !r.params.empty() && r.params[0].is("DISPLY")) return;
       read_tool_geometry(r, &d_);
       say_another_diameter(r);
       return;
@@ -220,6 +222,8 @@ void Lowerer::record(const Record& r) {
       // RETRCT asks the post to take the tool up to the clearance surface (CLRSRF) before the
       // next move. clpc makes no motion the CL does not give: the next move must be that
       // retract itself (checked in push), or a tool change, which takes the tool up anyway.
+      // RETRCT/OFF ends such retracts (NCL, APT posts): nothing to make.
+      if (r.params.size() == 1 && r.params[0].is("OFF")) return;
       if (has_pos_) retract_pending_ = r.loc;
       return;
 

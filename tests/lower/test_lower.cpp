@@ -552,6 +552,9 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
 // "expected TOOL,n" and "expected the tool diameter".
 TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_EQ(err("SELECT/HEAD,FRONT\nLOADTL/1\nCUTTER/10\nGOTO/0,0,5\nSELECT/OFF\nCUTTER/OFF\nGOTO/10,0,5\n"), "");
+  // APT's cutter display and the end of the post's retracts: no motion either.
+  EXPECT_EQ(err("LOADTL/1\nCUTTER/DISPLY,ON\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT/OFF\nGOTO/10,0,-1\n"), "");
+  EXPECT_THAT(err("LOADTL/1\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT\nGOTO/10,0,-1\n"), HasSubstr("4:1: RETRCT asks for a retract"));
   EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
 }
 
