@@ -348,6 +348,15 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
     d_.error(loc, "arc with no programmed start position before it");
     return;
   }
+  if (comp_pending_set_ && comp_pending_.side != ir::CompSide::Off) {
+    // Written on the line after, the compensation came on a move later than the CL asks: the
+    // arc was cut on the tool's centre where the CL offsets it. (G40 after an arc is written on
+    // the next line: the arc keeps the offset it had, RapidSplit.NotTheMoveThatCarriesG40AfterAnArc.)
+    d_.error(loc, "cutter compensation (CUTCOM) starts on an arc: the control starts G41/G42 only on a straight move "
+                  "(G00/G01); have the CAM system turn it on before a line (a lead-in)");
+    comp_pending_set_ = false;
+    return;
+  }
   // Plane from the arc axis: G17 (axis Z), G18 (axis Y), G19 (axis X).
   struct P {
     Plane plane;

@@ -126,6 +126,14 @@ TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("G40 G00 X40. Z20.\n"));
+  // Turned on before an arc, it came on a move late (the arc cut on the tool's centre): refused.
+  Compiled on = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/10,0,-1\n"
+      "CUTCOM/LEFT\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nGOTO/40,10,-1\n",
+      machine("fanuc-mill"));
+  EXPECT_THAT(on.diags, HasSubstr("part.cls:9:1: error: cutter compensation (CUTCOM) starts on an arc: the control "
+                                  "starts G41/G42 only on a straight move (G00/G01); have the CAM system turn it on "
+                                  "before a line (a lead-in)"));
 }
 
 // On a machine whose head tilts, a piece along a tilted tool axis moves several axes at their
