@@ -28,6 +28,22 @@ std::string convention_text(const ir::Arc& a, ir::CamSystem cam) {
   return "the right-hand rule about the CIRCLE's axis (" + std::string(ir::cam_system_name(cam)) + ")";
 }
 
+// The sense comes from the right-hand rule clpc assumes for a CIRCLE axis when the file does
+// not say which CAM system wrote it (not from a sense word, an angle or an INDIRV).
+bool assumed_convention(const ir::Arc& a, ir::CamSystem cam) {
+  return cam == ir::CamSystem::Unknown && (a.layout == ir::ArcLayout::Creo7 || a.layout == ir::ArcLayout::NoRadius6);
+}
+
+// The move leaving the arc is a chord of the same circle, going on round the way `dir` turns:
+// the arc carries on past its end (an APT system writing a circle as CIRCLE, then points).
+bool goes_on_round(const ir::Arc& a, const ir::Vec3& out, ir::ArcDir dir) {
+  if (out.norm() == 0 || std::abs(out.dot(a.axis)) > 1e-6 * (1 + a.radius)) return false;
+  const ir::Vec3 re = arcgeo::radial(a, a.end), rn = arcgeo::radial(a, a.end + out);
+  if (std::abs(rn.norm() - a.radius) > std::max(0.001, 1e-6 * a.radius)) return false;
+  const double turn = a.axis.dot(re.cross(rn));
+  return dir == ir::ArcDir::Ccw ? turn > 0 : turn < 0;
+}
+
 void vote(ArcEvidence& e, ir::ArcDir d, const char* why) {
   if (d == ir::ArcDir::Ccw) {
     if (e.ccw_votes++ == 0) e.ccw_why = why;
@@ -107,6 +123,21 @@ class ArcDirection : public Pass {
                                  ", but the CL's points on the arc (the GOTOs between the CIRCLE and its end) lie "
                                  "where it passes only if it turns " + dir_word(e.via) +
                                  ": the CL contradicts itself, and either way some of its points are missed");
+        return;
+      }
+      if (geo != ir::ArcDir::Unknown && geo != a.hint && assumed_convention(a, ctx.info.cam) &&
+          ((geo == ir::ArcDir::Ccw ? e.ccw_votes : e.cw_votes) >= 2 || goes_on_round(a, out, geo))) {
+        // The convention is the one clpc assumes for a file whose CAM system it does not know
+        // (the corpus shows no arc of a known system against its convention, and an APT system
+        // may write the circle's canonical axis, whatever the way round): the geometry is the
+        // better evidence where more than a tangent says so (a tangent alone may be a cusp): both
+        // tangents, or the move after the arc going on round its circle. The two readings are
+        // different cuts (a 45-degree arc against a 315-degree one through the pocket): refused.
+        const std::string& why = geo == ir::ArcDir::Ccw ? e.ccw_why : e.cw_why;
+        ctx.diags.error(loc, "arc: " + convention_text(a, ctx.info.cam) + " says " + dir_word(a.hint) + ", but " + why +
+                                 " only if it turns " + dir_word(geo) + ", and " + (goes_on_round(a, out, geo) ? "the move after it goes on round its circle that way" : "so is the move leaving it") + ": the file does not say which CAM system wrote "
+                                 "it, so whether its CIRCLE axes follow the right-hand rule is not known; have the CAM "
+                                 "system write the arc's sense (CLW/CCLW) or name itself in the file");
         return;
       }
       if (geo != ir::ArcDir::Unknown && geo != a.hint) {

@@ -182,6 +182,26 @@ TEST(ArcDirection, ConventionWinsOverGeometryWithAWarning) {
             "arc?)");
 }
 
+// A file that does not say which CAM system wrote it: the right-hand rule is clpc's guess. Where
+// more than a tangent says otherwise (the move after the arc goes on round its circle), the two
+// readings are a 45-degree arc and a 315-degree one through the pocket (cut with a warning,
+// certified): refused. A tangent alone may be a cusp: the guess is cut, with the warning.
+TEST(ArcDirection, AnUnknownSystemsAxisAgainstTheGeometryIsRefused) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/-20,20,5\nFEDRAT/100,MMPM\nGOTO/-20,20,-2\n"
+                           "GOTO/0,20,-2\nCIRCLE/0,0,-2,0,0,1,20\nGOTO/14.142136,14.142136,-2\n";
+  Compiled c = compile_text(head + "GOTO/20,0,-2\nGOTO/0,-20,-2\n", machine("fanuc-mill"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:9:1: error: arc: the right-hand rule about the CIRCLE's axis (an unknown CAM "
+                                 "system) says counter-clockwise, but the arc is tangent to the move entering it only "
+                                 "if it turns clockwise, and the move after it goes on round its circle that way: the "
+                                 "file does not say which CAM system wrote it"));
+  Compiled cusp = compile_text(head + "GOTO/30,30,-2\n", machine("fanuc-mill"));
+  EXPECT_TRUE(cusp.ok) << cusp.diags;
+  EXPECT_THAT(cusp.diags, HasSubstr("part.cls:9:1: warning: arc: the right-hand rule"));
+  // Named (Creo's header): its convention is documented, and the corpus bears it out.
+  Compiled creo = compile_text("$$* Pro/CLfile Version Wildfire 5.0 - M060\n" + head + "GOTO/20,0,-2\n", machine("fanuc-mill"));
+  EXPECT_TRUE(creo.ok) << creo.diags;
+}
+
 // Creo points that run against the CIRCLE's convention. The first GOTO is the arc's end, and
 // the arc turns the convention's way however far (here 315 degrees counter-clockwise, not the
 // short way clockwise); later points behind it in that sense are straight moves. They were
