@@ -679,7 +679,11 @@ void ProgramWriter::comp_code() {
   } else {
     xy_plane_code();
     int reg = c.reg > 0 ? c.reg : tool_;
-    e_.code(c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right,
+    // Left and right of the path are seen from the side the control views its plane from, as
+    // G02/G03 are: a lathe viewing from -Y swaps them too.
+    bool left = c.side == ir::CompSide::Left;
+    if (m_.is_lathe() && m_.lathe.arcs_from_minus_y) left = !left;
+    e_.code(left ? m_.codes.comp_left : m_.codes.comp_right,
             TemplateVars().with(Var::Register, reg).with(Var::Tip, m_.lathe.tip));
   }
   comp_pending_set_ = false;

@@ -947,6 +947,8 @@ class Interp {
   bool arc(Segment& s, const Words& a, int line) {
     s.kind = Segment::Kind::Arc;
     s.ccw = motion_ == Motion::Ccw;
+    // A lathe control that views its arcs from -Y (lathe.arcs_seen_from) turns G02 the other way.
+    if (m_.is_lathe() && m_.lathe.arcs_from_minus_y) s.ccw = !s.ccw;
     int u, v;
     char cu, cv;
     if (plane_ == 17) { u = 0; v = 1; cu = 'I'; cv = 'J'; s.normal = Vec3::UnitZ(); }

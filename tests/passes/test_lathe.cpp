@@ -249,6 +249,21 @@ TEST(NoseRadius, CutcomIsG41G42OnTheNextStraightMove) {
                                    "needs a straight move (G00/G01) for it; have the CAM system turn it on or off before a line"));
 }
 
+// A control that views the ZX plane from -Y (lathe.arcs_seen_from = "-Y") turns G02 and G03 the
+// other way, and left and right of the path with them. The G42 was kept (the nose radius
+// offset to the wrong side with --no-verify), and verify read G03 as +Y's, refusing every arc.
+TEST(NoseRadius, SeenFromMinusYArcsAndSidesSwapAndReadBack) {
+  const std::string cl = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.2\nRAPID\nGOTO/10,0,2\n"
+                         "CUTCOM/RIGHT\nGOTO/10,0,-20\nCIRCLE/15,0,-20,0,-1,0,5\nGOTO/15,0,-25\nGOTO/20,0,-25\nCUTCOM/OFF\n"
+                         "RAPID\nGOTO/50,0,5\nFINI\n";
+  Compiled plus = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(plus.ok) << plus.diags;
+  EXPECT_THAT(plus.output, HasSubstr("G42 G99 G01 Z-20. F0.2\nN70 G02 X30. Z-25. I5. K0.\n"));
+  Compiled minus = compile_text(cl, machine("rear-lathe", "[rear-lathe]\ninherits = \"fanuc-lathe\"\n[rear-lathe.lathe]\narcs_seen_from = \"-Y\"\n"), {.certify = true});
+  ASSERT_TRUE(minus.ok) << minus.diags;
+  EXPECT_THAT(minus.output, HasSubstr("G41 G99 G01 Z-20. F0.2\nN70 G03 X30. Z-25. I5. K0.\n"));
+}
+
 TEST(Threads, AFeedAndACommentAmongThePassesOutliveTheCycle) {
   // A FEDRAT among the passes the G76 replaced still sets the feed in force after the thread,
   // and a comment there is still written (both were dropped with the moves).
