@@ -691,6 +691,15 @@ void ProgramWriter::comp_code() {
 }
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
+  // A mill's G41/G42 is written in the XY plane (G17): the CL's compensation in another plane
+  // would offset the tool sideways in the wrong one. (A lathe's CL names its turning plane as
+  // its CAM system draws it, XY or ZX: the plane is the lathe's either way.)
+  if (!m_.is_lathe() && c.side != ir::CompSide::Off && c.plane != 0 && c.plane != 'Z') {
+    d_.error(loc, std::string("CUTCOM in the ") + (c.plane == 'Y' ? "ZX" : "YZ") +
+                      " plane: clpc writes a mill's cutter compensation in the XY plane (G17), so the offset would be "
+                      "taken in another plane than the CL asks");
+    return;
+  }
   // A register the machine's G41/G42 has no place for (a Fanuc lathe takes the nose radius and
   // tip from the offset its T word selects) is not written: say so once, unless it is the
   // register the T word selects anyway.

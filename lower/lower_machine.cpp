@@ -311,8 +311,11 @@ void Lowerer::lower_cutcom(const Record& r) {
       if (!reg) return;
       c.reg = *reg;
     }
-    // A plane word carries nothing more; ADJUST marks the register that follows.
-    else if (!(p.is_empty() || p.is("XYPLAN") || p.is("YZPLAN") || p.is("ZXPLAN") || p.is("ADJUST")))
+    else if (p.is("XYPLAN")) c.plane = 'Z';
+    else if (p.is("ZXPLAN")) c.plane = 'Y';
+    else if (p.is("YZPLAN")) c.plane = 'X';
+    // ADJUST marks the register that follows.
+    else if (!(p.is_empty() || p.is("ADJUST")))
       d_.warning(p.loc, "CUTCOM: '" + std::string(p.name()) + "' is not read", "ignored-word");
   }
   if (!side && on && last_comp_) {

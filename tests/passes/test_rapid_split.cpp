@@ -126,7 +126,12 @@ TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("G40 G00 X40. Z20.\n"));
-  // Turned on before an arc, it came on a move late (the arc cut on the tool's centre): refused.
+}
+
+// Cutter compensation the control cannot make as the CL asks: refused, where it was written
+// on the line after the arc (the arc cut on the tool's centre), or in G17 for a ZX profile.
+TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
+  // Turned on just before an arc.
   Compiled on = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/10,0,-1\n"
       "CUTCOM/LEFT\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nGOTO/40,10,-1\n",
@@ -134,6 +139,18 @@ TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
   EXPECT_THAT(on.diags, HasSubstr("part.cls:9:1: error: cutter compensation (CUTCOM) starts on an arc: the control "
                                   "starts G41/G42 only on a straight move (G00/G01); have the CAM system turn it on "
                                   "before a line (a lead-in)"));
+  // In another plane than the mill's XY (the plane word was dropped: G42 in G17).
+  Compiled zx = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/RIGHT,2,ZXPLAN\n"
+      "GOTO/10,0,-1\n",
+      machine("fanuc-mill"));
+  EXPECT_THAT(zx.diags, HasSubstr("part.cls:7:1: error: CUTCOM in the ZX plane: clpc writes a mill's cutter compensation "
+                                  "in the XY plane (G17), so the offset would be taken in another plane than the CL asks"));
+  Compiled xy = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/RIGHT,2,XYPLAN\n"
+      "GOTO/10,0,-1\nCUTCOM/OFF\nGOTO/20,0,-1\n",
+      machine("fanuc-mill"));
+  EXPECT_TRUE(xy.ok) << xy.diags;
 }
 
 // On a machine whose head tilts, a piece along a tilted tool axis moves several axes at their
