@@ -104,6 +104,8 @@ void LatheBackend::motion_code(Motion mo) {
 
 bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   if (std::abs(p.y()) <= 1e-6) return true;
+  if (loc == off_plane_said_) return false;  // once per CL record (an arc cut into pieces gives many)
+  off_plane_said_ = loc;
   d_.error(loc, "lathe motion must lie in the XZ plane (Y = 0), found Y = " + num_text(p.y()) +
                     ": the CL must give turning motion with X the radius and Z along the spindle (in NX, the "
                     "lathe work plane ZM-XM)");

@@ -25,6 +25,7 @@ class LatheBackend : public ProgramWriter {
 
   void motion_code(Motion mo);
   bool in_plane(const ir::Vec3& p, SourceLoc loc);
+  SourceLoc off_plane_said_;  // the CL record whose motion off the XZ plane was said
   bool changed(char letter, double value) const;
 
   // Threading (backends/lathe_thread.cpp).

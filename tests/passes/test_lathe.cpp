@@ -304,4 +304,13 @@ TEST(LatheMotion, OutsideTheXzPlaneIsRefusedWithTheRule) {
   EXPECT_THAT(c.diags, HasSubstr(":7:1: error: lathe motion must lie in the XZ plane (Y = 0), found Y = 30: the CL must "
                                  "give turning motion with X the radius and Z along the spindle (in NX, the lathe work "
                                  "plane ZM-XM)\n"));
+  // Once per record: an arc from a point off the plane is cut in pieces, each off it (18 errors).
+  Compiled arc = compile_text("UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.2\nGOTO/10,3,-20\n"
+                              "CIRCLE/15,0,-20,0,-1,0,5\nGOTO/15,0,-25\n",
+                              machine("fanuc-lathe"));
+  size_t errors = 0;
+  for (size_t at = arc.diags.find("error: lathe motion must lie"); at != std::string::npos;
+       at = arc.diags.find("error: lathe motion must lie", at + 1))
+    ++errors;
+  EXPECT_EQ(errors, 2u) << arc.diags;  // the GOTO, and the arc
 }
