@@ -152,6 +152,13 @@ void Lowerer::lower_contour(const Record& r) {
                      "; have the CAM system write the motion as GOTO and CIRCLE records (in CATIA: circular "
                      "interpolation output as CIRCLE, or the PP table's GOTO form)");
   };
+  if (r.head.empty()) {
+    // APT keeps the tool position (TLON, TLLFT, TLRGT) of the last motion statement that gave
+    // one; a CL record without it says nothing of where the tool stands against the curve.
+    refuse(r.loc, major + " without TLON, TLLFT or TLRGT before it: where the tool stands against the curve (on it, "
+                          "or beside it by its radius) is not said");
+    return;
+  }
   if (r.head.size() != 1 || !r.head[0].is("TLON")) {
     refuse(r.loc, "only TLON (the tool centre on the drive surface) is read; TLLFT and TLRGT set the tool beside it by "
                   "its radius");

@@ -172,6 +172,9 @@ TEST(CamSystems, CatiaContourForms) {
             "9:1: TLON,GOFWD contouring: only TLON (the tool centre on the drive surface) is read; TLLFT and TLRGT set the "
             "tool beside it by its radius; have the CAM system write the motion as GOTO and CIRCLE records (in CATIA: "
             "circular interpolation output as CIRCLE, or the PP table's GOTO form)");
+  EXPECT_THAT(err("GOFWD/(CIRCLE/0,0,-10,3.8),ON,(LINE/0,0,-10,1,0,-10)\n"),
+              HasSubstr("9:1: TLON,GOFWD contouring: GOFWD without TLON, TLLFT or TLRGT before it: where the tool stands "
+                        "against the curve (on it, or beside it by its radius) is not said;"));
   EXPECT_EQ(err("TLON,GOFWD/(CIRCLE/0,0,-10,3.8),TANTO,(LINE/0,0,-10,1,0,-10)\n"),
             "9:33: TLON,GOFWD contouring: only ON (the tool centre on the check surface) is read; TANTO stops the tool by "
             "its radius; have the CAM system write the motion as GOTO and CIRCLE records (in CATIA: circular interpolation "
