@@ -270,6 +270,11 @@ void Lowerer::record(const Record& r) {
         return;
       }
       if (iequals(r.major, "BOX")) return;  // the stock (SolidWorks CAM, CAMWorks): nothing to cut
+      // DWELL/t: the dwell some APT generators write for ISO's DELAY/t (seconds, or REV).
+      if (iequals(r.major, "DWELL")) {
+        lower_delay(r);
+        return;
+      }
       unknown(r, "unknown record", true);
       return;
   }

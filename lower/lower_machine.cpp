@@ -346,12 +346,12 @@ void Lowerer::lower_delay(const Record& r) {
     if (ps[i].is_number()) { dw.value = ps[i].number; have = true; }
     else if (ps[i].is("REV")) dw.revolutions = true;
     else if (!ps[i].is("SEC")) {
-      d_.error(ps[i].loc, "DELAY: unknown word '" + std::string(ps[i].text) + "'");
+      d_.error(ps[i].loc, upper(r.major) + ": unknown word '" + std::string(ps[i].text) + "'");
       return;
     }
   }
   if (!have || dw.value < 0) {
-    d_.error(have ? r.loc : r.end, "DELAY needs a time of zero or more");
+    d_.error(have ? r.loc : r.end, upper(r.major) + " needs a time of zero or more");
     return;
   }
   ensure_operation(r.loc);

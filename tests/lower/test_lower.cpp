@@ -550,6 +550,11 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
 // Records without motion never stop a post: SELECT/HEAD,FRONT and SELECT/OFF (a head chosen on
 // machines with several) and CUTTER/OFF (APT: the cutter's display ended) stopped it with
 // "expected TOOL,n" and "expected the tool diameter".
+TEST(Lower, DwellIsReadAsDelay) {
+  EXPECT_EQ(instrs("LOADTL/1\nGOTO/0,0,5\nDWELL/2\n"), instrs("LOADTL/1\nGOTO/0,0,5\nDELAY/2\n"));
+  EXPECT_EQ(err("LOADTL/1\nGOTO/0,0,5\nDWELL/-1\n"), "3:1: DWELL needs a time of zero or more");
+}
+
 TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_EQ(err("SELECT/HEAD,FRONT\nLOADTL/1\nCUTTER/10\nGOTO/0,0,5\nSELECT/OFF\nCUTTER/OFF\nGOTO/10,0,5\n"), "");
   // APT's cutter display and the end of the post's retracts: no motion either.
