@@ -144,15 +144,20 @@ class Comparison : public ProgramSink {
   // Finds the segment that reaches `p`; returns its index in the window, or nothing (then
   // `nearest`/`nearest_at` say how close the program came).
   template <class OnPath>
+  // `turns`: a CL arc of more than a turn (extra_turns), whose end the program passes at each
+  // turn: only an end reached after the program has turned round the arc's axis by its whole
+  // sweep (less a degree) is the arc's.
   std::optional<size_t> reach(const Vec3& p, OnPath on_path, double& nearest, size_t& nearest_at, std::vector<double>& passed,
-                              const Vec3* axis = nullptr) {
+                              const Vec3* axis = nullptr, const ir::Arc* turns = nullptr) {
     nearest = kInf;
     nearest_at = 0;
     passed.clear();
+    double turned = 0;  // degrees, the arc's way round
     for (size_t j = 0; j < kMaxLookahead; ++j) {
       const TipSegment* s = peek(j);
       if (!s) return std::nullopt;
-      if (finite(s->end)) {
+      if (turns && finite(s->start) && finite(s->end)) turned += turned_deg(*turns, *s);
+      if (finite(s->end) && (!turns || turned >= turns->sweep - 1)) {
         double d = (s->end - p).norm();
         if (d <= tol_) return nearest_end(j, d, on_path, passed, p, axis);
         if (d < nearest) {
@@ -165,6 +170,17 @@ class Comparison : public ProgramSink {
       passed.push_back(dev);
     }
     return std::nullopt;
+  }
+
+  // How far a program segment turns round the arc's axis, in degrees, positive the arc's way.
+  static double turned_deg(const ir::Arc& a, const TipSegment& s) {
+    const bool arc = s.raw.kind == gcode::Segment::Kind::Arc;
+    if (arc && s.raw.sweep >= 359.999) return 360;  // a full circle: back where it began
+    const Vec3 u = arcgeo::radial(a, s.start), v = arcgeo::radial(a, s.end);
+    if (u.norm() == 0 || v.norm() == 0) return 0;
+    const double ccw = arcgeo::ccw_angle(u, v, a.axis) * 180 / arcgeo::kPi;  // [0, 360)
+    const double way = a.dir == ir::ArcDir::Cw && ccw > 0 ? 360 - ccw : ccw;
+    return !arc && way > 180 ? way - 360 : way;  // a straight move turns less than half round
   }
 
   // The programmed feed of a cutting block against the CL's: the same kind (per minute, per

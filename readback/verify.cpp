@@ -414,6 +414,7 @@ void Comparison::arc(const ir::Arc& a0) {
     return;
   }
   if (!(a.sweep > 0)) a.sweep = arcgeo::sweep_deg(a, a.dir, 1e-7);
+  const bool turns = a.extra_turns > 0;  // MOVARC's angle, CIRCLE/TIMES: whole turns (in the sweep)
   const arcgeo::ArcProbe cl(a);
   auto on_arc = [&](const Vec3& q) { return cl.distance(q); };
   double nearest;
@@ -422,7 +423,7 @@ void Comparison::arc(const ir::Arc& a0) {
   std::optional<size_t> j;
   if (length <= tol_ && already_there(a.end)) {
     // An arc shorter than the tolerance: the tool is there.
-  } else if (!(j = reach(a.end, on_arc, nearest, at, passed_))) {
+  } else if (!(j = reach(a.end, on_arc, nearest, at, passed_, nullptr, turns ? &a : nullptr))) {
     missed(a.end, nearest, at, "the end of the CL arc");
   } else {
     // The program's path from the arc's start to its end, against the arc, both ways.

@@ -169,6 +169,20 @@ TEST(Verify, ACyclesRapidAcrossIsNoStandInForAClFeed) {
   EXPECT_THAT(across.diags, HasSubstr("part.cl:10:1: error: this CL feed move is made at rapid traverse (G00) [G-code line 10]"));
 }
 
+// An arc of more than a turn (Fusion's MOVARC angle) passes its end at each turn: the arc's end
+// is the one reached after the whole sweep. Its compile was refused at the first pass (540
+// degrees: "the CL arc is not followed"); a program that stops a turn short still fails.
+TEST(Verify, AnArcOfMoreThanATurnEndsAfterItsWholeSweep) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/1000,MMPM\nGOTO/20,0,-1\n"
+                         "MOVARC/0,0,-1,0,0,1,20,ANGLE,540\nGOTO/30,30,-1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G17 G03 X-20. I-20. J0.\nN90 X20. I20. J0.\nN100 X-20. I-20. J0.\nN110 G01 X30. Y30.\n"));
+  Compiled short_by_a_turn = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N90 X20. I20. J0.\nN100 X-20. I-20. J0.\n", ""));
+  EXPECT_FALSE(short_by_a_turn.ok);
+  EXPECT_THAT(short_by_a_turn.diags, HasSubstr("part.cl:8:1: error: the end of the CL arc (-20.0000, 0.0000, -1.0000) is never reached"));
+}
+
 TEST(Verify, RotaryBeyondItsLimitFails) {
   if (corpus_dir().empty()) GTEST_SKIP() << "no corpus";
   const std::string cl = corpus_dir() + "/nist/b45_face.ncl";
