@@ -63,7 +63,7 @@ class ProgramWriter : public Backend {
   // Before motion: the coolant a tool change turned off, on again (unless the CL said).
   void restore_coolant(SourceLoc loc);
   // Before motion: the spindle and the coolant a tool change or a stop turned off, on again.
-  void restore_after_stop(SourceLoc loc);
+  void restore_after_stop(SourceLoc loc, bool cut);
   // The control stopped the spindle (M06 on a mill; M00, M01 with the coolant too).
   void control_stopped(bool coolant_too, bool tool_change);
   void write_smoothing(bool on);
@@ -142,6 +142,7 @@ class ProgramWriter : public Backend {
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
   bool comp_on_ = false;  // G41/G42 written and no G40 since
+  ir::CutterComp comp_now_;  // the compensation written last
   int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once
   bool incremental_ = false;  // a template (G91 G28 Z0.) left the control incremental

@@ -162,6 +162,8 @@ void ProgramWriter::control_stopped(bool coolant_too, bool tool_change) {
   if (spindle_ != ir::SpindleDir::Off && spindle_on_) {
     spindle_restore_ = true;
     spindle_restore_warn_ = tool_change;
+  } else if (tool_change && spindle_restore_) {
+    spindle_restore_warn_ = true;  // an M01 before the M06 stopped it first
   }
   spindle_ = ir::SpindleDir::Off;
   if (coolant_too && coolant_ != ir::CoolantKind::Off) {
@@ -171,12 +173,14 @@ void ProgramWriter::control_stopped(bool coolant_too, bool tool_change) {
   }
 }
 
-void ProgramWriter::restore_after_stop(SourceLoc loc) {
-  if (spindle_restore_) {
+void ProgramWriter::restore_after_stop(SourceLoc loc, bool cut) {
+  // The spindle before the first cut, not before the rapids to it: the CL may start it there
+  // (FFCAM writes the SPINDL after the approach), at the new tool's speed.
+  if (spindle_restore_ && cut) {
     spindle_restore_ = false;
     if (spindle_restore_warn_)
       d_.warning(loc, "the spindle is started again for T" + std::to_string(tool_) + " as the CL left it running (" +
-                          num_text(spindle_on_->speed) + (spindle_on_->mode == ir::SpindleMode::Rpm ? " rpm" : " surface speed") +
+                          num_text(spindle_on_->speed) + (spindle_on_->mode == ir::SpindleMode::Rpm ? " rpm" : " m/min") +
                           "): the CL gives no SPINDL after the tool change, which stops it",
                  "spindle-restart");
     write_spindle(*spindle_on_, loc);

@@ -142,7 +142,10 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
 
   const bool modal = m_.modal.coordinates;
   bool any = !modal || e_.differs('X', x) || e_.differs('Y', y) || e_.differs('Z', z) || rotates;
-  if (!any && !need_work_offset_ && !comp_pending_set_ && !need_length_offset_ && !incremental_) {
+  // A pending G41/G42 waits for a block that moves: started on one that does not, it would
+  // come on at the next block, perhaps an arc (which the arc refuses while it is pending).
+  const bool comp_start = comp_pending_set_ && comp_pending_.side != ir::CompSide::Off;
+  if (!any && !need_work_offset_ && !(comp_pending_set_ && !comp_start) && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
   }

@@ -148,11 +148,11 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         // Something that moves the tool: the coolant a tool change turned off comes back first.
         if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::Arc> || std::is_same_v<T, ir::Groove> ||
                       std::is_same_v<T, ir::ThreadCycle>) {
-          restore_after_stop(loc);
+          restore_after_stop(loc, true);
           cut_since_stop_ = true;
         } else if constexpr (std::is_same_v<T, ir::Move>) {
           if (x.kind != ir::MoveKind::From) {
-            restore_after_stop(loc);
+            restore_after_stop(loc, x.kind != ir::MoveKind::Rapid);
             cut_since_stop_ = true;
           }
         } else if constexpr (std::is_same_v<T, ir::Coolant>) {
@@ -688,18 +688,21 @@ void ProgramWriter::comp_code() {
   }
   comp_pending_set_ = false;
   comp_on_ = c.side != ir::CompSide::Off;
+  comp_now_ = c;
 }
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
-  // A mill's G41/G42 is written in the XY plane (G17): the CL's compensation in another plane
-  // would offset the tool sideways in the wrong one. (A lathe's CL names its turning plane as
-  // its CAM system draws it, XY or ZX: the plane is the lathe's either way.)
-  if (!m_.is_lathe() && c.side != ir::CompSide::Off && c.plane != 0 && c.plane != 'Z') {
-    d_.error(loc, std::string("CUTCOM in the ") + (c.plane == 'Y' ? "ZX" : "YZ") +
-                      " plane: clpc writes a mill's cutter compensation in the XY plane (G17), so the offset would be "
-                      "taken in another plane than the CL asks");
+  // A mill's G41/G42 offsets in the plane square to the tool (G17, or the tilted frame's):
+  // the CL's compensation in a plane the tool is not square to would be taken in another one.
+  // (A lathe's CL names its turning plane as its CAM system draws it: the lathe's either way.)
+  if (!m_.is_lathe() && c.side != ir::CompSide::Off && c.plane != 0) {
+    d_.error(loc, std::string("CUTCOM in the ") + (c.plane == 'Z' ? "XY" : c.plane == 'Y' ? "ZX" : "YZ") +
+                      " plane, which is not square to the tool axis: a mill's cutter compensation is taken in the "
+                      "plane square to the tool, so the offset would be taken in another plane than the CL asks");
     return;
   }
+  // The side and register already in force: nothing starts (a CUTCOM/LEFT repeated before an arc).
+  if (comp_on_ && !comp_pending_set_ && c.side == comp_now_.side && c.reg == comp_now_.reg) return;
   // A register the machine's G41/G42 has no place for (a Fanuc lathe takes the nose radius and
   // tip from the offset its T word selects) is not written: say so once, unless it is the
   // register the T word selects anyway.

@@ -469,9 +469,13 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
     while (slash < line_end && (*slash == ' ' || *slash == '\t')) ++slash;
     if (w == q) continue;
     // A record: the word and '/' (GOTO/...), a head before it (TLON,GOFWD/...), or the word
-    // alone on its line (RAPID, STOP, GOHOME).
+    // alone on its line (RAPID, STOP, OPSTOP, GOHOME).
     const unsigned char *name = q, *name_end = w;
-    bool record = slash == line_end || *slash == '/';
+    // A word alone is a record only if it is one of those that stand alone and change the
+    // program, in capitals ("Thread" or "END" ending a sentence is text).
+    const std::string_view alone(reinterpret_cast<const char*>(q), size_t(w - q));
+    const bool alone_record = alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME";
+    bool record = (slash == line_end && alone_record) || (slash < line_end && *slash == '/');
     if (!record && *slash == ',') {
       // Words and commas up to a '/': the word before the '/' is the record's.
       const unsigned char* sl = slash;

@@ -138,7 +138,7 @@ enum class CompSide : uint8_t { Off, Left, Right };
 struct CutterComp {
   CompSide side = CompSide::Off;
   int reg = 0;  // diameter-offset register; 0 = the tool's own
-  char plane = 0;  // the CL's plane word: 'Z' XYPLAN, 'Y' ZXPLAN, 'X' YZPLAN (its normal); 0: none
+  char plane = 0;  // the CL's plane word where it is not square to the tool axis: 'Z' XYPLAN, 'Y' ZXPLAN, 'X' YZPLAN (its normal); 0: none
 };
 
 struct Dwell {

@@ -92,7 +92,7 @@ void Lowerer::lower_cycle(const Record& r) {
   }
 
   bool depth = false, clear = false, pitch_given = false;
-  size_t first = 1, end = ps.size();  // the keyword pairs read are [first, end)
+  size_t first = 1, skip = ps.size();  // the keyword pairs are read from `first`, past `skip`
   // CATIA's default PP table writes the values by position: depth, clearance, then perhaps the
   // feed and its unit (karlo_DEMO2: CYCLE/TAP, 50.786017, 1.000000 after an approach 1.0 above the
   // hole). A peck cycle's positions are not documented: refused.
@@ -104,7 +104,7 @@ void Lowerer::lower_cycle(const Record& r) {
     }
     // By position: depth, clearance[, f, unit] (CATIA); APT's own form puts the feed between
     // them: depth, unit, f, clearance.
-    const bool apt = ps.size() == 5 && ps[2].is_word() && feed_word(upper(ps[2].text)) && ps[3].is_number() &&
+    const bool apt = ps.size() >= 5 && ps[2].is_word() && feed_word(upper(ps[2].text)) && ps[3].is_number() &&
                      ps[4].is_number();
     if (!apt && (ps.size() < 3 || !ps[2].is_number())) {
       d_.error(ps.loc(2), "CYCLE/" + kind + ": by position, the depth and the clearance come first (d,c[,f,MMPM]), or "
@@ -124,10 +124,11 @@ void Lowerer::lower_cycle(const Record& r) {
     }
     depth = clear = true;
     first = apt ? 2 : 3;  // the feed pair reads below (CATIA's turned round: f, unit)
-    end = apt ? 4 : ps.size();
+    if (apt) skip = 4;    // the clearance, read; keywords may follow it (DWELL,t)
   }
 
-  for (size_t i = first; i < end; ++i) {
+  for (size_t i = first; i < ps.size(); ++i) {
+    if (i == skip) continue;
     const Param& p = ps[i];
     double v = 0;
     const Param* vp = nullptr;

@@ -30,7 +30,8 @@ void Lowerer::lower_tool_change(const Record& r) {
                       "refuse or take as 'no tool'; the length offset is register " + std::to_string(t.length_offset) +
                       "; number the tool in the CAM system",
                "tool-number");
-  if (cycle_open_ && t.number != tool_) {
+  const int offset_now = t.length_offset > 0 ? t.length_offset : t.number;
+  if (cycle_open_ && (t.number != tool_ || offset_now != loaded_offset_)) {
     // The GOTOs after it: holes for the new tool (APT: the cycle is on until CYCLE/OFF), or moves
     // to where the new tool starts? The CL does not say, and either reading cuts wrongly if it
     // is the other (a hole drilled at a positioning move, or holes never drilled).
@@ -64,7 +65,7 @@ void Lowerer::lower_tool_change(const Record& r) {
   if (reloaded_in_cut) {
     from_gap_ = r.loc;
     from_gap_what_ = "after the reload of T" + std::to_string(t.number) + " with another length register at line " +
-                     std::to_string(r.loc.line) + ", which takes the tool up from the cut and back";
+                     std::to_string(r.loc.line) + ", which takes the tool up from where the CL left it and back";
   }
 }
 
@@ -149,6 +150,9 @@ void Lowerer::lower_spindle(const Record& r) {
       push(r.loc, *last_spindle_);
       return;
     }
+    // A gear range alone (SPINDL/RANGE,2, SPINDL/HIGH): the control chooses it from the speed.
+    if (!on && !dir_given && !ps.has("MAXRPM") && ps.size() > 0 && !ps.has("RPM") && !ps.has("SFM") && !ps.has("SMM"))
+      return;
     d_.error(r.loc, on ? "SPINDL/ON with no earlier speed" : "SPINDL: no speed given");
     return;
   }
@@ -330,6 +334,12 @@ void Lowerer::lower_cutcom(const Record& r) {
     d_.error(r.loc, on ? "CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"
                        : "CUTCOM: expected LEFT, RIGHT or OFF");
     return;
+  }
+  if (c.plane != 0) {
+    // The plane square to the tool is the one compensation works in, whatever the CL calls it
+    // (a 3+2 side face is the CL's ZX plane): only another plane is kept, for the backend.
+    const ir::Vec3 normal = c.plane == 'Z' ? ir::Vec3::UnitZ() : c.plane == 'Y' ? ir::Vec3::UnitY() : ir::Vec3::UnitX();
+    if (std::abs(normal.dot(axis_.normalized())) > 1 - 1e-6) c.plane = 0;
   }
   if (c.side != ir::CompSide::Off) last_comp_ = c;
   if (c.side != ir::CompSide::Off) comp_on_at_ = r.loc;

@@ -88,7 +88,11 @@ class DrillCycles : public Pass {
           continue;
         }
         if (from_off_return_ && (m || std::holds_alternative<ir::Arc>(in.op))) {
-          if (!m || m->kind == ir::MoveKind::Feed)
+          // A feed on down the hole's axis through the FROM holds the CL's line (from higher up).
+          const bool down_through = m && (from_what_ - pos_).cross(m->point - pos_).norm() <= 1e-6 * (1 + (m->point - pos_).norm()) &&
+                                    (from_what_ - pos_).dot(m->point - pos_) > 0 &&
+                                    (from_what_ - pos_).norm() <= (m->point - pos_).norm();
+          if ((!m || m->kind == ir::MoveKind::Feed) && !down_through)
             ctx.diags.error(in.loc, "this cut starts at the FROM at line " + std::to_string(from_off_return_->line) +
                                         " (" + point_text(from_what_) + "), but the cycle before it returned the tool to (" +
                                         point_text(pos_) + "): cut from there it would run along a line the CL does not "
@@ -121,6 +125,7 @@ class DrillCycles : public Pass {
         out.push_back(std::move(in));
         continue;
       }
+      from_off_return_.reset();  // the cycle moves across to the next hole at its own level
       ir::Hole h;
       h.point = m->point;
       h.axis = m->axis;

@@ -858,14 +858,32 @@ TEST(CamSystems, TheSpindleTheControlStopsIsStartedAgainAsTheClLeftIt) {
                             "GOTO/30,0,-5\nRAPID\nGOTO/30,0,50\nSTOP\nRAPID\nGOTO/40,0,5\nGOTO/40,0,-5\nFINI\n",
                             machine("fanuc-mill"));
   ASSERT_TRUE(c.ok) << c.diags;
-  EXPECT_THAT(c.output, HasSubstr("N50 T1 M06 (T1)\nN60 S1000 M03\nN70 G54 G00 X20. Y0.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N120 T2 M06 (T2)\nN130 S1000 M03\nN140 G90 G54 G00 X30. Y0.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N180 M00\nN190 S1000 M03\nN200 M08\nN210 X40.\n"));
-  EXPECT_THAT(c.diags, HasSubstr("part.cls:6:1: warning: the spindle is started again for T1 as the CL left it running "
+  // Before the first cut (the CL may give the SPINDL after the approach); the coolant at once.
+  EXPECT_THAT(c.output, HasSubstr("N50 T1 M06 (T1)\nN60 G54 G00 X20. Y0.\nN70 G43 H01 Z5.\nN80 S1000 M03\n"
+                                  "N90 G94 G01 Z-2. F100.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N120 T2 M06 (T2)\nN130 G90 G54 G00 X30. Y0.\nN140 G43 H02 Z5.\nN150 S1000 M03\n"));
+  EXPECT_THAT(c.output, HasSubstr("N180 M00\nN190 M08\nN200 X40.\nN210 Z5.\nN220 S1000 M03\nN230 G01 Z-5.\n"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:8:1: warning: the spindle is started again for T1 as the CL left it running "
                                  "(1000 rpm): the CL gives no SPINDL after the tool change, which stops it "
                                  "[-Wspindle-restart]"));
-  EXPECT_THAT(c.diags, HasSubstr("part.cls:13:1: warning: the spindle is started again for T2"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:14:1: warning: the spindle is started again for T2"));
   EXPECT_THAT(c.diags, Not(HasSubstr("spindle-stopped")));
+  // The CL's SPINDL after the approach (FFCAM writes it so): the new tool's speed, not the last
+  // one's before it (the restart waits for the first cut).
+  Compiled later = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/12000,RPM,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/100,MMPM\n"
+                                "GOTO/20,0,-2\nRAPID\nGOTO/20,0,50\nLOADTL/2\nRAPID\nGOTO/30,0,50\nSPINDL/200,RPM,CCLW\n"
+                                "RAPID\nGOTO/30,0,5\nGOTO/30,0,-5\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(later.ok) << later.diags;
+  EXPECT_THAT(later.output, HasSubstr("N100 T2 M06 (T2)\nN110 G90 G54 G00 X30. Y0.\nN120 G43 H02 Z50.\nN130 S200 M04\n"));
+  EXPECT_THAT(later.diags, Not(HasSubstr("spindle-restart")));
+  // An M01 before the M06 (optional_stop = "tool-change") stops it first: still said.
+  Compiled stop = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/100,MMPM\n"
+                               "GOTO/20,0,-2\nLOADTL/2\nRAPID\nGOTO/30,0,5\nGOTO/30,0,-5\nFINI\n",
+                               machine("m", "[m]\ninherits = \"fanuc-mill\"\n[m.program]\noptional_stop = \"tool-change\"\n"));
+  ASSERT_TRUE(stop.ok) << stop.diags;
+  EXPECT_THAT(stop.output, HasSubstr("N90 M01\nN100 T2 M06 (T2)\n"));
+  EXPECT_THAT(stop.diags, HasSubstr("part.cls:11:1: warning: the spindle is started again for T2"));
   // SPINDL/OFF before the change: nothing to start again.
   Compiled off = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/20,0,5\nSPINDL/OFF\nLOADTL/2\n"
                               "RAPID\nGOTO/30,0,5\nFINI\n",

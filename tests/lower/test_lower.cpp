@@ -482,6 +482,9 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
   EXPECT_THAT(err("GOTO/0,0,5\nPPRINT MEASURE $\nSTOP\n"), HasSubstr("3:1: a '$' at the end of the line before joins this STOP"));
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT ROUGH, FINISH $\nPASS, ROUGH/FINISH\nGOTO/0,0,50\n"), "");  // words, no record
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT FIRST $\nPASS\nGOTO/0,0,50\n"), "");
+  // A word alone that names a record but ends a sentence: text (only RAPID, STOP, OPSTOP and
+  // GOHOME, in capitals, stand alone as records that change the program).
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT FINISH PASS, CHECK $\nThread\nPPRINT SEE $\nEND\nGOTO/0,0,50\n"), "");
 }
 
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
@@ -494,7 +497,7 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
 TEST(Lower, ToolChangesThePostCannotMakeAsTheClMeansThemAreRefused) {
   EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nGOTO/20,0,-1\n"),
             "6:1: this cut starts after the reload of T1 with another length register at line 5, which takes the tool "
-            "up from the cut and back: cut from there it would run along a line the CL does not have; have the CAM "
+            "up from where the CL left it and back: cut from there it would run along a line the CL does not have; have the CAM "
             "system write the move to where the cut starts (a RAPID GOTO)");
   EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1,OSETNO,5\nRAPID\nGOTO/0,0,5\nGOTO/20,0,-1\n"), "");
   EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nLOADTL/1\nGOTO/20,0,-1\n"), "");
@@ -557,6 +560,8 @@ TEST(Lower, DwellIsReadAsDelay) {
 
 TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_EQ(err("SELECT/HEAD,FRONT\nLOADTL/1\nCUTTER/10\nGOTO/0,0,5\nSELECT/OFF\nCUTTER/OFF\nGOTO/10,0,5\n"), "");
+  // A gear range alone: the control chooses it from the speed.
+  EXPECT_EQ(err("LOADTL/1\nSPINDL/1000\nSPINDL/RANGE,2\nSPINDL/HIGH\nGOTO/0,0,5\n"), "");
   // APT's cutter display and the end of the post's retracts: no motion either.
   EXPECT_EQ(err("LOADTL/1\nCUTTER/DISPLY,ON\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT/OFF\nGOTO/10,0,-1\n"), "");
   EXPECT_THAT(err("LOADTL/1\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT\nGOTO/10,0,-1\n"), HasSubstr("4:1: RETRCT asks for a retract"));

@@ -40,8 +40,11 @@ TEST(Cycles, NxDrillKeywordsInAnotherOrder) {
 // APT's positional form: depth, the feed with its unit, clearance (CYCLE/DRILL,d,IPM,f,c).
 TEST(Cycles, AptPositionalDepthFeedClearance) {
   EXPECT_EQ(cycle_blocks("CYCLE/DRILL,5,MMPM,80,2"), "N70 G94 G98 G81 X10. Y10. Z-5. R2. F80.\nN80 X30.\nN90 G80");
+  EXPECT_EQ(cycle_blocks("CYCLE/DRILL,5,MMPM,80,2,DWELL,1"), "N70 G94 G98 G82 X10. Y10. Z-5. R2. P1000 F80.\nN80 X30.\nN90 G80");
   Compiled c = compile_text(std::string(kHead) + "CYCLE/DRILL,5,MMPM,80,2,7\nGOTO/10,10,0\nCYCLE/OFF\n",
                             machine("fanuc-mill"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:7:25: error: CYCLE: the number 7 has no keyword before it"));
+  c = compile_text(std::string(kHead) + "CYCLE/DRILL,5,MMPM\nGOTO/10,10,0\nCYCLE/OFF\n", machine("fanuc-mill"));
   EXPECT_THAT(c.diags, HasSubstr("part.cls:7:15: error: CYCLE/DRILL: by position, the depth and the clearance come first "
                                  "(d,c[,f,MMPM]), or the depth, the feed and the clearance (d,MMPM,f,c)"));
 }
@@ -59,6 +62,13 @@ TEST(Cycles, AFromUpTheLastHolesAxisSaysWhereTheCycleLeftTheTool) {
   EXPECT_THAT(c.diags, HasSubstr("part.cls:12:1: error: this cut starts at the FROM at line 11 (30, 10, 30), but the "
                                  "cycle before it returned the tool to (30, 10, 20)"));
   c = compile_text(std::string(kHead) + cycle + "FROM/30,10,30\nRAPID\nGOTO/30,10,5\n", machine("fanuc-mill"));
+  EXPECT_TRUE(c.ok) << c.diags;
+  // A feed on down the axis through a lower FROM holds the CL's line; a FROM between holes is
+  // passed by the next one (the cycle moves across at its own level).
+  c = compile_text(std::string(kHead) + cycle + "FROM/30,10,2\nGOTO/30,10,-3\n", machine("fanuc-mill"));
+  EXPECT_TRUE(c.ok) << c.diags;
+  c = compile_text(std::string(kHead) + "CYCLE/DRILL,DEPTH,5,MMPM,80,CLEAR,2\nGOTO/10,10,0\nFROM/10,10,30\nGOTO/30,10,0\n"
+                   "CYCLE/OFF\nGOTO/30,10,-1\n", machine("fanuc-mill"));
   EXPECT_TRUE(c.ok) << c.diags;
   c = compile_text(std::string(kHead) + cycle + "FROM/31,10,20\nGOTO/30,10,5\n", machine("fanuc-mill"));
   EXPECT_THAT(c.diags, HasSubstr("part.cls:11:1: error: FROM after motion puts the tool at (31, 10, 20)"));

@@ -66,9 +66,8 @@ TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
   ASSERT_TRUE(c.ok) << c.diags;
   // After the tool change: X Y, then Z with the length offset (the backend's), not split again.
   // The moves that start and cancel compensation carry G41 and G40: as they are.
-  // (T2 has no SPINDL of its own: the spindle M06 stopped is started again, as the CL left it.)
-  EXPECT_THAT(c.output, HasSubstr("N100 S1000 M03\nN110 G90 G54 G00 X50. Y50.\nN120 G43 H02 Z5.\nN130 G41 D2 X60. Z20.\n"
-                                  "N140 G40 X70. Z30.\nN150 M05\nN160 G91 G28 Z0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N100 G90 G54 G00 X50. Y50.\nN110 G43 H02 Z5.\nN120 G41 D2 X60. Z20.\n"
+                                  "N130 G40 X70. Z30.\nN140 G91 G28 Z0.\n"));
 }
 
 TEST(RapidSplit, AlongATiltedToolAxisOnTheFiveAxis) {
@@ -144,8 +143,30 @@ TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/RIGHT,2,ZXPLAN\n"
       "GOTO/10,0,-1\n",
       machine("fanuc-mill"));
-  EXPECT_THAT(zx.diags, HasSubstr("part.cls:7:1: error: CUTCOM in the ZX plane: clpc writes a mill's cutter compensation "
-                                  "in the XY plane (G17), so the offset would be taken in another plane than the CL asks"));
+  EXPECT_THAT(zx.diags, HasSubstr("part.cls:7:1: error: CUTCOM in the ZX plane, which is not square to the tool axis: a "
+                                  "mill's cutter compensation is taken in the plane square to the tool, so the offset "
+                                  "would be taken in another plane than the CL asks"));
+  // A 3+2 side face is the CL's ZX plane: square to the tool, posted.
+  Compiled side = compile_text(
+      "UNITS/MM\nMULTAX/ON\nLOADTL/1\nSPINDL/8000,RPM,CLW\nRAPID\nGOTO/0,-50,10,0,-1,0\nFEDRAT/500,MMPM\n"
+      "GOTO/0,-10,10,0,-1,0\nCUTCOM/LEFT,ZXPLAN\nGOTO/10,-10,10,0,-1,0\nGOTO/10,-10,20,0,-1,0\nCUTCOM/OFF\n"
+      "GOTO/0,-10,30,0,-1,0\nRAPID\nGOTO/0,-50,30,0,-1,0\nFINI\n",
+      machine("haas-umc750"), {.certify = true});
+  EXPECT_TRUE(side.ok) << side.diags;
+  // A point repeated between the CUTCOM and the arc: G41 on a block with no motion came on at
+  // the arc (certified); it waits for a move, and the arc refuses it.
+  Compiled still = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,0,5\nGOTO/10,0,-1\n"
+      "CUTCOM/LEFT\nGOTO/10,0,-1\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\n",
+      machine("fanuc-mill"));
+  EXPECT_THAT(still.diags, HasSubstr("part.cls:10:1: error: cutter compensation (CUTCOM) starts on an arc"));
+  // CUTCOM/LEFT again, with compensation on that side: nothing starts.
+  Compiled again = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,0,5\nCUTCOM/LEFT\n"
+      "GOTO/10,0,-1\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nCUTCOM/LEFT\nCIRCLE/20,20,-1,0,0,1,10\n"
+      "GOTO/30,20,-1\nGOTO/40,20,-1\nCUTCOM/OFF\nGOTO/50,30,-1\n",
+      machine("fanuc-mill"), {.certify = true});
+  EXPECT_TRUE(again.ok) << again.diags;
   Compiled xy = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/RIGHT,2,XYPLAN\n"
       "GOTO/10,0,-1\nCUTCOM/OFF\nGOTO/20,0,-1\n",
