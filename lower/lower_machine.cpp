@@ -30,8 +30,8 @@ void Lowerer::lower_tool_change(const Record& r) {
                       "refuse or take as 'no tool'; the length offset is register " + std::to_string(t.length_offset) +
                       "; number the tool in the CAM system",
                "tool-number");
-  const int offset_now = t.length_offset > 0 ? t.length_offset : t.number;
-  if (cycle_open_ && (t.number != tool_ || offset_now != loaded_offset_)) {
+  const int offset = t.length_offset > 0 ? t.length_offset : t.number;
+  if (cycle_open_ && (t.number != tool_ || offset != loaded_offset_)) {
     // The GOTOs after it: holes for the new tool (APT: the cycle is on until CYCLE/OFF), or moves
     // to where the new tool starts? The CL does not say, and either reading cuts wrongly if it
     // is the other (a hole drilled at a positioning move, or holes never drilled).
@@ -47,7 +47,6 @@ void Lowerer::lower_tool_change(const Record& r) {
                         "the last one's radius; CUTCOM/OFF before the change, CUTCOM/LEFT or RIGHT after it");
     comp_on_at_.reset();
   }
-  const int offset = t.length_offset > 0 ? t.length_offset : t.number;
   // The tool in the spindle loaded again with another length register, after a move (a cut or
   // a rapid) the CL left it at: the post takes the tool up and brings it back with the new
   // offset, so a cut next would start from up there (a diagonal feed back into the part where
