@@ -501,6 +501,8 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
     check_retract(loc, op);
   if (from_gap_) [[unlikely]]
     check_from_gap(loc, op);
+  if (zero_feed_at_) [[unlikely]]
+    check_zero_feed(loc, op);
   if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
   else if (const auto* m = std::get_if<ir::Move>(&op)) {
     if (m->kind != ir::MoveKind::From) at_home_ = false;
@@ -534,6 +536,18 @@ void Lowerer::check_from_gap(SourceLoc loc, const ir::Op& op) {
                       ": cut from there it would run along a line the CL does not have; have the CAM system "
                       "write the move to where the cut starts (a RAPID GOTO)");
   from_gap_.reset();
+}
+
+// Under a FEDRAT/0, a cut with no feed of its own (a cycle's, a thread's lead): refused once
+// at the cut, naming the FEDRAT. The feed before the FEDRAT/0 would be a guess.
+void Lowerer::check_zero_feed(SourceLoc loc, const ir::Op& op) {
+  const auto* m = std::get_if<ir::Move>(&op);
+  const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op);
+  if (!cut || ((cycle_open_ || rough_open_ || thread_open_) && section_feed_)) return;
+  d_.error(loc, "this cut is fed at zero: the FEDRAT/0 at line " + std::to_string(zero_feed_at_->line) +
+                    " is in force (a feed of zero never moves the tool; it may stand before rapid moves only); "
+                    "give the cut its FEDRAT");
+  zero_feed_at_.reset();
 }
 
 void Lowerer::check_retract(SourceLoc loc, const ir::Op& op) {

@@ -51,6 +51,7 @@ class Lowerer : public RecordSink {
   // lower.cpp: operations and dispatch
   ir::Instr& push(SourceLoc loc, ir::Op op);
   void check_from_gap(SourceLoc loc, const ir::Op& op);
+  void check_zero_feed(SourceLoc loc, const ir::Op& op);
   void check_retract(SourceLoc loc, const ir::Op& op);  // the move after a RETRCT
   // An instruction whose text goes in the operation's pool (Comment, Insert, Passthrough):
   // the pool and the instruction land in the same chunk.
@@ -171,6 +172,11 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> comp_on_at_;  // the CUTCOM/LEFT|RIGHT in force (none after CUTCOM/OFF)
   std::optional<ir::CutterComp> last_comp_;  // the last CUTCOM/LEFT|RIGHT, which CUTCOM/ON resumes
   bool inverse_time_ = false;  // the feed in force is inverse time (FEDRAT/INVERS)
+  // A FEDRAT/0 in force (until the next FEDRAT): rapids may follow, a cut may not. CAM systems
+  // write it before rapid moves; a cut at feed zero never ends, and the feed before is not
+  // what the CL asks.
+  std::optional<SourceLoc> zero_feed_at_;
+  bool section_feed_ = false;  // the open CYCLE, groove, roughing or THREAD gives its own feed
   bool spindle_running_ = false;  // the last SPINDL turned the spindle on
   double pending_max_rpm_ = 0;    // SPINDL/MAXRPM,n alone: the clamp for surface speeds after it
   // The last FEDRAT's mode and unit (factor to program units), which a FEDRAT without a unit

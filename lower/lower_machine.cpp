@@ -211,10 +211,16 @@ void Lowerer::lower_feed(const Record& r) {
     d_.error(r.end, "FEDRAT: no feed value");
     return;
   }
+  if (f.value == 0) {
+    // Only the cuts after it are wrong (check_zero_feed): a FEDRAT/0 before rapids is read.
+    zero_feed_at_ = r.loc;
+    return;
+  }
   if (!(f.value > 0)) {
     d_.error(r.loc, "FEDRAT: the feed must be greater than zero, found " + num_text(f.value));
     return;
   }
+  zero_feed_at_.reset();
   // A FEDRAT without a unit word keeps the unit the last one named (APT's feed mode is modal:
   // FEDRAT/0.2,MMPR then FEDRAT/0.3 is 0.3 mm per revolution). Before any, per minute in the
   // program's units. Inverse time is never kept: it belongs to the moves it was written for.

@@ -79,6 +79,7 @@ void Lowerer::lower_rough_cycle(const Record& r) {
   ensure_operation(r.loc);
   m.start = pos_;
   rough_open_ = true;
+  section_feed_ = m.feed > 0;
   rough_loc_ = r.loc;
   rough_start_ = pos_;
   rough_size_ = op_.body.size();

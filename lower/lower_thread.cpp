@@ -71,6 +71,7 @@ void Lowerer::lower_thread(const Record& r) {
     push(r.loc, ir::ThreadMark{false, ir::ThreadKind::Turn, 0});  // the first section ends here
   }
   thread_open_ = true;
+  section_feed_ = true;  // the lead is the feed
   push(r.loc, t);
 }
 

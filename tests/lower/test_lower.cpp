@@ -568,6 +568,22 @@ TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
 }
 
+// FEDRAT/0 stopped the post even where only rapids followed it; under it a cut would have
+// taken the feed before (a guess). Now the cut is refused, once, naming the FEDRAT.
+TEST(Lower, AZeroFeedIsRefusedAtTheCutNotBeforeRapids) {
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/0\nRAPID\nGOTO/0,0,50\nRAPID\nGOTO/10,0,50\nFEDRAT/100\nGOTO/10,0,0\n"), "");
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/100\nGOTO/0,0,50\nFEDRAT/0,MMPM\nRAPID\nGOTO/10,0,50\nGOTO/10,0,0\n"),
+            "7:1: this cut is fed at zero: the FEDRAT/0 at line 4 is in force (a feed of zero never moves the tool; it "
+            "may stand before rapid moves only); give the cut its FEDRAT");
+  EXPECT_THAT(err("LOADTL/1\nFEDRAT/0\nRAPID\nGOTO/5,0,50\nCIRCLE/0,0,50,0,0,1,5\nGOTO/0,5,50\n"),
+              HasSubstr("5:1: this cut is fed at zero: the FEDRAT/0 at line 2"));
+  // A cycle with its own feed drills at it; one without would take the feed before.
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/0\nRAPID\nGOTO/0,0,19\nCYCLE/DRILL,FEDTO,10,RAPTO,3,MMPM,100\nGOTO/0,0,0\nCYCLE/OFF\n"), "");
+  EXPECT_THAT(err("LOADTL/1\nFEDRAT/0\nRAPID\nGOTO/0,0,19\nCYCLE/DRILL,FEDTO,10,RAPTO,3\nGOTO/0,0,0\nCYCLE/OFF\n"),
+              HasSubstr("6:1: this cut is fed at zero"));
+  EXPECT_EQ(err("LOADTL/1\nFEDRAT/-1\n"), "2:1: FEDRAT: the feed must be greater than zero, found -1");
+}
+
 // A cycle with no feed of its own under FEDRAT/INVERS took the inverse-time F as its feed
 // (G93 in force into G81 F2, certified).
 TEST(Lower, ACycleWithoutAFeedUnderInverseTimeIsRefused) {
