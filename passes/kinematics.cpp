@@ -136,6 +136,7 @@ class Kinematics : public Pass {
       if (auto* m = std::get_if<ir::Move>(&in.op)) {
         if (m->kind == ir::MoveKind::From) {
           prev_tip_ = m->point;
+          prev_rapid_ = true;  // a FROM is where the tool stands in the air
           prev_axis_ = m->axis;
           have_prev_ = true;
           out.push_back(std::move(in));
@@ -227,12 +228,15 @@ class Kinematics : public Pass {
 
   // Turns the free axis to `to` with the tool at the last CL point (at the singularity the tool
   // keeps its direction). Without TCPC a table axis carries the tip round a circle while the
-  // control moves X Y Z straight: in steps whose chord stays within the tolerance.
-  void turn_free_axis(double to, SourceLoc loc, std::vector<ir::Instr>& out) {
+  // control moves X Y Z straight: in steps whose chord stays within the tolerance. Between two
+  // rapids (a 3+2 reorientation in the air) the turn is a rapid: fed, it took a linear F as
+  // degrees per minute, or stopped the post where no FEDRAT was given yet. Where a cut left the
+  // tool it is fed, whatever comes next: the tip stays on the part only within the tolerance.
+  void turn_free_axis(double to, ir::MoveKind kind, SourceLoc loc, std::vector<ir::Instr>& out) {
     ir::Move turn;
     turn.point = prev_tip_;
     turn.axis = prev_axis_;
-    turn.kind = ir::MoveKind::Feed;
+    turn.kind = kind;
     const kin::Angles from = cur_;
     kin::Angles end = cur_;
     end[free_] = to;
@@ -455,7 +459,8 @@ class Kinematics : public Pass {
         retract_rotate(c.a, m, loc, out);
       } else if (at_singularity() && have_prev_ && std::abs(c.a[free_] - cur_[free_]) > 1e-9) {
         // Leaving the singularity on another branch: turn the free axis first, on the spot.
-        turn_free_axis(c.a[free_], loc, out);
+        turn_free_axis(c.a[free_], m.kind == ir::MoveKind::Rapid && prev_rapid_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed,
+                       loc, out);
       }
       a = c.a;
       const kin::Angles turns = unwind_turns(a);
@@ -496,7 +501,7 @@ class Kinematics : public Pass {
     emit(mid, here.a, true, loc, out);
     // Turn the free axis to the branch the rest of the move takes, on the spot.
     Choice next = choose(m.axis);
-    if (next.found && std::abs(next.a[free_] - cur_[free_]) > 1e-9) turn_free_axis(next.a[free_], loc, out);
+    if (next.found && std::abs(next.a[free_] - cur_[free_]) > 1e-9) turn_free_axis(next.a[free_], ir::MoveKind::Feed, loc, out);
   }
 
   void emit(ir::Move m, const kin::Angles& a, bool simultaneous, SourceLoc loc, std::vector<ir::Instr>& out) {
@@ -515,6 +520,7 @@ class Kinematics : public Pass {
     set_current(a, &axis);
     prev_tip_ = tip;
     prev_axis_ = axis;
+    prev_rapid_ = m.kind == ir::MoveKind::Rapid;
     have_prev_ = true;
     out.push_back({loc, m});
   }
@@ -739,6 +745,7 @@ class Kinematics : public Pass {
     a.rotary = t;
     prev_tip_ = end_in_part;
     prev_axis_ = axis_in_part;
+    prev_rapid_ = false;
     have_prev_ = true;
     out.push_back({loc, a});
   }
@@ -819,6 +826,7 @@ class Kinematics : public Pass {
   ir::Spindle spindle_;
   Vec3 prev_tip_ = Vec3::Zero(), prev_axis_ = Vec3::UnitZ();
   bool have_prev_ = false;
+  bool prev_rapid_ = false;  // the tool came to prev_tip_ at rapid (in the air, not at a cut)
 };
 
 }  // namespace

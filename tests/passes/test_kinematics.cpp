@@ -225,6 +225,20 @@ TEST(KinematicsPass, IndexedOperationPositionsOnceAndUsesG254) {
   EXPECT_THAT(c.output, HasSubstr("G255\n"));
 }
 
+// NX and Creo start a 3+2 operation with a RAPID from the vertical tool to the tilted one.
+// At the vertical C is free: it turns first, on the spot. That turn was a feed: with no
+// FEDRAT yet the post stopped, after one it was G01 C90. at a linear F (degrees per minute).
+TEST(KinematicsPass, ARapidLeavingTheVerticalTurnsTheFreeAxisAtRapid) {
+  const std::string cl =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,5000,CLW\nMULTAX\nRAPID\nGOTO/0,0,50,0,0,1\nRAPID\n"
+      "GOTO/0,0,50,0,0.5,0.8660254\nRAPID\nGOTO/10,0,5,0,0.5,0.8660254\nFEDRAT/MMPM,500\n"
+      "GOTO/10,0,0,0,0.5,0.8660254\nGOTO/30,0,0,0,0.5,0.8660254\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N35 G00 X0. Y0. B0. C0.\nN40 Z1.9685\nN45 C90.\nN50 B30.\n"));
+  EXPECT_THAT(c.output, HasSubstr("G94 G01 Z0. F19.69\n"));
+}
+
 TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {
   std::string extra = "[inv-umc]\ninherits = \"haas-umc750\"\n[inv-umc.kinematics]\nsimultaneous = \"transform\"\ninverse_time = true\n"
                       "max_inverse_time = 5000.0\n";
