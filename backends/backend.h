@@ -71,6 +71,10 @@ class ProgramWriter : public Backend {
   void comp_code();
   // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
   bool spindle_within_limit(double rpm, SourceLoc loc);
+  // True (and an error at loc) when the machine's TOML leaves `code` empty: it lacks the
+  // function (codes.<key>), and what the CL asks for cannot be written.
+  bool lacks(const CodeTemplate& code, SourceLoc loc, const char* key, const std::string& what,
+             const std::string& why = {});
   bool tool_loaded_for_cut(SourceLoc loc);  // false (and an error, once) when no tool is loaded
   void write_header(const ir::ProgramInfo& info);
   long program_number(const ir::ProgramInfo& info) const;

@@ -22,6 +22,15 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // The tool already at the cut with the same offset: nothing to write. With another offset
   // (OSETNO), the T word is written again: the turret stays, the offset changes.
   if (t.tool == tool_ && offset == length_offset_) return;
+  // A machine without a tool changer (an empty tool_change) takes the first tool as the
+  // operator loads it before the start; another tool cannot be brought in by the program.
+  if (tool_ >= 0 && lacks(m_.codes.tool_change, loc, "tool_change",
+                          "change the tool",
+                          "tool " + std::to_string(tool_) + " would cut on for tool " + std::to_string(t.tool) +
+                              "; post each tool's operations as a program of its own")) {
+    tool_ = t.tool;
+    return;
+  }
   if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
@@ -51,6 +60,12 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     return;
   }
   const CodeTemplate& dir = s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw;
+  if (lacks(dir, loc, s.dir == ir::SpindleDir::Cw ? "spindle_cw" : "spindle_ccw",
+            s.dir == ir::SpindleDir::Cw ? "start the spindle clockwise" : "start the spindle counter-clockwise",
+            "the tool would cut with the spindle stopped")) {
+    spindle_ = s.dir;
+    return;
+  }
   if (s.mode == ir::SpindleMode::SurfaceSpeed) {
     // The programmer's MAXRPM, never above the machine's limit.
     double clamp = s.max_rpm;

@@ -231,6 +231,10 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
         } else if constexpr (std::is_same_v<T, ir::Spindle>) {
           write_spindle(x, loc);
         } else if constexpr (std::is_same_v<T, ir::Feed>) {
+          if (x.mode == ir::FeedMode::PerRev &&
+              lacks(m_.codes.feed_per_rev, loc, "feed_per_rev", "feed per revolution",
+                    "its F would be read per minute; have the CAM system write the feed per minute"))
+            return;
           if (x.mode != feed_mode_ || !feed_known_ || x.value != feed_) feed_written_ = false;
           feed_mode_ = x.mode;
           feed_ = x.value;
@@ -337,6 +341,14 @@ void ProgramWriter::write_groove(const ir::Operation&, const ir::Groove&, Source
 
 void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
   if (!s.setup) {
+    // A program stop is where the operator acts (a clamp moved, a chip cleared): never lost. An
+    // optional stop the machine cannot make is said.
+    if (s.kind == ir::StopKind::Optional && m_.codes.optional_stop.empty()) {
+      d_.warning(loc, "machine '" + m_.name + "' has no optional stop (codes.optional_stop is empty): OPSTOP is not written",
+                 "machine-code");
+      return;
+    }
+    if (s.kind != ir::StopKind::Optional && lacks(m_.codes.stop, loc, "stop", "stop the program")) return;
     e_.begin(loc);
     e_.code(s.kind == ir::StopKind::Optional ? m_.codes.optional_stop : m_.codes.stop);
     e_.end();
@@ -344,6 +356,7 @@ void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
     return;
   }
   // The operator turns the part over: tool clear, spindle and coolant off, then on again.
+  if (lacks(m_.codes.stop, loc, "stop", "stop the program for the operator")) return;
   const ir::SpindleDir dir = spindle_;
   const double rpm = spindle_rpm_;
   const ir::CoolantKind coolant = coolant_;
@@ -373,6 +386,14 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.code(m_.codes.spindle_off);
     spindle_ = ir::SpindleDir::Off;
     e_.end();
+    return;
+  }
+  const bool cw = s.dir == ir::SpindleDir::Cw;
+  if (lacks(cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw, loc, cw ? "spindle_cw" : "spindle_ccw",
+            cw ? "start the spindle clockwise" : "start the spindle counter-clockwise",
+            "the tool would cut with the spindle stopped")) {
+    e_.end();
+    spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
     return;
   }
   double rpm = s.speed;
@@ -420,6 +441,17 @@ bool ProgramWriter::tool_loaded_for_cut(SourceLoc loc) {
                   "tool length offset is in force; add LOADTL/n before it, or have the CAM system write its tool change");
   no_tool_reported_ = true;
   return false;
+}
+
+// An empty code in the machine's TOML means the machine lacks the function. Where the CL asks
+// for one nothing else can stand in for, the record is refused: written as nothing, a tool
+// change, a spindle start, a stop, a dwell or cutter compensation would leave the wrong tool
+// cutting, the spindle stopped, no operator stop, no wait, or the cut on the tool's centre.
+bool ProgramWriter::lacks(const CodeTemplate& code, SourceLoc loc, const char* key, const std::string& what,
+                          const std::string& why) {
+  if (!code.empty()) return false;
+  d_.error(loc, "machine '" + m_.name + "' has no code to " + what + " (codes." + key + " is empty)" + (why.empty() ? "" : ": " + why));
+  return true;
 }
 
 bool ProgramWriter::spindle_within_limit(double rpm, SourceLoc loc) {
@@ -557,6 +589,15 @@ void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
     case ir::CoolantKind::Air: t = &k.coolant_air; break;
     case ir::CoolantKind::Tap: t = &k.coolant_tap; break;
   }
+  if (t->empty() && (c.kind == ir::CoolantKind::Off || k.coolant_flood.empty())) {
+    // Never flood for OFF; a machine without flood has no coolant to fall back to.
+    d_.warning(loc, "machine '" + m_.name + "' has no code to turn " +
+                        (c.kind == ir::CoolantKind::Off ? std::string("the coolant off (codes.coolant_off)") : std::string("this coolant on")) +
+                        ": nothing is written",
+               "coolant");
+    coolant_ = c.kind;
+    return;
+  }
   if (t->empty()) {
     d_.warning(loc, "machine '" + m_.name + "' has no code for this coolant; flood coolant used", "coolant");
     t = &k.coolant_flood;
@@ -568,6 +609,7 @@ void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
 }
 
 void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
+  if (lacks(m_.codes.dwell, loc, "dwell", "dwell")) return;
   double seconds = d.value;
   if (d.revolutions) {
     // A dwell of so many turns lasts as long as the spindle takes to make them at the speed in
@@ -707,6 +749,13 @@ void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   // tip from the offset its T word selects) is not written: say so once, unless it is the
   // register the T word selects anyway.
   const CodeTemplate& code = c.side == ir::CompSide::Left ? m_.codes.comp_left : m_.codes.comp_right;
+  if (c.side != ir::CompSide::Off &&
+      lacks(code, loc, c.side == ir::CompSide::Left ? "comp_left" : "comp_right",
+            "offset the cutter to the " + std::string(c.side == ir::CompSide::Left ? "left" : "right") + " of the path",
+            "the cut would run on the tool's centre"))
+    return;
+  if (c.side == ir::CompSide::Off && (comp_on_ || comp_pending_set_) && lacks(m_.codes.comp_off, loc, "comp_off", "end cutter compensation"))
+    return;
   const int selected = length_offset_ > 0 ? length_offset_ : tool_;
   if (c.side != ir::CompSide::Off && c.reg > 0 && c.reg != selected && c.reg != comp_register_said_ &&
       !code.uses(Var::Register)) {

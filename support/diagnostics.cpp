@@ -40,6 +40,7 @@ const std::vector<WarningName>& warning_names() {
       {"feed-clamped", "a feed per minute above the machine's max_feed, written as max_feed"},
       {"insert", "an INSERT that is no block the control reads, written as a comment; one with axis words, not checked"},
       {"invalid-utf8", "a byte of a one-byte code page in a comment or text"},
+      {"machine-code", "an optional stop the machine has no code for, not written"},
       {"motion-before-tool", "a rapid before the first tool change, taken as the start point"},
       {"not-a-record", "a line that is no CL record, skipped"},
       {"not-supported", "a record none of clpc's machines can act on"},

@@ -183,6 +183,50 @@ TEST(ShopFloor, PassesOutOfOrderAreAnError) {
               StartsWith("shop.toml:3:12: error: late.pipeline: 'drill-cycles' must come before 'kinematics'\n"));
 }
 
+// A machine's TOML that leaves a code empty lacks the function. A tool change, a spindle
+// start, a stop, a dwell, cutter compensation or a feed per revolution were written as nothing
+// and the program certified (tool 1 cutting tool 2's operation, the spindle never started,
+// the cut on the tool's centre); a COOLNT/OFF was written as flood coolant on.
+TEST(ShopFloor, ACodeTheMachineLacksRefusesWhatTheClCannotDoWithout) {
+  const std::string toml =
+      "[router]\ninherits = \"fanuc-mill\"\n[router.codes]\ncomp_left = \"\"\ntool_change = \"\"\ncoolant_off = \"\"\n"
+      "spindle_ccw = \"\"\ndwell = \"\"\nstop = \"\"\noptional_stop = \"\"\nfeed_per_rev = \"\"\n";
+  const Machine m = machine("router", toml);
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,10,10\nGOTO/10,10,0\n";
+  auto first_error = [&](const std::string& tail) {
+    Compiled c = compile_text(head + tail, m);
+    EXPECT_FALSE(c.ok);
+    const size_t e = c.diags.find("error: ");
+    if (e == std::string::npos) return c.diags;
+    const size_t start = c.diags.rfind("part.cls", e);
+    return c.diags.substr(start, c.diags.find('\n', e) - start);
+  };
+  EXPECT_EQ(first_error("LOADTL/2\nGOTO/20,10,0\n"),
+            "part.cls:8:1: error: machine 'router' has no code to change the tool (codes.tool_change is empty): tool 1 would "
+            "cut on for tool 2; post each tool's operations as a program of its own");
+  EXPECT_EQ(first_error("CUTCOM/LEFT\nGOTO/20,10,0\n"),
+            "part.cls:8:1: error: machine 'router' has no code to offset the cutter to the left of the path "
+            "(codes.comp_left is empty): the cut would run on the tool's centre");
+  EXPECT_EQ(first_error("SPINDL/RPM,1000,CCLW\nGOTO/20,10,0\n"),
+            "part.cls:8:1: error: machine 'router' has no code to start the spindle counter-clockwise (codes.spindle_ccw is "
+            "empty): the tool would cut with the spindle stopped");
+  EXPECT_EQ(first_error("DELAY/2\n"), "part.cls:8:1: error: machine 'router' has no code to dwell (codes.dwell is empty)");
+  EXPECT_EQ(first_error("STOP\n"), "part.cls:8:1: error: machine 'router' has no code to stop the program (codes.stop is empty)");
+  EXPECT_EQ(first_error("FEDRAT/0.1,MMPR\nGOTO/20,10,0\n"),
+            "part.cls:8:1: error: machine 'router' has no code to feed per revolution (codes.feed_per_rev is empty): its F "
+            "would be read per minute; have the CAM system write the feed per minute");
+  // The first tool is the one the operator loads; an OPSTOP and a coolant are said, not written.
+  Compiled ok = compile_text(head + "OPSTOP\nCOOLNT/FLOOD\nCOOLNT/OFF\nGOTO/20,10,0\n", m, {.certify = true});
+  ASSERT_TRUE(ok.ok) << ok.diags;
+  EXPECT_THAT(ok.diags, HasSubstr("part.cls:8:1: warning: machine 'router' has no optional stop (codes.optional_stop is "
+                                  "empty): OPSTOP is not written [-Wmachine-code]"));
+  EXPECT_THAT(ok.diags, HasSubstr("part.cls:10:1: warning: machine 'router' has no code to turn the coolant off "
+                                  "(codes.coolant_off): nothing is written [-Wcoolant]"));
+  EXPECT_THAT(ok.output, HasSubstr("M08"));
+  EXPECT_EQ(ok.output.find("M08", ok.output.find("M08") + 1), std::string::npos);
+  EXPECT_THAT(ok.output, Not(HasSubstr("M01")));
+}
+
 // --- Per-job options -------------------------------------------------------------------
 
 TEST(JobOptions, ProgramNumberFromTheFileName) {
