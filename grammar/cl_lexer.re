@@ -461,7 +461,18 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
     const unsigned char* q = b + (at - abs(b));
     while (q < e && (*q == ' ' || *q == '\t')) ++q;
     const unsigned char* w = q;
-    while (w < e && std::isalpha(*w)) ++w;
+    // A word may hold hyphens (END-OF-PATH); NX's TOOL PATH is two words.
+    while (w < e && (std::isalpha(*w) || (*w == '-' && w > q && w + 1 < e && std::isalpha(w[1])))) ++w;
+    bool tool_path = false;
+    if (w - q == 4 && iequals(std::string_view(reinterpret_cast<const char*>(q), 4), "TOOL")) {
+      const unsigned char* p = w;
+      while (p < e && (*p == ' ' || *p == '\t')) ++p;
+      if (p > w && e - p >= 4 && iequals(std::string_view(reinterpret_cast<const char*>(p), 4), "PATH") &&
+          (e - p == 4 || !std::isalpha(p[4]))) {
+        w = p + 4;
+        tool_path = true;
+      }
+    }
     // The joined line ends at the next '$' join or at the text's end.
     const unsigned char* line_end = e;
     if (i + 1 < splices_.size() && splices_[i + 1].at < abs(e)) line_end = b + (splices_[i + 1].at - abs(b));
@@ -474,7 +485,8 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
     // A word alone is a record only if it is one of those that stand alone and change the
     // program, in capitals ("Thread" or "END" ending a sentence is text).
     const std::string_view alone(reinterpret_cast<const char*>(q), size_t(w - q));
-    const bool alone_record = alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME";
+    const bool alone_record =
+        alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME" || alone == "END-OF-PATH";
     bool record = (slash == line_end && alone_record) || (slash < line_end && *slash == '/');
     if (!record && *slash == ',') {
       // Words and commas up to a '/': the word before the '/' is the record's.
@@ -489,7 +501,8 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
       }
     }
     if (!record) continue;
-    const MajorId joined = major_id(std::string_view(reinterpret_cast<const char*>(name), size_t(name_end - name)));
+    const MajorId joined = tool_path && name == q ? MajorId::ToolPath
+                                                  : major_id(std::string_view(reinterpret_cast<const char*>(name), size_t(name_end - name)));
     if (joined == MajorId::Unknown || joined == MajorId::Pprint || joined == MajorId::Partno || joined == MajorId::Remark ||
         joined == MajorId::Tprint || joined == MajorId::Insert)
       continue;

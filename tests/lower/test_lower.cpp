@@ -485,6 +485,13 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
   // A word alone that names a record but ends a sentence: text (only RAPID, STOP, OPSTOP and
   // GOHOME, in capitals, stand alone as records that change the program).
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT FINISH PASS, CHECK $\nThread\nPPRINT SEE $\nEND\nGOTO/0,0,50\n"), "");
+  // NX's two-word TOOL PATH and hyphenated END-OF-PATH: the next operation's tool change was
+  // lost, and it was cut with the last tool (certified).
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT NEXT, FINISH WITH $\nTOOL  PATH/FINISH,TOOL,OD_35_L\nGOTO/0,0,50\n"),
+            "3:1: a '$' at the end of the line before joins this TOOL PATH record to its text, where it would be lost: "
+            "end the text without '$'");
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH\n"), HasSubstr("3:1: a '$' at the end of the line before joins this END-OF-PATH"));
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT SEE THE $\nTOOL PATHS, AND END-OF-PATH MARKS\nGOTO/0,0,50\n"), "");
 }
 
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
