@@ -144,6 +144,7 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     write_thread_move(mv, loc);
     return;
   }
+  if (!thread_ && mv.kind == ir::MoveKind::Feed && !speed_on_centre(mv, loc)) return;
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
   if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_ && !comp_pending_set_) {
@@ -163,8 +164,38 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   position_known_ = true;
 }
 
+// Under constant surface speed a tool on the spindle's axis turns at the clamp (the speed at X0
+// has no limit but it). The CL's surface speed is a drill's cutting speed at its diameter, as
+// on a mill: a cut along the axis at X0 by a tool with a diameter (a drill, a reamer, a tap; not
+// a turning tool) is made at the rpm that speed gives there (G97, within the clamp), and the
+// surface speed comes back (G96) at the next cut off the axis. A drill without its diameter is
+// refused: at the clamp it may turn many times too fast.
+bool LatheBackend::speed_on_centre(const ir::Move& mv, SourceLoc loc) {
+  constexpr double kOnAxis = 1e-6;
+  const bool on_centre = std::abs(pos_.x()) < kOnAxis && std::abs(mv.point.x()) < kOnAxis;
+  if (!on_centre) {
+    restore_surface_speed(loc);
+    return true;
+  }
+  if (!surface_ || rpm_fixed_ || spindle_ == ir::SpindleDir::Off) return true;
+  const ir::ToolInfo* t = info_ && tool_ >= 0 ? info_->tool(tool_) : nullptr;
+  const std::string kind = t ? t->kind : "";
+  const bool axial = kind == "DRILL" || kind == "TAP" || kind == "REAM" || kind == "CENTER" || kind == "SPOT" ||
+                     kind == "CDRILL" || kind == "MILL";
+  if (!axial && (kind != "" || !t || !(t->diameter > 0))) return true;  // a turning tool: the clamp is the CL's
+  if (!(t->diameter > 0)) {
+    d_.error(loc, "drilling on the spindle's axis under constant surface speed (G96): the spindle would turn at its "
+                  "clamp; tool " + std::to_string(tool_) + " has no diameter to turn the surface speed into rpm "
+                  "(TLDATA, CUTTER): give it one, or a SPINDL/RPM for the drilling");
+    return false;
+  }
+  fix_spindle_speed(t->diameter / 2, loc);
+  return true;
+}
+
 void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
   warn_spindle_stopped(loc, "arc");
+  if (!thread_) restore_surface_speed(loc);
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
     return;

@@ -35,11 +35,12 @@ class LatheBackend : public ProgramWriter {
   bool write_lead(double lead, double length, SourceLoc loc);
   void fix_spindle_speed(double radius, SourceLoc loc);
   void restore_surface_speed(SourceLoc loc);
+  bool speed_on_centre(const ir::Move& mv, SourceLoc loc);  // a drill on the spindle's axis
 
   std::optional<ir::ThreadMark> thread_;  // the THREAD in force
   std::optional<ir::Spindle> surface_;    // the constant surface speed in force
   double surface_clamp_ = 0;              // its G50 clamp (rpm)
-  bool rpm_fixed_ = false;                // G97 written for a thread under surface_
+  bool rpm_fixed_ = false;                // G97 written for a thread or a drill under surface_
   SourceLoc thread_loc_;                  // its THREAD record
   bool lead_refused_ = false;             // its lead's rounding reported (once)
 };

@@ -155,8 +155,8 @@ class TableBuilder : public RecordSink {
     std::string said;
     for (const char* w : {"TURN", "LATHE", "GROOVE", "THREAD"})
       if (word.is(w)) said = "lathe";
-    for (const char* w : {"MILL", "DRILL"})
-      if (word.is(w)) said = "mill";
+    // A drill says nothing: NX writes TLDATA/DRILL for centreline drilling on a lathe too.
+    if (word.is("MILL")) said = "mill";
     if (said.empty()) return;
     if (!info_.family_said.empty() && info_.family_said != said) {
       mixed_ = true;

@@ -501,6 +501,32 @@ TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
   EXPECT_THAT(negative.diags, HasSubstr("part.cls:3:15: error: SPINDL: MAXRPM must not be negative, found -3"));
 }
 
+// NX's centreline drilling on a lathe under constant surface speed: at X0 G96 turns at the
+// clamp (3000 rpm), where the CL's 80 m/min on a 10 mm drill is 2546. The drill cuts at G97
+// S2546; the surface speed comes back at the next cut off the axis. A turning tool fed along
+// the axis after facing to centre keeps G96 (the clamp is what the CL asks); a drill without
+// a diameter is refused.
+TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
+  const std::string cl =
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/SMM,200,CLW,MAXRPM,2500\nFEDRAT/MMPR,0.25\nRAPID\nGOTO/30,0,5\nGOTO/30,0,0\n"
+      "GOTO/0,0,0\nGOTO/0,0,1\nRAPID\nGOTO/30,0,5\nTOOL PATH/DRILLING,TOOL,DRILL_10\nTLDATA/DRILL,10,118,50,0\n"
+      "LOAD/TOOL,5\nSPINDL/SMM,80,CLW,MAXRPM,3000\nRAPID\nGOTO/0,0,10\nGOTO/0,0,-20\nRAPID\nGOTO/0,0,10\nRAPID\n"
+      "GOTO/20,0,2\nGOTO/20,0,-5\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN70 G99 G01 Z0. F0.25\nN80 X0.\nN90 Z1.\n"));
+  EXPECT_THAT(c.output, HasSubstr("\nN130 G50 S3000\nN140 G96 S80 M03\nN150 G00 X0. Z10.\nN160 G97 S2546 M03\n"
+                                  "N170 G99 G01 Z-20. F0.25\nN180 G00 Z10.\nN190 X40. Z2.\nN200 G96 S80 M03\n"
+                                  "N210 G01 Z-5.\n"));
+  Compiled no_diameter = compile_text(
+      "UNITS/MM\nTLDATA/DRILL,0,118,50,0\nLOAD/TOOL,5\nSPINDL/SMM,80,CLW,MAXRPM,3000\nFEDRAT/MMPR,0.1\nRAPID\n"
+      "GOTO/0,0,10\nGOTO/0,0,-20\nFINI\n",
+      machine("fanuc-lathe"));
+  EXPECT_FALSE(no_diameter.ok);
+  EXPECT_THAT(no_diameter.diags, HasSubstr("part.cls:8:1: error: drilling on the spindle's axis under constant surface "
+                                           "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));
+}
+
 // Numbers and words after a code or a tool that clpc does not read are said, never dropped
 // silently: a number after the tool's that could be an offset register (TURRET/5,12) keeps the
 // tool's own offset with a warning; ISO 4343's AUXFUN/n,NEXT is read, AUXFUN/8,2 is warned.
