@@ -187,6 +187,9 @@ class Lowerer : public RecordSink {
     SourceLoc loc;
   };
   std::optional<FeedUnit> last_feed_unit_;
+  // The first feed word that names a length unit (MMPM, MMPR, IPM, IPR), and where: a UNITS
+  // after motion that says the other unit would read the moves before it in the wrong one.
+  std::optional<std::pair<ir::Units, SourceLoc>> feed_unit_named_;
 
   struct PendingArc {
     ir::Arc arc;

@@ -187,6 +187,8 @@ void Lowerer::lower_feed(const Record& r) {
       continue;
     }
     std::string w = upper(p.text);
+    if ((w == "MMPM" || w == "MMPR" || w == "IPM" || w == "IPR") && !feed_unit_named_)
+      feed_unit_named_ = {w[0] == 'M' ? ir::Units::Mm : ir::Units::Inch, r.loc};
     if (w == "MMPM") { f.mode = ir::FeedMode::PerMinute; to_program = 1 / prog_mm; }
     else if (w == "IPM") { f.mode = ir::FeedMode::PerMinute; to_program = 25.4 / prog_mm; }
     else if (w == "FPM") { f.mode = ir::FeedMode::PerMinute; to_program = 304.8 / prog_mm; }
@@ -379,6 +381,17 @@ void Lowerer::lower_units(const Record& r) {
     return;
   }
   ir::Units u = *units_word(r.params[0].text);
+  // The file's unit is its UNITS record's, wherever it stands. After motion whose feed named the
+  // other unit, the moves before it were written in that one: read in this, they would be 25.4
+  // times off (a8: 10 mm became 10 inches, certified).
+  if (has_pos_ && feed_unit_named_ && feed_unit_named_->first != u && info_.units_reason != "--input-units") {
+    d_.error(r.params[0].loc, std::string(r.major) + " says " + std::string(ir::units_name(u)) + " after motion whose feed (line " +
+                                  std::to_string(feed_unit_named_->second.line) + ") is in " +
+                                  std::string(ir::units_name(feed_unit_named_->first)) +
+                                  ": the moves before it would be read in the wrong unit; put the UNITS record first, or "
+                                  "give --input-units");
+    return;
+  }
   if (u != info_.units) {
     if (info_.units_reason == "--input-units") return;  // the user said so
     d_.error(r.params[0].loc, std::string("UNITS changes to ") + std::string(ir::units_name(u)) +

@@ -575,6 +575,16 @@ TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
 }
 
+// The file's unit is its UNITS record's, wherever it stands. A UNITS/INCHES after moves fed in
+// MMPM read those moves in inches (10 mm written as 10 in, certified with a warning).
+TEST(Lower, AUnitsAfterMotionInTheOtherUnitIsRefused) {
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/10,10,10\nFEDRAT/MMPM,100\nGOTO/10,10,0\nUNITS/INCHES\nFEDRAT/IPM,10\nGOTO/1,1,0\n"),
+            "6:7: UNITS says inch after motion whose feed (line 4) is in mm: the moves before it would be read in the "
+            "wrong unit; put the UNITS record first, or give --input-units");
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/10,10,10\nFEDRAT/MMPM,100\nGOTO/10,10,0\nUNITS/MM\nGOTO/1,1,0\n"), "");
+  EXPECT_EQ(err("UNITS/INCHES\nLOADTL/1\nRAPID\nGOTO/1,1,1\nFEDRAT/IPM,10\nGOTO/1,1,0\n"), "");
+}
+
 // FEDRAT/0 stopped the post even where only rapids followed it; under it a cut would have
 // taken the feed before (a guess). Now the cut is refused, once, naming the FEDRAT.
 TEST(Lower, AZeroFeedIsRefusedAtTheCutNotBeforeRapids) {
