@@ -98,6 +98,15 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
                       "'s P and Q could name two blocks; raise sequence.max");
     return;
   }
+  // A G41/G42 waiting for its first move would start on a profile block: the control would
+  // ramp the nose radius on along the profile's first cut (a taper where the CL has none), and
+  // the roughing before G70 would run uncompensated.
+  if (comp_pending_set_ && comp_pending_.side != ir::CompSide::Off) {
+    d_.error(loc, std::string("cutter compensation (CUTCOM) starts inside the ") + name +
+                      " cycle's profile: the control would start it on a profile block, not where the CL does; start it "
+                      "on the move to the cycle's start point (CUTCOM before that move)");
+    return;
+  }
   const double feed = m.feed > 0 ? m.feed : feed_;
   const ir::FeedMode mode = m.feed > 0 ? m.feed_mode : feed_mode_;
   if (!(feed > 0)) {

@@ -80,6 +80,9 @@ class RoughCycles : public Pass {
  private:
   void keep(ir::Instr& in, std::vector<ir::Instr>& out) {
     at_.track(in);
+    if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) comp_waits_ = c->side != ir::CompSide::Off;
+    else if (const auto* m = std::get_if<ir::Move>(&in.op); (m && m->kind != ir::MoveKind::From) || std::holds_alternative<ir::Arc>(in.op))
+      comp_waits_ = false;
     out.push_back(std::move(in));
   }
 
@@ -270,7 +273,16 @@ class RoughCycles : public Pass {
       Candidate c;
       std::string why;
       // Roughing that stays as moves is passed whole: one note for it, not one per level.
-      if (!read(ms, a, facing, c, why)) {
+      const bool read_ok = read(ms, a, facing, c, why);
+      if (read_ok && comp_waits_) {
+        // The G41/G42 would start on a profile block (a taper along its first cut) and the
+        // roughing would run uncompensated: the moves keep the CL's start.
+        remark(ctx, body[ms[0].index].loc, facing, c.levels,
+               "cutter compensation starts at its first level, and would start on a profile block of the cycle");
+        next = std::max(next, ms[c.roughing_end - 1].index + 1);
+        continue;
+      }
+      if (!read_ok) {
         if (!why.empty()) remark(ctx, body[ms[0].index].loc, facing, c.levels, why);
         if (c.roughing_end > 0) next = std::max(next, ms[c.roughing_end - 1].index + 1);
         continue;
@@ -368,6 +380,7 @@ class RoughCycles : public Pass {
 
   double tol_ = 1e-9;
   MotionState at_;
+  bool comp_waits_ = false;  // a CUTCOM/LEFT|RIGHT with no move since: it starts on the next one
 };
 
 }  // namespace

@@ -229,3 +229,26 @@ TEST(Rough, BoringTheStockInsideSignsTheAllowanceAndCertifies) {
     if ((s.start - ir::Vec3(13, 0, -11.7)).norm() < 1e-9 && (s.end - ir::Vec3(12, 0, -10.7)).norm() < 1e-9) found = true;
   EXPECT_TRUE(found);
 }
+
+// A CUTCOM/RIGHT after the move to A started G42 on the profile's second block, inside G71:
+// the control ramps the nose radius on along the first finishing cut (a taper the CL has
+// not), and roughs uncompensated. CYCLE/ROUGH is refused; roughing as moves stays moves.
+TEST(Rough, CompensationStartingInsideTheCycleIsRefusedOrKeptAsMoves) {
+  const std::string a = "GOTO / 26.0, 0.0, 2.0\n";
+  std::string cl = rough_cl("CYCLE / ROUGH, TURN, DEPTH, 4, RETRACT, 1, ALLOW, 0.2, 0.1, FINISH", kTaper);
+  cl.replace(cl.find(a), a.size(), a + "CUTCOM / RIGHT\n");
+  Compiled c = compile_text(cl, machine("fanuc-lathe"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:10:1: error: cutter compensation (CUTCOM) starts inside the G71 cycle's "
+                                 "profile: the control would start it on a profile block, not where the CL does"));
+  std::vector<std::string> all = kG71;
+  all.insert(all.end(), kFinish.begin(), kFinish.end());
+  std::string moves = moves_cl(all);
+  moves.replace(moves.find(a), a.size(), a + "CUTCOM / RIGHT\n");
+  Compiled m = compile_text(moves, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(m.ok) << m.diags;
+  EXPECT_THAT(m.diags, HasSubstr("part.cls:11:1: note: roughing of 3 levels kept as moves, not G71: cutter compensation "
+                                 "starts at its first level, and would start on a profile block of the cycle"));
+  EXPECT_THAT(m.output, HasSubstr("\nN60 G42 X44.\n"));
+  EXPECT_EQ(m.output.find("G71"), std::string::npos);
+}
