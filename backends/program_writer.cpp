@@ -303,7 +303,15 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           }
           work_offset_ = x.index;
         } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
-          // Frames are for the passes (offset table, kinematics); nothing to write here.
+          // Frames are for the passes (offset table, kinematics); nothing to write here. A
+          // lathe has neither: an NX frame (MSYS) turned from the first one, or moved off the
+          // spindle's axis, is no single-spindle program (a Z reversed is the part turned round
+          // for a second setup; its points were put through the first frame, cut from the chuck's side).
+          if (m_.is_lathe() && x.source == ir::FrameSource::Msys &&
+              (!x.frame.rotation.isIdentity(1e-9) || std::abs(x.frame.origin.x()) > 1e-9 || std::abs(x.frame.origin.y()) > 1e-9))
+            d_.error(loc, "this MSYS is " + std::string(x.frame.rotation.isIdentity(1e-9) ? "moved off" : "turned from") +
+                              " the first one (the program's frame, along the spindle's axis): on a lathe only a shift "
+                              "along Z is one setup; a part turned round is a setup of its own: post it as a program of its own");
         } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {
           write_rotary_index(x, loc);
         }

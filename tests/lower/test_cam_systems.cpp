@@ -527,6 +527,24 @@ TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
                                            "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));
 }
 
+// NX's second setup on a lathe: an MSYS with Z reversed (the part turned round). Its points
+// were put through the first frame and cut from the chuck's side (Z-102 to Z-80), certified.
+// A shift along Z alone is the same setup.
+TEST(CamSystems, ALatheFrameTurnedFromTheFirstIsASetupOfItsOwn) {
+  const std::string head =
+      "TOOL PATH/OP1,TOOL,OD_35_L\nTLDATA/TURN,0.4,35,55,15,0\nMSYS/0,0,0,1,0,0,0,1,0\nUNITS/MM\nLOAD/TOOL,1\n"
+      "SPINDL/RPM,1000,CLW\nFEDRAT/MMPR,0.1\nRAPID\nGOTO/30,0,2\nGOTO/15,0,2\nGOTO/15,0,-20\nEND-OF-PATH\n";
+  Compiled turned = compile_text(head + "MSYS/0,0,-100,1,0,0,0,-1,0\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\n",
+                                 machine("fanuc-lathe"));
+  EXPECT_FALSE(turned.ok);
+  EXPECT_THAT(turned.diags, HasSubstr("part.cls:13:1: error: this MSYS is turned from the first one (the program's frame, "
+                                      "along the spindle's axis): on a lathe only a shift along Z is one setup"));
+  Compiled shifted = compile_text(head + "MSYS/0,0,-10,1,0,0,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\n",
+                                  machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(shifted.ok) << shifted.diags;
+  EXPECT_THAT(shifted.output, HasSubstr("G00 X60. Z-8.\n"));
+}
+
 // Numbers and words after a code or a tool that clpc does not read are said, never dropped
 // silently: a number after the tool's that could be an offset register (TURRET/5,12) keeps the
 // tool's own offset with a warning; ISO 4343's AUXFUN/n,NEXT is read, AUXFUN/8,2 is warned.
