@@ -501,6 +501,15 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
     d_.error(loc, "drilling with no feed rate: no FEDRAT and none in the CYCLE record");
     return;
   }
+  // A drilling feed above the machine's limit is written at the limit, as a move's is (and as
+  // verify reads it); a tap's cannot be (write_tap_feed refuses it).
+  if (!tap && mode == ir::FeedMode::PerMinute && m_.max_feed > 0 && want.feed > m_.max_feed) {
+    if (!(cycle_active_ && cycle_.feed == m_.max_feed))  // once for the holes of a cycle
+      d_.warning(loc, "feed " + num_text(want.feed) + " is above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
+                        ": written as " + num_text(m_.max_feed) + ", slower than the CL asks",
+               "feed-clamped");
+    want.feed = m_.max_feed;
+  }
   double ret = m_.cycles.return_initial ? std::max(h.initial, c.clearance) : c.clearance;
   bool same = cycle_active_ && cycle_.code == want.code && e_.as_written('Z', cycle_.bottom) == e_.as_written('Z', want.bottom) &&
               e_.as_written('R', cycle_.r) == e_.as_written('R', want.r) && cycle_.peck == want.peck &&

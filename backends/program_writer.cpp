@@ -519,6 +519,18 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
     feed_clamp_said_ = feed_loc_;
     f = m_.max_feed;
   }
+  // Per revolution at a fixed speed the feed per minute is known: above max_feed the control
+  // holds it there, as it would a feed per minute (the F stays: it is per revolution).
+  if (m_.max_feed > 0 && feed_mode_ == ir::FeedMode::PerRev && spindle_ != ir::SpindleDir::Off && spindle_rpm_ > 0 &&
+      f * spindle_rpm_ > m_.max_feed * (1 + 1e-9) && !(feed_loc_ == feed_clamp_said_)) {
+    const std::string unit = m_.units == ir::Units::Inch ? " in" : " mm";
+    d_.warning(feed_loc_.valid() ? feed_loc_ : loc,
+               "feed " + num_text(f) + unit + "/rev at " + num_text(spindle_rpm_) + " rpm is " + num_text(f * spindle_rpm_) + unit +
+                   "/min, above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
+                   ": the control cuts it slower than the CL asks",
+               "feed-clamped");
+    feed_clamp_said_ = feed_loc_;
+  }
   if (!m_.modal.feed || !feed_written_ || feed_mode_ == ir::FeedMode::InverseTime) {
     if (!write_feed(f, feed_mode_, feed_loc_.valid() ? feed_loc_ : loc)) return false;
     feed_written_ = true;
@@ -562,6 +574,14 @@ bool ProgramWriter::write_feed(double value, ir::FeedMode mode, SourceLoc cl) {
 }
 
 bool ProgramWriter::write_tap_feed(double value, double pitch, double rpm, double depth, SourceLoc cl) {
+  // A tap advances one pitch a turn whatever else happens: a control holding it to its feed
+  // limit strips the thread or breaks the tap. It cannot be slowed as another feed is.
+  if (m_.max_feed > 0 && rpm > 0 && pitch * rpm > m_.max_feed * (1 + 1e-9)) {
+    d_.error(cl, "the tap feeds " + num_text(pitch * rpm) + (m_.units == ir::Units::Inch ? " in" : " mm") + "/min (pitch " +
+                     num_text(pitch) + " at " + num_text(rpm) + " rpm), above machine '" + m_.name + "''s max_feed " +
+                     num_text(m_.max_feed) + ": give the tap a lower speed");
+    return false;
+  }
   const AddressFormat& f = m_.feeds.tap;
   int64_t q;
   if (!quantize(value, f, q)) {

@@ -37,7 +37,7 @@ const std::vector<WarningName>& warning_names() {
       {"force-family", "lathe data posted for a mill, or mill data for a lathe (--force-family)"},
       {"groove", "a groove cycle's cases (no CYCLE/OFF, a groove not collapsed)"},
       {"ignored-word", "a word of a PREFUN, AUXFUN (after its code) or CUTCOM, not read"},
-      {"feed-clamped", "a feed per minute above the machine's max_feed, written as max_feed"},
+      {"feed-clamped", "a feed above the machine's max_feed: per minute written as max_feed, per revolution said"},
       {"insert", "an INSERT that is no block the control reads, written as a comment; one with axis words, not checked"},
       {"invalid-utf8", "a byte of a one-byte code page in a comment or text"},
       {"machine-code", "an optional stop the machine has no code for, not written"},

@@ -227,6 +227,31 @@ TEST(ShopFloor, ACodeTheMachineLacksRefusesWhatTheClCannotDoWithout) {
   EXPECT_THAT(ok.output, Not(HasSubstr("M01")));
 }
 
+// max_feed held only feeds per minute of moves. A tap above it (pitch x rpm) is refused: held
+// to the limit it strips its thread. A feed per revolution above it at a fixed speed is said;
+// a cycle's feed per minute is written at the limit, as a move's is (it was written as the CL's
+// and verify, holding it to the limit, refused the program).
+TEST(ShopFloor, FeedsAboveTheMachinesLimit) {
+  const Machine m = machine("old-vmc", "[old-vmc]\ninherits = \"fanuc-mill\"\nmax_feed = 2000.0\n");
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,10,10\n";
+  Compiled tap = compile_text(head + "CYCLE/TAP,DEPTH,10,PITCH,2.5,CLEAR,2\nGOTO/20,10,0\nCYCLE/OFF\n", m);
+  EXPECT_FALSE(tap.ok);
+  EXPECT_THAT(tap.diags, HasSubstr("part.cls:7:1: error: the tap feeds 2500 mm/min (pitch 2.5 at 1000 rpm), above machine "
+                                   "'old-vmc''s max_feed 2000: give the tap a lower speed"));
+  Compiled drill = compile_text(head + "CYCLE/DRILL,DEPTH,20,MMPM,2500,CLEAR,2\nGOTO/20,10,0\nGOTO/40,10,0\nCYCLE/OFF\n"
+                                       "FEDRAT/2.5,MMPR\nGOTO/40,10,-1\n",
+                                m, {.certify = true});
+  ASSERT_TRUE(drill.ok) << drill.diags;
+  EXPECT_THAT(drill.output, HasSubstr("G81 X20. Y10. Z-20. R2. F2000.\n"));
+  EXPECT_THAT(drill.diags, HasSubstr("part.cls:7:1: warning: feed 2500 is above machine 'old-vmc''s max_feed 2000: written "
+                                     "as 2000, slower than the CL asks [-Wfeed-clamped]\n"));
+  EXPECT_THAT(drill.diags, HasSubstr("part.cls:10:1: warning: feed 2.5 mm/rev at 1000 rpm is 2500 mm/min, above machine "
+                                     "'old-vmc''s max_feed 2000: the control cuts it slower than the CL asks [-Wfeed-clamped]\n"));
+  size_t warnings = 0;  // once for the cycle's two holes
+  for (size_t at = drill.diags.find("warning:"); at != std::string::npos; at = drill.diags.find("warning:", at + 1)) ++warnings;
+  EXPECT_EQ(warnings, 2u);
+}
+
 // --- Per-job options -------------------------------------------------------------------
 
 TEST(JobOptions, ProgramNumberFromTheFileName) {
