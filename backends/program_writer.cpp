@@ -463,6 +463,12 @@ bool ProgramWriter::lacks(const CodeTemplate& code, SourceLoc loc, const char* k
 }
 
 bool ProgramWriter::spindle_within_limit(double rpm, SourceLoc loc) {
+  // S0 M03 turns nothing: every cut after it would be made with the spindle stopped.
+  if (e_.round('S', rpm).q == 0) {
+    d_.error(loc, "SPINDL: " + num_text(rpm) + " rpm would be written S0 (format.S), a spindle that does not turn; give "
+                  "the speed in rpm (a speed under 1 rpm is no cutting speed)");
+    return false;
+  }
   const double limit = m_.spindle_limit();
   if (limit <= 0 || rpm <= limit) return true;
   d_.error(loc, "SPINDL: " + num_text(rpm) + " rpm is above machine '" + m_.name + "''s spindle limit of " + num_text(limit) +

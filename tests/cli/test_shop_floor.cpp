@@ -252,6 +252,18 @@ TEST(ShopFloor, FeedsAboveTheMachinesLimit) {
   EXPECT_EQ(warnings, 2u);
 }
 
+// SPINDL/RPM,0.4 was written S0 M03 and the cuts after it certified: a spindle that does not turn.
+TEST(ShopFloor, ASpindleSpeedThatRoundsToZeroIsRefused) {
+  for (const char* name : {"fanuc-mill", "fanuc-lathe"}) {
+    Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,0.4,CLW\nFEDRAT/100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,0\n",
+                              machine(name));
+    EXPECT_FALSE(c.ok) << name;
+    EXPECT_THAT(c.diags, HasSubstr("part.cls:3:1: error: SPINDL: 0.4 rpm would be written S0 (format.S), a spindle that "
+                                   "does not turn"))
+        << name;
+  }
+}
+
 // --- Per-job options -------------------------------------------------------------------
 
 TEST(JobOptions, ProgramNumberFromTheFileName) {
