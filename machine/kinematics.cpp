@@ -10,6 +10,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kFreeTol = 1e-7;  // a perpendicular part this small: the axis is singular
+constexpr double kLimitTol = 1e-4;  // degrees a solution may pass a rotary limit by (axis_in_limits)
 
 double norm180(double deg) {
   deg = std::fmod(deg, 360.0);
@@ -223,7 +224,9 @@ double axis_distance(const RotaryAxis& r, double a, double b) {
 }
 
 bool axis_in_limits(const RotaryAxis& r, double v) {
-  return r.cyclic != Cyclic::No || (v >= r.min - 1e-9 && v <= r.max + 1e-9);
+  // 1e-4 degree: a tool axis written with 7 decimals is that far off the angle it stands for
+  // (0.8660254 is 30.0000002 degrees); every rotary format rounds it away.
+  return r.cyclic != Cyclic::No || (v >= r.min - kLimitTol && v <= r.max + kLimitTol);
 }
 
 // The values an axis may take for a solution angle: nearest the current one for continuous

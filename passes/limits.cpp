@@ -90,7 +90,7 @@ class Limits : public Pass {
       const RotaryAxis& r = k_.rotaries[i];
       if (r.cyclic == Cyclic::Modulo || (r.cyclic == Cyclic::Wind && !r.wind_range)) continue;
       double v = rot_[i];
-      if (v < r.min - 1e-6 || v > r.max + 1e-6)
+      if (v < r.min - 1e-4 || v > r.max + 1e-4)  // as the solver allows (machine/kinematics.cpp)
         ctx.diags.error(loc, r.name + num_text(std::round(v * 1000) / 1000) + " is beyond machine '" + ctx.machine.name +
                                  "''s limit (" + r.name + " " + num_text(r.min) + " to " + num_text(r.max) + ")");
     }

@@ -140,6 +140,15 @@ TEST(KinematicsPass, BExactlyAtItsLimits) {
   Path b = compile_path_axes({tilt(-30, 0), tilt(-35, 0)}, "neg-umc", kNegUmc);
   ASSERT_TRUE(b.ok) << b.diags;
   EXPECT_NEAR(rotaries(b).back()[0], -35, 1e-9);
+  // A CL's tool axis, written with 7 decimals, stands 1e-5 degree off the angle meant (NX's
+  // 0.8660254 is 30.0000002 degrees): at the limit it was refused. Within 1e-4 degree it is the
+  // limit; beyond it is not.
+  Path c = compile_path_axes({tilt(-30, 0), tilt(-35.00002, 0)}, "neg-umc", kNegUmc);
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr(" B-35.\n"));
+  Path d = compile_path_axes({tilt(-30, 0), tilt(-35.001, 0)}, "neg-umc", kNegUmc);
+  EXPECT_FALSE(d.ok);
+  EXPECT_THAT(d.diags, HasSubstr("leaves the rotary limits"));
 }
 
 TEST(KinematicsPass, BeyondTheLimitsUsesTheOtherSolutionOrFails) {
