@@ -114,6 +114,7 @@ class TableBuilder : public RecordSink {
         break;
       case MajorId::Fedrat:
       case MajorId::Cycle:  // a cycle's own feed (NX's CYCLE/DRILL,...,MMPM,f) names the unit too
+      case MajorId::Thread:  // and a thread's lead (THREAD/TURN,LEAD,1.5,IPR)
         for (const Param& p : r.params) {
           std::optional<ir::Units> u;
           if (p.is("MMPM") || p.is("MMPR")) u = ir::Units::Mm;
@@ -368,7 +369,7 @@ ir::ProgramInfo prescan_program(SourceFile& src, const PrescanOptions& opt) {
   MajorSet want;
   for (MajorId id : {MajorId::ToolPath, MajorId::Featno, MajorId::EndOfPath, MajorId::End,
                      MajorId::Loadtl, MajorId::Load, MajorId::Turret, MajorId::Tldata,
-                     MajorId::Cutter, MajorId::Units, MajorId::Unit, MajorId::Fedrat, MajorId::Cycle,
+                     MajorId::Cutter, MajorId::Units, MajorId::Unit, MajorId::Fedrat, MajorId::Cycle, MajorId::Thread,
                      MajorId::Partno, MajorId::Tprint, MajorId::Machin, MajorId::Mode, MajorId::Toolno, MajorId::Msys, MajorId::Csys, MajorId::Camera,
                      MajorId::Set, MajorId::Select})
     want.add(id);

@@ -289,6 +289,12 @@ TEST(CamSystems, FeedWordsThatContradictUnits) {
   Compiled c = compile_text("UNITS/INCHES\nLOADTL/1\nSPINDL/RPM,100,CLW\nFEDRAT/250,MMPM\nGOTO/0,0,0\n", machine("fanuc-mill"));
   EXPECT_THAT(messages(c.diags), HasSubstr("part.cls: warning: the file says its units are inches, but the feed at line 4 is in "
                                  "millimetres: if its numbers are millimetres, --input-units mm reads them so"));
+  // A thread's lead in the other unit's words is such a feed too (it was converted silently).
+  Compiled t = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,5\n"
+                            "THREAD/TURN,LEAD,0.0625,IPR\nGOTO/19,0,5\nGOTO/19,0,-20\nRAPID\nGOTO/20,0,-20\nTHREAD/OFF\n",
+                            machine("fanuc-lathe"));
+  EXPECT_THAT(messages(t.diags), HasSubstr("part.cls: warning: the file says its units are millimetres, but the feed at line "
+                                           "7 is in inches"));
 }
 
 // A file of many read windows with thousands of records kept as text (a 2 MB Fusion file once
