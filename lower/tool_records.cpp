@@ -73,7 +73,18 @@ ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
                         " (write OSETNO," + num_text(p.number) + " for register " + num_text(p.number) + ")",
                  "tool-offset");
     }
-    // Other minor words (MANUAL, SIZE, ...) carry nothing clpc uses.
+    // CATIA's SETOOL,x,y,z (the tip from the turret's reference point: the control's offset
+    // holds it, as clpc writes tip positions) and Fusion's IN,n say nothing clpc needs. Other
+    // words (MANUAL, SIZE, REAR, ...) are said, not dropped silently.
+    if (p.is("SETOOL") || p.is("IN")) {
+      const size_t numbers = p.is("SETOOL") ? 3 : 1;
+      for (size_t j = 0; j < numbers && k + 1 < r.params.size() && r.params[k + 1].is_number(); ++j) ++k;
+      continue;
+    }
+    if (p.is_word() && !p.is("OSETNO") && !p.is("ADJUST") && d)
+      d->warning(p.loc, std::string(r.major) + ": the word '" + std::string(p.text) + "' is not read (the tool is loaded " +
+                            "with its number and offset register only)",
+                 "ignored-word");
   }
   return t;
 }

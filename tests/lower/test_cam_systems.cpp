@@ -575,6 +575,14 @@ TEST(CamSystems, WordsAfterACodeOrAToolThatAreNotReadAreSaid) {
             "part.cls:4:10: warning: AUXFUN: '2' after the code is not read (the code M9 is written alone) [-Wignored-word]\n"
             "part.cls:5:11: warning: PREFUN: 'ON' after the code is not read (the code G61 is written alone) [-Wignored-word]\n");
   EXPECT_THAT(codes.output, HasSubstr("\nM8\nM9\nG61\n"));
+  // A word of a tool change clpc does not read (a turret side, a manual change) was dropped
+  // silently; CATIA's SETOOL,x,y,z and Fusion's IN,n say nothing the program needs.
+  Compiled words = compile_text("UNITS/MM\nTURRET/3,REAR\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/40,0,2\n"
+                                "TURRET/1,OSETNO,1,SETOOL,0,0,0\nLOADTL/2,IN,2,ADJUST,2\nRAPID\nGOTO/40,0,5\nFINI\n",
+                                machine("fanuc-lathe"));
+  ASSERT_TRUE(words.ok) << words.diags;
+  EXPECT_EQ(messages(words.diags), "part.cls:2:10: warning: TURRET: the word 'REAR' is not read (the tool is loaded with its "
+                                   "number and offset register only) [-Wignored-word]\n");
 }
 
 // CUTCOM/ON resumes the side and register of the last CUTCOM/LEFT|RIGHT (as SPINDL/ON restarts
