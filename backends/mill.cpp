@@ -505,8 +505,8 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
   // verify reads it); a tap's cannot be (write_tap_feed refuses it).
   if (!tap && mode == ir::FeedMode::PerMinute && m_.max_feed > 0 && want.feed > m_.max_feed) {
     if (!(cycle_active_ && cycle_.feed == m_.max_feed))  // once for the holes of a cycle
-      d_.warning(loc, "feed " + num_text(want.feed) + " is above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
-                        ": written as " + num_text(m_.max_feed) + ", slower than the CL asks",
+      d_.warning(loc, "feed " + num_text(std::round(want.feed * 1e4) / 1e4) + " is above machine '" + m_.name + "''s max_feed " + num_text(std::round(m_.max_feed * 1e4) / 1e4) +
+                        ": written as " + num_text(std::round(m_.max_feed * 1e4) / 1e4) + ", slower than the CL asks",
                "feed-clamped");
     want.feed = m_.max_feed;
   }

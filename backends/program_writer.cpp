@@ -519,8 +519,8 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
     // The control clamps a feed above its limit as well; the CL's feed is not what is cut.
     if (!(feed_loc_ == feed_clamp_said_))
       d_.warning(feed_loc_.valid() ? feed_loc_ : loc,
-                 "feed " + num_text(f) + " is above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
-                     ": written as " + num_text(m_.max_feed) + ", slower than the CL asks",
+                 "feed " + num_text(std::round(f * 1e4) / 1e4) + " is above machine '" + m_.name + "''s max_feed " + num_text(std::round(m_.max_feed * 1e4) / 1e4) +
+                     ": written as " + num_text(std::round(m_.max_feed * 1e4) / 1e4) + ", slower than the CL asks",
                  "feed-clamped");
     feed_clamp_said_ = feed_loc_;
     f = m_.max_feed;
@@ -532,7 +532,7 @@ bool ProgramWriter::feed_word(SourceLoc loc) {
     const std::string unit = m_.units == ir::Units::Inch ? " in" : " mm";
     d_.warning(feed_loc_.valid() ? feed_loc_ : loc,
                "feed " + num_text(f) + unit + "/rev at " + num_text(spindle_rpm_) + " rpm is " + num_text(f * spindle_rpm_) + unit +
-                   "/min, above machine '" + m_.name + "''s max_feed " + num_text(m_.max_feed) +
+                   "/min, above machine '" + m_.name + "''s max_feed " + num_text(std::round(m_.max_feed * 1e4) / 1e4) +
                    ": the control cuts it slower than the CL asks",
                "feed-clamped");
     feed_clamp_said_ = feed_loc_;
@@ -585,7 +585,7 @@ bool ProgramWriter::write_tap_feed(double value, double pitch, double rpm, doubl
   if (m_.max_feed > 0 && rpm > 0 && pitch * rpm > m_.max_feed * (1 + 1e-9)) {
     d_.error(cl, "the tap feeds " + num_text(pitch * rpm) + (m_.units == ir::Units::Inch ? " in" : " mm") + "/min (pitch " +
                      num_text(pitch) + " at " + num_text(rpm) + " rpm), above machine '" + m_.name + "''s max_feed " +
-                     num_text(m_.max_feed) + ": give the tap a lower speed");
+                     num_text(std::round(m_.max_feed * 1e4) / 1e4) + ": give the tap a lower speed");
     return false;
   }
   const AddressFormat& f = m_.feeds.tap;
