@@ -238,7 +238,8 @@ class RoughCycles : public Pass {
     if (!c.finish) {
       if (!eq(C(shifted_start), c0)) {
         why = std::string("its last cut starts off the start point's ") + (facing ? "X" : "Z") +
-              " and no finishing pass follows to give the allowance";
+              " and no finishing pass follows it in the same run of motion to give the allowance (a record other "
+              "than motion, a feed or a comment, such as a SPINDL, ends the run)";
         return false;
       }
       c.profile_first = contour_first;
