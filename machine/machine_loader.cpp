@@ -146,6 +146,8 @@ class Reader {
   void error(const toml::node& n, std::string_view key, const std::string& msg) {
     c_.error(n.source(), key_path(key) + ": " + msg);
   }
+  // A problem with what this table inherits: said at the table itself, in the user's file.
+  void at_table(const std::string& msg) { c_.error(top().source(), path_ + ": " + msg); }
   void missing(std::string_view key, const std::string& what) {
     c_.error(top().source(), path_ + ": missing required key '" + std::string(key) + "' (" + what + ")");
   }
@@ -431,7 +433,10 @@ void read_format(Reader r, AddressFormat& f, bool length_like) {
 void report_pipeline(Reader& r, const Machine& m, const ir::PassContracts& passes) {
   const std::string problem = check_pipeline(m, passes);
   if (problem.empty()) return;
-  if (const toml::node* n = r.find("pipeline")) r.error(*n, "pipeline", problem);
+  // An inherited pipeline that does not fit what this machine adds (travel limits, rotaries) is
+  // said here, where the machine is written, not at its parent's key in another file.
+  if (const toml::node* n = r.top().get("pipeline")) r.error(*n, "pipeline", problem);
+  else if (r.find("pipeline")) r.at_table(problem + " (its pipeline is inherited: give the machine its own)");
   else r.missing("pipeline", problem);
 }
 

@@ -177,6 +177,15 @@ TEST(ShopFloor, AMillWithoutDrillCyclesIsOneErrorInItsFile) {
             "\"helix\", \"arc-legalise\", \"offset-table\"]\n   |            ^\n");
 }
 
+// Travel added to a machine whose inherited pipeline has no 'limits': said in the user's file,
+// at the machine (it was located at the parent's pipeline in the built-in machines.toml).
+TEST(ShopFloor, AnInheritedPipelineThatDoesNotFitIsSaidAtTheMachine) {
+  EXPECT_EQ(load_error("[tm]\ninherits = \"fanuc-mill\"\n[tm.kinematics]\ntravel = { x = [0.0, 500.0], y = [0.0, 400.0], "
+                       "z = [-400.0, 0.0] }\n"),
+            "shop.toml:1:1: error: tm: machine 'tm' needs 'limits' in its pipeline, to check every position against the "
+            "machine's travel (its pipeline is inherited: give the machine its own)\n 1 | [tm]\n   | ^\n");
+}
+
 TEST(ShopFloor, PassesOutOfOrderAreAnError) {
   EXPECT_THAT(load_error("[late]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"offset-table\", "
                          "\"kinematics\", \"drill-cycles\", \"arc-legalise\"]\n"),
