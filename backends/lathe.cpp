@@ -22,6 +22,7 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // The tool already at the cut with the same offset: nothing to write. With another offset
   // (OSETNO), the T word is written again: the turret stays, the offset changes.
   if (t.tool == tool_ && offset == length_offset_) return;
+  end_drill_speed(loc);
   // A machine without a tool changer (an empty tool_change) takes the first tool as the
   // operator loads it before the start; another tool cannot be brought in by the program.
   if (tool_ >= 0 && lacks(m_.codes.tool_change, loc, "tool_change",
@@ -57,6 +58,7 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     spindle_ = ir::SpindleDir::Off;
     surface_.reset();
     rpm_fixed_ = false;
+    drill_fixed_ = false;
     return;
   }
   const CodeTemplate& dir = s.dir == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw;
@@ -92,10 +94,12 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     surface_ = s;
     surface_clamp_ = clamp;
     rpm_fixed_ = false;
+    drill_fixed_ = false;
     spindle_rpm_ = 0;  // the speed follows the diameter
   } else {
     surface_.reset();
     rpm_fixed_ = false;
+    drill_fixed_ = false;
     if (!spindle_within_limit(s.speed, loc)) {
       spindle_ = s.dir;  // the error stands for the record: no "spindle stopped" on every move after it
       return;
@@ -174,7 +178,7 @@ bool LatheBackend::speed_on_centre(const ir::Move& mv, SourceLoc loc) {
   constexpr double kOnAxis = 1e-6;
   const bool on_centre = std::abs(pos_.x()) < kOnAxis && std::abs(mv.point.x()) < kOnAxis;
   if (!on_centre) {
-    restore_surface_speed(loc);
+    end_drill_speed(loc);
     return true;
   }
   if (!surface_ || rpm_fixed_ || spindle_ == ir::SpindleDir::Off) return true;
@@ -190,12 +194,22 @@ bool LatheBackend::speed_on_centre(const ir::Move& mv, SourceLoc loc) {
     return false;
   }
   fix_spindle_speed(t->diameter / 2, loc);
+  drill_fixed_ = rpm_fixed_;
   return true;
+}
+
+// The drill's speed belongs to its cuts on the axis: G96 comes back before the next cut off it,
+// a tool change (the next tool's first cut may be a cycle: G71 would rough at the drill's rpm),
+// a thread (its own G97 comes from the surface speed) or a groove or roughing cycle.
+void LatheBackend::end_drill_speed(SourceLoc loc) {
+  if (!drill_fixed_) return;
+  drill_fixed_ = false;
+  restore_surface_speed(loc);
 }
 
 void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
   warn_spindle_stopped(loc, "arc");
-  if (!thread_) restore_surface_speed(loc);
+  end_drill_speed(loc);
   if (a.dir == ir::ArcDir::Unknown) {
     d_.error(loc, "internal: arc direction not decided (is 'arc-direction' in the machine's pipeline?)");
     return;
@@ -258,6 +272,7 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
 // input increments (their formats have no point); P is always the X amount and Q the Z
 // amount, as radius values, whichever of them is the peck.
 void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc) {
+  end_drill_speed(loc);
   const ir::GrooveSpec& s = op.grooves.at(g.spec);
   const CodeTemplate& code = s.face ? m_.codes.groove_face : m_.codes.groove_radial;
   if (code.empty()) {

@@ -113,6 +113,7 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
     d_.error(loc, "CYCLE/ROUGH with no feed rate: give FEED in the record or a FEDRAT before it");
     return;
   }
+  end_drill_speed(loc);  // never inside P..Q, where the control reads no S
   restore_after_stop(loc, true);
   cut_since_stop_ = true;
   const AddressFormat seq = sequence_format();

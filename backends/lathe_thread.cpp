@@ -86,6 +86,7 @@ void LatheBackend::restore_surface_speed(SourceLoc loc) {
 }
 
 void LatheBackend::write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) {
+  end_drill_speed(loc);
   if (t.begin) {
     thread_ = t;
     thread_loc_ = loc;
@@ -126,6 +127,7 @@ void LatheBackend::write_thread_move(const ir::Move& mv, SourceLoc loc) {
 }
 
 void LatheBackend::write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc) {
+  end_drill_speed(loc);
   const CodeTemplate& code = t.multi ? m_.codes.thread_multi : m_.codes.thread_box;
   if (code.empty()) {
     d_.error(loc, "internal: machine '" + m_.name + "' has no " + (t.multi ? "G76" : "G92") + " code for a threading cycle");

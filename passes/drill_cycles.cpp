@@ -152,6 +152,16 @@ class DrillCycles : public Pass {
         pos_ = up.point;  // where the cycle now moves across from
       }
       check_crossing_level(h, in.loc, out, ctx);
+      // A lathe drills on its spindle's axis only: the part turns, and a drill off centre cuts a
+      // ring, not a hole (a mill's hole program posted to a lathe; a mill-turn's live tooling
+      // is not this machine).
+      if (ctx.machine.is_lathe() && (std::abs(h.point.x()) > 1e-6 || std::abs(h.point.y()) > 1e-6 ||
+                                     std::abs(std::abs(h.axis.z()) - 1) > 1e-9)) {
+        ctx.diags.error(in.loc, "a hole off the spindle's axis on a lathe (at x " + num_text(h.point.x()) + ", y " +
+                                    num_text(h.point.y()) + "): the part turns, so the drill would cut a ring; a lathe "
+                                    "drills on centre (x 0, along Z) only");
+        continue;
+      }
       first_hole_ = false;
       h.initial = active_->retract >= 0 ? active_->retract : std::max(initial, active_->clearance);
       if (expand_) {

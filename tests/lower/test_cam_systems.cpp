@@ -530,7 +530,27 @@ TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
       machine("fanuc-lathe"));
   EXPECT_FALSE(no_diameter.ok);
   EXPECT_THAT(no_diameter.diags, HasSubstr("part.cls:8:1: error: drilling on the spindle's axis under constant surface "
-                                           "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));
+                                           "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));  // The drill's speed ends with its cuts: the next tool's G71 (no SPINDL of its own) roughed at
+  // the drill's 2546 rpm, with G96 written inside P..Q where the control reads no S.
+  Compiled next_op = compile_text(
+      "UNITS/MM\nTLDATA/DRILL,10,118,50,0\nLOAD/TOOL,5\nSPINDL/SMM,80,CLW,MAXRPM,3000\nFEDRAT/MMPR,0.1\nRAPID\n"
+      "GOTO/0,0,10\nGOTO/0,0,-20\nRAPID\nGOTO/0,0,10\nTLDATA/TURN,0.4,80,55,15,0\nLOAD/TOOL,1\nFEDRAT/MMPR,0.25\n"
+      "RAPID\nGOTO/26,0,2\nCYCLE/ROUGH,TURN,DEPTH,4,RETRACT,1,ALLOW,0.2,0.1,FINISH\nRAPID\nGOTO/10,0,2\n"
+      "GOTO/10,0,-15\nGOTO/15,0,-25\nGOTO/26,0,-25\nCYCLE/OFF\nRAPID\nGOTO/60,0,50\nFINI\n",
+      machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(next_op.ok) << next_op.diags;
+  EXPECT_THAT(next_op.output, HasSubstr("\nN70 G97 S2546 M03\nN80 G99 G01 Z-20. F0.1\nN90 G00 Z10.\nN100 G96 S80 M03\n"
+                                        "N110 G28 U0. W0.\nN120 T0101 (T1 - TURN)\n"));
+  EXPECT_EQ(next_op.output.find("G96", next_op.output.find("G71")), std::string::npos);
+  // TLDATA/DRILL no longer says a file is for a mill: an NX mill hole program posted to a lathe
+  // is refused at its holes off the axis (they were drilled as rings, certified).
+  Compiled off_axis = compile_text(
+      "UNITS/MM\nTLDATA/DRILL,8,118,50,35,0\nLOAD/TOOL,3\nSPINDL/RPM,1200,CLW\nRAPID\nGOTO/-30,0,10,0,0,1\n"
+      "CYCLE/DRILL,20,MMPM,120,3\nGOTO/-30,0,0\nCYCLE/OFF\n",
+      machine("fanuc-lathe"));
+  EXPECT_FALSE(off_axis.ok);
+  EXPECT_THAT(off_axis.diags, HasSubstr("part.cls:8:1: error: a hole off the spindle's axis on a lathe (at x -30, y 0): the "
+                                        "part turns, so the drill would cut a ring"));
 }
 
 // NX's second setup on a lathe: an MSYS with Z reversed (the part turned round). Its points
