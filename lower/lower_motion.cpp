@@ -66,7 +66,12 @@ void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool 
     pos_ = p;
     return;
   }
-  if (arc_open_ && kind == ir::MoveKind::Feed && !axis_written && extend_arc(p, loc)) {
+  // Creo writes every GOTO with its tool axis under MULTAX/ON: one that gives the arc's own
+  // axis again still goes on round the arc (only the first was joined, and the rest cut as
+  // chords 0.034 in off a 1 in arc, certified: verify read them so too).
+  const auto* open_arc = arc_open_ ? std::get_if<ir::Arc>(&op_.body.back().op) : nullptr;
+  const bool same_axis = !axis_written || (open_arc && (xf_dir(axis_) - open_arc->tool_axis).norm() < 1e-6);
+  if (arc_open_ && kind == ir::MoveKind::Feed && same_axis && extend_arc(p, loc)) {
     pos_ = p;
     return;
   }

@@ -553,6 +553,31 @@ TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
                                         "part turns, so the drill would cut a ring"));
 }
 
+// Creo under MULTAX/ON writes every GOTO with its tool axis. The GOTOs after a CIRCLE that go
+// on round it with the arc's own axis are the arc: only the first was joined, the others cut
+// as 30-degree chords 0.034 in inside the circle (certified: verify read them so too).
+TEST(CamSystems, CreoGotosWithTheArcsOwnToolAxisGoOnRoundTheArc) {
+  const std::string cl =
+      "$$*          Pro/CLfile  Version 19.0 - 9728\nMACHIN / MILL, 01\nUNITS / INCHES\nLOADTL / 1\nMULTAX / ON\n"
+      "SPINDL / RPM, 3000.000000,  CLW\nRAPID\nGOTO / 1.0, 0.0, 0.1, 0.0, 0.0, 1.0\nFEDRAT / 10.000000,  IPM\n"
+      "GOTO / 1.0, 0.0, -0.1, 0.0, 0.0, 1.0\nCIRCLE / 0.0, 0.0, -0.1, 0.0, 0.0, 1.0, 1.0\n"
+      "GOTO / 0.866025, 0.5, -0.1, 0.0, 0.0, 1.0\nGOTO / 0.5, 0.866025, -0.1, 0.0, 0.0, 1.0\n"
+      "GOTO / 0.0, 1.0, -0.1, 0.0, 0.0, 1.0\nGOTO / -0.5, 1.0, -0.1, 0.0, 0.1, 0.99498744\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_FALSE(c.ok);  // the last GOTO tilts the tool: a three-axis mill refuses it, after the arc
+  Compiled flat = compile_text(cl.substr(0, cl.find("GOTO / -0.5")) + "FINI\n", machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(flat.ok) << flat.diags;
+  EXPECT_THAT(flat.output, HasSubstr("N70 G94 G01 Z-2.54 F254.\nN80 G17 G03 X0. Y25.4 I-25.4 J0.\nN90 M05\n"));
+  Compiled umc = compile_text(cl.substr(0, cl.find("GOTO / -0.5")) + "FINI\n", machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(umc.ok) << umc.diags;
+  EXPECT_THAT(umc.output, HasSubstr("N50 G94 G01 Z-0.1 F10.\nN55 G17 G03 X0. Y1. I-1. J0.\nN60 M05\n"));
+  // Five-axis after the arc: under TCPC the arc is cut as lines within the tolerance, all of
+  // it (the chords were 30 degrees long).
+  Compiled five = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(five.ok) << five.diags;
+  EXPECT_THAT(five.output, HasSubstr("\nN50 X0.9992 Y0.0393\n"));
+}
+
 // NX's second setup on a lathe: an MSYS with Z reversed (the part turned round). Its points
 // were put through the first frame and cut from the chuck's side (Z-102 to Z-80), certified.
 // A shift along Z alone is the same setup.
