@@ -87,7 +87,21 @@ void MillBackend::motion_code(Motion mo) {
 }
 
 bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
-  if (m_.kinematics.has_rotaries()) return true;  // the kinematics pass gave the rotary positions
+  if (m_.kinematics.has_rotaries()) {
+    // Under TCPC the program is in the part's frame, and G41/G42 offsets in its XY plane: with
+    // the tool tilted that is not the plane square to the tool, and the cutter is offset wrong
+    // (a tilted frame without TCPC is turned, and its XY is square to the tool).
+    const bool comp = comp_on_ || (comp_pending_set_ && comp_pending_.side != ir::CompSide::Off);
+    if (tcp_on_ && comp && std::abs(axis.z()) < 1 - 1e-9) {
+      if (comp_tilt_said_) return false;  // said once: the rest of it is the same error
+      comp_tilt_said_ = true;
+      d_.error(loc, "cutter compensation (CUTCOM) with the tool tilted under TCPC: G41/G42 offset in the part's XY plane, "
+                    "which is not square to the tool, so the cutter would be offset wrong; have the CAM system write the "
+                    "compensated path (CUTCOM/OFF), or cut the face in a tilted frame (3+2, kinematics.indexed \"dwo\")");
+      return false;
+    }
+    return true;  // the kinematics pass gave the rotary positions
+  }
   if ((axis - ir::Vec3::UnitZ()).norm() <= kAxisTol) return true;
   d_.error(loc, "tool axis (" + num_text(axis.x()) + ", " + num_text(axis.y()) + ", " + num_text(axis.z()) +
                     ") is not the spindle axis, and machine '" + m_.name + "' has no rotary axes to tilt it");

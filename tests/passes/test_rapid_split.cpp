@@ -187,3 +187,25 @@ TEST(RapidSplit, OnAHeadMachineOnlyWithTheToolAlongZ) {
   // Along Z: across first, then down; tilted 30 degrees: one block, as the CL gives it.
   EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z50.\nN70 X20.\nN80 Z10.\nN90 X145. Z6.506 B30.\nN100 X165. Z-23.494\n"));
 }
+
+// G41/G42 under TCPC (G234) offset in the part's XY plane. With the tool tilted (simultaneous
+// five-axis, or 3+2 in the "tcp" mode) that plane is not square to the tool: it was written
+// (G41 D11 X1. C30.) and certified. In the default 3+2 mode (G254) the frame is turned and the
+// compensation is square to the tool.
+TEST(CutterComp, CompensationWithATiltedToolUnderTcpcIsRefused) {
+  const std::string cl =
+      "UNITS/INCHES\nLOAD/TOOL,1,ADJUST,1\nMULTAX/ON\nSPINDL/RPM,5000,CLW\nRAPID\n"
+      "GOTO/0,0,3,0.5,0,0.8660254\nRAPID\nGOTO/0,0,0.1\nFEDRAT/IPM,20\nGOTO/0,0,0\nCUTCOM/LEFT,11\n"
+      "GOTO/1,0,0,0.4330127,0.25,0.8660254\nGOTO/2,0,0,0.25,0.4330127,0.8660254\nCUTCOM/OFF\nGOTO/2,0.5,0\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:12:1: error: cutter compensation (CUTCOM) with the tool tilted under TCPC: "
+                                 "G41/G42 offset in the part's XY plane, which is not square to the tool"));
+  const std::string indexed = "UNITS/INCHES\nLOAD/TOOL,1,ADJUST,1\nMULTAX/ON\nSPINDL/RPM,5000,CLW\nRAPID\n"
+                              "GOTO/0,0,3,0.5,0,0.8660254\nFEDRAT/IPM,20\nGOTO/0,0,0\nCUTCOM/LEFT,11\nGOTO/1,0,0\n"
+                              "GOTO/1,1,0\nCUTCOM/OFF\nGOTO/0,1,0\n";
+  Compiled dwo = compile_text(indexed, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(dwo.ok) << dwo.diags;
+  EXPECT_THAT(dwo.output, HasSubstr("G254"));
+  EXPECT_THAT(dwo.output, HasSubstr("G41 D11"));
+}
