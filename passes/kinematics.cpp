@@ -433,8 +433,13 @@ class Kinematics : public Pass {
     if (simultaneous && !moved_in_op_ && have_cur_) {
       // An operation starts from where the last one left the rotaries: when going on from there
       // means a jump, the rotaries are positioned first, with the tool retracted (as for 3+2).
+      // A rapid into it that turns the rotaries, too: the table turning while the tool runs
+      // across from the last operation's end may sweep it through the part (a side face's end
+      // to a top face's start); the tool goes up first, as before a 3+2 operation. (After a tool
+      // change it is up there already.)
       Choice c = choose(m.axis);
-      if (c.found && c.jump) {
+      const bool turns = c.found && (std::abs(c.a[0] - cur_[0]) > 1e-9 || std::abs(c.a[1] - cur_[1]) > 1e-9);
+      if (c.found && (c.jump || (turns && m.kind == ir::MoveKind::Rapid && have_prev_))) {
         modes_off(out, loc);
         out.push_back({loc, ir::RotaryPosition{c.a, true}});
         set_current(c.a, &m.axis);

@@ -248,6 +248,22 @@ TEST(KinematicsPass, ARapidLeavingTheVerticalTurnsTheFreeAxisAtRapid) {
   EXPECT_THAT(c.output, HasSubstr("G94 G01 Z0. F19.69\n"));
 }
 
+// From a side face (B90) to a simultaneous operation on the top, same tool: the rapid into it
+// turned B while the tip ran straight across from the side face's end, through the part's
+// corner. The tool now goes up first, as before a 3+2 operation; after a tool change it is up.
+TEST(KinematicsPass, ARapidIntoAnOperationThatTurnsTheRotariesGoesUpFirst) {
+  const std::string cl =
+      "UNITS/INCHES\nTOOL PATH/SIDE90,TOOL,EM12\nTLDATA/MILL,0.5,0,3,0,0\nLOAD/TOOL,1,ADJUST,1\n"
+      "MSYS/0,0,0,1,0,0,0,1,0\nSPINDL/RPM,5000,CLW\nRAPID\nGOTO/3,0,-1,1,0,0\nRAPID\nGOTO/2.1,0,-1\n"
+      "FEDRAT/IPM,20\nGOTO/2,0,-1\nGOTO/2,1,-1\nRAPID\nGOTO/3,1,-1\nEND-OF-PATH\nTOOL PATH/TOP,TOOL,EM12\nRAPID\n"
+      "GOTO/0,0,1,0,0,1\nRAPID\nGOTO/0,0,0.1\nFEDRAT/IPM,20\nGOTO/0,0,0\nGOTO/1,0,0,0.258819,0,0.9659258\n"
+      "RAPID\nGOTO/1,0,1\nEND-OF-PATH\nFINI\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N75 G255\n(TOP)\nN80 G53 G00 Z0.\nN85 M11 M13\nN90 G00 B0.\nN95 M10 M12\n"
+                                  "N100 G00 G234 H01\nN105 G00 X0. Y0.\nN110 Z1.\n"));
+}
+
 TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {
   std::string extra = "[inv-umc]\ninherits = \"haas-umc750\"\n[inv-umc.kinematics]\nsimultaneous = \"transform\"\ninverse_time = true\n"
                       "max_inverse_time = 5000.0\n";
