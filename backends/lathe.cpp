@@ -151,7 +151,9 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (!thread_ && mv.kind == ir::MoveKind::Feed && !speed_on_centre(mv, loc)) return;
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
-  if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_ && !comp_pending_set_) {
+  // A move to where the tool is moves nothing: a G41/G42 waiting for its first move waits on
+  // (written alone it would start on the next block, maybe a cycle's profile).
+  if (!changed('X', o.x()) && !changed('Z', o.z()) && !incremental_) {
     pos_ = mv.point;
     return;
   }

@@ -79,10 +79,13 @@ class RoughCycles : public Pass {
 
  private:
   void keep(ir::Instr& in, std::vector<ir::Instr>& out) {
-    at_.track(in);
+    // A move that goes nowhere starts nothing: the compensation waits on.
     if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) comp_waits_ = c->side != ir::CompSide::Off;
-    else if (const auto* m = std::get_if<ir::Move>(&in.op); (m && m->kind != ir::MoveKind::From) || std::holds_alternative<ir::Arc>(in.op))
+    else if (const auto* m = std::get_if<ir::Move>(&in.op);
+             (m && m->kind != ir::MoveKind::From && (!at_.have_pos || (m->point - at_.pos).norm() > 1e-9)) ||
+             std::holds_alternative<ir::Arc>(in.op))
       comp_waits_ = false;
+    at_.track(in);
     out.push_back(std::move(in));
   }
 

@@ -251,4 +251,16 @@ TEST(Rough, CompensationStartingInsideTheCycleIsRefusedOrKeptAsMoves) {
                                  "starts at its first level, and would start on a profile block of the cycle"));
   EXPECT_THAT(m.output, HasSubstr("\nN60 G42 X44.\n"));
   EXPECT_EQ(m.output.find("G71"), std::string::npos);
+  // A move to where the tool stands between them starts nothing (a lone G42 was written, and
+  // the cycle after it passed both checks).
+  const std::string once = a + "CUTCOM / RIGHT\n";
+  cl.replace(cl.find(once), once.size(), once + "RAPID\n" + a);
+  Compiled record = compile_text(cl, machine("fanuc-lathe"));
+  EXPECT_FALSE(record.ok);
+  EXPECT_THAT(record.diags, HasSubstr("part.cls:12:1: error: cutter compensation (CUTCOM) starts inside the G71"));
+  moves.replace(moves.find(once), once.size(), once + "RAPID\n" + a);
+  Compiled kept = compile_text(moves, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(kept.ok) << kept.diags;
+  EXPECT_THAT(kept.output, HasSubstr("\nN60 G42 X44.\n"));
+  EXPECT_EQ(kept.output.find("G71"), std::string::npos);
 }
