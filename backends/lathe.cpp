@@ -76,6 +76,22 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
       d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
       return;
     }
+    // Near the axis G96 turns the spindle at its clamp: without one it runs to the machine's
+    // top speed, past the chuck's or the part's limit. A clamp or a speed written as S0 is none.
+    if (lacks(m_.codes.spindle_clamp, loc, "spindle_clamp", "clamp the spindle under constant surface speed",
+              "near the axis the spindle would run past the CL's MAXRPM") ||
+        lacks(m_.codes.spindle_css_mode, loc, "spindle_css_mode", "turn constant surface speed on")) {
+      spindle_ = s.dir;
+      return;
+    }
+    const double speed_written = m_.units == ir::Units::Inch ? s.speed / 0.3048 : s.speed;  // m/min, or ft/min in inches
+    if (e_.round('S', clamp).q == 0 || e_.round('S', speed_written).q == 0) {
+      d_.error(loc, "SPINDL: " + std::string(e_.round('S', clamp).q == 0 ? "the clamp of " + num_text(clamp) + " rpm"
+                                                                         : "the surface speed of " + num_text(s.speed)) +
+                        " would be written S0 (format.S): a spindle that does not turn");
+      spindle_ = s.dir;
+      return;
+    }
     if (!(s.max_rpm > 0))
       d_.warning(loc, "constant surface speed without MAXRPM: clamped at the machine's limit of " + num_text(clamp) +
                           " rpm (give SPINDL/...,MAXRPM,n for the part's or the chuck's limit)",
@@ -84,11 +100,9 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     e_.code(m_.codes.spindle_clamp, TemplateVars().with(Var::Max, clamp));
     e_.end();
     after_template(m_.codes.spindle_clamp);
-    // m/min for metric output, ft/min for inch output.
-    double speed = m_.units == ir::Units::Inch ? s.speed / 0.3048 : s.speed;
     e_.begin(loc);
     e_.code(m_.codes.spindle_css_mode);
-    e_.word('S', speed);
+    e_.word('S', speed_written);
     e_.code(dir);
     e_.end();
     surface_ = s;

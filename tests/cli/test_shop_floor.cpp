@@ -271,6 +271,18 @@ TEST(ShopFloor, ASpindleSpeedThatRoundsToZeroIsRefused) {
                                    "does not turn"))
         << name;
   }
+  // Under constant surface speed: G96 S0, or a clamp G50 S0; and a lathe with no clamp code
+  // would run to its top speed near the axis.
+  Compiled css = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,0.4,CLW,MAXRPM,2000\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/20,0,5\n",
+                              machine("fanuc-lathe"));
+  EXPECT_THAT(css.diags, HasSubstr("part.cls:3:1: error: SPINDL: the surface speed of 0.4 would be written S0 (format.S)"));
+  Compiled clamp = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,0.4\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/20,0,5\n",
+                                machine("fanuc-lathe"));
+  EXPECT_THAT(clamp.diags, HasSubstr("part.cls:3:1: error: SPINDL: the clamp of 0.4 rpm would be written S0 (format.S)"));
+  Compiled no_clamp = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,2000\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/20,0,5\n",
+                                   machine("l2", "[l2]\ninherits = \"fanuc-lathe\"\n[l2.codes]\nspindle_clamp = \"\"\n"));
+  EXPECT_THAT(no_clamp.diags, HasSubstr("part.cls:3:1: error: machine 'l2' has no code to clamp the spindle under constant "
+                                        "surface speed (codes.spindle_clamp is empty)"));
 }
 
 // --- Per-job options -------------------------------------------------------------------
