@@ -161,7 +161,7 @@ void Lowerer::record(const Record& r) {
       say_another_diameter(r);
       return;
     case MajorId::Spindl: lower_spindle(r); return;
-    case MajorId::Fedrat: lower_feed(r); return;
+    case MajorId::Fedrat: note_feed_unit(r); lower_feed(r); return;
     case MajorId::Coolnt: lower_coolant(r); return;
     case MajorId::Cutcom: lower_cutcom(r); return;
     case MajorId::Delay: lower_delay(r); return;
@@ -237,9 +237,9 @@ void Lowerer::record(const Record& r) {
       return;  // only meaningful as a Creo "$$->" comment
 
     case MajorId::Nurbs: case MajorId::Knot: case MajorId::Cntrl: lower_nurbs(r); return;
-    case MajorId::Cycle: lower_cycle(r); return;
+    case MajorId::Cycle: note_feed_unit(r); lower_cycle(r); return;
     case MajorId::Tracut: case MajorId::Copy: case MajorId::Index: lower_transform(r); return;
-    case MajorId::Thread: lower_thread(r); return;
+    case MajorId::Thread: note_feed_unit(r); lower_thread(r); return;
     case MajorId::Indirp: case MajorId::Psis: case MajorId::Rothed:
       motion_not_read(r, motion_hint(r.major));
       return;

@@ -190,6 +190,8 @@ class Lowerer : public RecordSink {
   // The first feed word that names a length unit (MMPM, MMPR, IPM, IPR), and where: a UNITS
   // after motion that says the other unit would read the moves before it in the wrong one.
   std::optional<std::pair<ir::Units, SourceLoc>> feed_unit_named_;
+  bool units_record_seen_ = false;
+  void note_feed_unit(const Record& r);
 
   struct PendingArc {
     ir::Arc arc;

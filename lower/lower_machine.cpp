@@ -187,8 +187,6 @@ void Lowerer::lower_feed(const Record& r) {
       continue;
     }
     std::string w = upper(p.text);
-    if ((w == "MMPM" || w == "MMPR" || w == "IPM" || w == "IPR") && !feed_unit_named_)
-      feed_unit_named_ = {w[0] == 'M' ? ir::Units::Mm : ir::Units::Inch, r.loc};
     if (w == "MMPM") { f.mode = ir::FeedMode::PerMinute; to_program = 1 / prog_mm; }
     else if (w == "IPM") { f.mode = ir::FeedMode::PerMinute; to_program = 25.4 / prog_mm; }
     else if (w == "FPM") { f.mode = ir::FeedMode::PerMinute; to_program = 304.8 / prog_mm; }
@@ -375,6 +373,18 @@ void Lowerer::lower_delay(const Record& r) {
   push(r.loc, dw);
 }
 
+// The first length unit a feed word names (a FEDRAT's, a CYCLE's feed, a THREAD's lead), for
+// a UNITS record after motion (lower_units).
+void Lowerer::note_feed_unit(const Record& r) {
+  if (feed_unit_named_) return;
+  for (const Param& p : r.params) {
+    if (p.is("MMPM") || p.is("MMPR")) feed_unit_named_ = {ir::Units::Mm, r.loc};
+    else if (p.is("IPM") || p.is("IPR")) feed_unit_named_ = {ir::Units::Inch, r.loc};
+    else continue;
+    return;
+  }
+}
+
 void Lowerer::lower_units(const Record& r) {
   if (r.params.empty() || !r.params[0].is_word() || !units_word(r.params[0].text)) {
     d_.error(r.params.empty() ? r.end : r.params[0].loc, std::string(r.major) + ": expected MM or INCHES");
@@ -384,7 +394,9 @@ void Lowerer::lower_units(const Record& r) {
   // The file's unit is its UNITS record's, wherever it stands. After motion whose feed named the
   // other unit, the moves before it were written in that one: read in this, they would be 25.4
   // times off (a8: 10 mm became 10 inches, certified).
-  if (has_pos_ && feed_unit_named_ && feed_unit_named_->first != u && info_.units_reason != "--input-units") {
+  const bool first = !units_record_seen_;
+  units_record_seen_ = true;
+  if (first && has_pos_ && feed_unit_named_ && feed_unit_named_->first != u && info_.units_reason != "--input-units") {
     d_.error(r.params[0].loc, std::string(r.major) + " says " + std::string(ir::units_name(u)) + " after motion whose feed (line " +
                                   std::to_string(feed_unit_named_->second.line) + ") is in " +
                                   std::string(ir::units_name(feed_unit_named_->first)) +

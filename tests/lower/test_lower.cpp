@@ -583,6 +583,11 @@ TEST(Lower, AUnitsAfterMotionInTheOtherUnitIsRefused) {
             "wrong unit; put the UNITS record first, or give --input-units");
   EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/10,10,10\nFEDRAT/MMPM,100\nGOTO/10,10,0\nUNITS/MM\nGOTO/1,1,0\n"), "");
   EXPECT_EQ(err("UNITS/INCHES\nLOADTL/1\nRAPID\nGOTO/1,1,1\nFEDRAT/IPM,10\nGOTO/1,1,0\n"), "");
+  // A cycle's own feed names the unit as well; a UNITS repeated after the first is no change.
+  EXPECT_THAT(err("LOADTL/1\nRAPID\nGOTO/10,10,10\nCYCLE/DRILL,DEPTH,5,CLEAR,2,MMPM,100\nGOTO/10,10,0\nCYCLE/OFF\n"
+                  "UNITS/INCHES\nGOTO/1,1,0\n"),
+              HasSubstr("7:7: UNITS says inch after motion whose feed (line 4) is in mm"));
+  EXPECT_EQ(err("UNITS/INCHES\nLOADTL/1\nRAPID\nGOTO/1,1,1\nFEDRAT/MMPM,250\nGOTO/1,1,0\nUNITS/INCHES\nGOTO/2,1,0\n"), "");
 }
 
 // FEDRAT/0 stopped the post even where only rapids followed it; under it a cut would have
