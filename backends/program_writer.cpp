@@ -307,16 +307,28 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           // lathe has neither: an NX frame (MSYS) turned from the first one, or moved off the
           // spindle's axis, is no single-spindle program (a Z reversed is the part turned round
           // for a second setup; its points were put through the first frame, cut from the chuck's side).
-          if (m_.is_lathe() && x.source == ir::FrameSource::Msys &&
-              (!x.frame.rotation.isIdentity(1e-9) || std::abs(x.frame.origin.x()) > 1e-9 || std::abs(x.frame.origin.y()) > 1e-9))
-            d_.error(loc, "this MSYS is " + std::string(x.frame.rotation.isIdentity(1e-9) ? "moved off" : "turned from") +
-                              " the first one (the program's frame, along the spindle's axis): on a lathe only a shift "
-                              "along Z is one setup; a part turned round is a setup of its own: post it as a program of its own");
+          if (m_.is_lathe()) check_lathe_frame(x, loc);
         } else if constexpr (std::is_same_v<T, ir::RotaryIndex>) {
           write_rotary_index(x, loc);
         }
       },
       in.op);
+}
+
+// An NX MSYS is given relative to the first (the program's frame); a Creo or APT CSYS is the
+// frame itself, its points in the program's frame already: the first one's turn is the setup's.
+// Within what the CL's digits hold: 7 decimals for an axis, 4 for an origin.
+void ProgramWriter::check_lathe_frame(const ir::SetFrame& x, SourceLoc loc) {
+  constexpr double kTurn = 1e-6, kShift = 2e-4;
+  const bool msys = x.source == ir::FrameSource::Msys;
+  if (!msys && !first_csys_) first_csys_ = x.frame.rotation;
+  const ir::Mat3 turn = msys ? x.frame.rotation : ir::Mat3(first_csys_->transpose() * x.frame.rotation);
+  const bool turned = !turn.isIdentity(kTurn);
+  const bool moved = msys && (std::abs(x.frame.origin.x()) > kShift || std::abs(x.frame.origin.y()) > kShift);
+  if (!turned && !moved) return;
+  d_.error(loc, "this " + std::string(msys ? "MSYS" : "frame") + " is " + (turned ? "turned from" : "moved off") +
+                    " the first one (the program's frame, along the spindle's axis): on a lathe only a shift along Z is "
+                    "one setup; a part turned round is a setup of its own: post it as a program of its own");
 }
 
 void ProgramWriter::write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) {

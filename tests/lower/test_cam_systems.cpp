@@ -594,6 +594,21 @@ TEST(CamSystems, ALatheFrameTurnedFromTheFirstIsASetupOfItsOwn) {
                                   machine("fanuc-lathe"), {.certify = true});
   ASSERT_TRUE(shifted.ok) << shifted.diags;
   EXPECT_THAT(shifted.output, HasSubstr("G00 X60. Z-8.\n"));
+  // NX's 4-decimal origin: a frame shifted along its own turned Z is 0.00002 off the axis.
+  Compiled rounded = compile_text(
+      "TOOL PATH/OP1,TOOL,OD\nMSYS/0,0,0,0.8660254,0,-0.5,0,1,0\nUNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\n"
+      "FEDRAT/MMPR,0.1\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,OD\n"
+      "MSYS/-5.0000,0.0000,-8.6603,0.8660254,0,-0.5,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/14,0,-20\nEND-OF-PATH\n",
+      machine("fanuc-lathe"), {.certify = true});
+  EXPECT_TRUE(rounded.ok) << rounded.diags;
+  // Creo's CSYS: its points are in the program's frame, but a frame turned from the first is
+  // a second setup all the same (it was posted as one).
+  Compiled creo = compile_text(
+      "$$-> CSYS / 1,0,0,0, 0,1,0,0, 0,0,1,0\nUNITS / MM\nLOADTL / 1\nSPINDL / RPM, 1000, CLW\nFEDRAT / 0.1, MMPR\n"
+      "RAPID\nGOTO / 30, 0, 2\nGOTO / 15, 0, -20\n$$-> CSYS / 1,0,0,0, 0,-1,0,0, 0,0,-1,-100\nRAPID\nGOTO / 30, 0, 2\n",
+      machine("fanuc-lathe"));
+  EXPECT_FALSE(creo.ok);
+  EXPECT_THAT(creo.diags, HasSubstr("part.cls:9:6: error: this frame is turned from the first one"));
 }
 
 // Numbers and words after a code or a tool that clpc does not read are said, never dropped
