@@ -1,5 +1,6 @@
 #include "machine/kinematics.h"
 
+#include <algorithm>
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
@@ -296,6 +297,9 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
     }
   }
   best.jump = best.found && current && any_cost < best_cost - 1e-6 && any_cost < 90;
+  // Within the tolerance past a limit is the limit: written as solved, B30.0001 would pass B30.
+  for (size_t i = 0; best.found && i < n; ++i)
+    if (k.rotaries[i].cyclic == Cyclic::No) best.a[i] = std::clamp(best.a[i], k.rotaries[i].min, k.rotaries[i].max);
   return best;
 }
 

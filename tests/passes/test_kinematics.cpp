@@ -146,6 +146,12 @@ TEST(KinematicsPass, BExactlyAtItsLimits) {
   Path c = compile_path_axes({tilt(-30, 0), tilt(-35.00002, 0)}, "neg-umc", kNegUmc);
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr(" B-35.\n"));
+  // And it is written at the limit: with 4 decimals B-35.0000 (it was B-35., rounded, but
+  // B-35.0001 past the limit with a finer format).
+  Path fine = compile_path_axes({tilt(-30, 0), tilt(-35.00008, 0)}, "neg-umc",
+                                std::string(kNegUmc) + "[neg-umc.format]\nB = { decimals = 4 }\n");
+  ASSERT_TRUE(fine.ok) << fine.diags;
+  EXPECT_THAT(fine.output, HasSubstr(" B-35.\n"));
   Path d = compile_path_axes({tilt(-30, 0), tilt(-35.001, 0)}, "neg-umc", kNegUmc);
   EXPECT_FALSE(d.ok);
   EXPECT_THAT(d.diags, HasSubstr("leaves the rotary limits"));
