@@ -273,8 +273,14 @@ std::vector<KeySpec> build() {
          [](const Machine& m, size_t a) { return i(long(axis(m, a).direction)); });
   choice(x, "cyclic", "no|wind|modulo", "continuous axes: wind on, or modulo 360",
          [](const Machine& m, size_t a) { return pick("no|wind|modulo", int(axis(m, a).cyclic)); });
-  ranged(x, "min", K::Number, -1e6, 1e6, "lower limit, degrees", [](const Machine& m, size_t a) { return n(axis(m, a).min); });
-  ranged(x, "max", K::Number, -1e6, 1e6, "upper limit, degrees", [](const Machine& m, size_t a) { return n(axis(m, a).max); });
+  // A continuous axis has no limits unless a winding one was given its range: explain leaves
+  // them out (written out, -360 and 360 would be a range the machine has not).
+  ranged(x, "min", K::Number, -1e6, 1e6, "lower limit, degrees", [](const Machine& m, size_t a) {
+    return axis(m, a).cyclic == Cyclic::No || axis(m, a).wind_range ? n(axis(m, a).min) : std::string();
+  });
+  ranged(x, "max", K::Number, -1e6, 1e6, "upper limit, degrees", [](const Machine& m, size_t a) {
+    return axis(m, a).cyclic == Cyclic::No || axis(m, a).wind_range ? n(axis(m, a).max) : std::string();
+  });
   key(x, "center", K::Length3, "a point on the axis", [](const Machine& m, size_t a) { return v3(axis(m, a).center); });
   ranged(x, "prefer", K::Number, -1, 1, "the sign preferred where solutions tie", [](const Machine& m, size_t a) { return n(axis(m, a).prefer); });
   ranged(x, "rate", K::Number, 0, 1e9, "degrees per minute (0: unknown)", [](const Machine& m, size_t a) { return n(axis(m, a).rate); });

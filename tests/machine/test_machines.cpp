@@ -128,6 +128,13 @@ TEST(Machines, ExplainPrintsTheResolvedDescription) {
   RunResult again = run_clpc("explain " + t.path("again.toml"));
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(again.out.substr(again.out.find('[')), r.out.substr(r.out.find('[')));
+  // The UMC's C winds on without end: explain printed min = -360, max = 360, a range it has
+  // not (a copy of it refused a 390-degree finish the built-in machine posts).
+  RunResult umc = run_clpc("explain haas-umc750");
+  ASSERT_EQ(umc.status, 0) << umc.err;
+  EXPECT_THAT(umc.out, HasSubstr("name = \"C\"\naxis = [0, 0, 1]\nside = \"table\"\ndirection = -1\ncyclic = \"wind\"\n"
+                                 "center = [0, 0, 0]\n"));
+  EXPECT_THAT(umc.out, HasSubstr("cyclic = \"no\"\nmin = -35\nmax = 120\n"));
 }
 
 
