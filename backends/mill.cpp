@@ -524,6 +524,15 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
                "feed-clamped");
     want.feed = m_.max_feed;
   }
+  if (!tap && mode == ir::FeedMode::PerRev && m_.max_feed > 0 && spindle_rpm_ > 0 &&
+      want.feed * spindle_rpm_ > m_.max_feed * (1 + 1e-9) && !(cycle_active_ && cycle_.feed == want.feed)) {
+    const std::string unit = m_.units == ir::Units::Inch ? " in" : " mm";
+    d_.warning(loc, "feed " + num_text(want.feed) + unit + "/rev at " + num_text(spindle_rpm_) + " rpm is " +
+                        num_text(std::round(want.feed * spindle_rpm_ * 1e4) / 1e4) + unit + "/min, above machine '" + m_.name +
+                        "''s max_feed " + num_text(std::round(m_.max_feed * 1e4) / 1e4) +
+                        ": the control drills it slower than the CL asks",
+               "feed-clamped");
+  }
   double ret = m_.cycles.return_initial ? std::max(h.initial, c.clearance) : c.clearance;
   bool same = cycle_active_ && cycle_.code == want.code && e_.as_written('Z', cycle_.bottom) == e_.as_written('Z', want.bottom) &&
               e_.as_written('R', cycle_.r) == e_.as_written('R', want.r) && cycle_.peck == want.peck &&

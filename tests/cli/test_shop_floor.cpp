@@ -256,6 +256,10 @@ TEST(ShopFloor, FeedsAboveTheMachinesLimit) {
                                      "as 2000, slower than the CL asks [-Wfeed-clamped]\n"));
   EXPECT_THAT(drill.diags, HasSubstr("part.cls:10:1: warning: feed 2.5 mm/rev at 1000 rpm is 2500 mm/min, above machine "
                                      "'old-vmc''s max_feed 2000: the control cuts it slower than the CL asks [-Wfeed-clamped]\n"));
+  Compiled per_rev = compile_text(head + "CYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,2.5\nGOTO/20,10,0\nCYCLE/OFF\n", m);
+  ASSERT_TRUE(per_rev.ok) << per_rev.diags;
+  EXPECT_THAT(per_rev.diags, HasSubstr("part.cls:7:1: warning: feed 2.5 mm/rev at 1000 rpm is 2500 mm/min, above machine "
+                                       "'old-vmc''s max_feed 2000: the control drills it slower than the CL asks"));
   size_t warnings = 0;  // once for the cycle's two holes
   for (size_t at = drill.diags.find("warning:"); at != std::string::npos; at = drill.diags.find("warning:", at + 1)) ++warnings;
   EXPECT_EQ(warnings, 2u);
