@@ -487,7 +487,9 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
     const std::string_view alone(reinterpret_cast<const char*>(q), size_t(w - q));
     const bool alone_record =
         alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME" || alone == "END-OF-PATH";
-    bool record = (slash == line_end && alone_record) || (slash < line_end && *slash == '/');
+    // Alone on its line, or before a '$$' comment (END-OF-PATH  $$ op end).
+    const bool alone_on_line = slash == line_end || (line_end - slash >= 2 && slash[0] == '$' && slash[1] == '$');
+    bool record = (alone_on_line && alone_record) || (slash < line_end && *slash == '/');
     if (!record && *slash == ',') {
       // Words and commas up to a '/': the word before the '/' is the record's.
       const unsigned char* sl = slash;

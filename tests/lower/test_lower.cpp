@@ -491,6 +491,8 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
             "3:1: a '$' at the end of the line before joins this TOOL PATH record to its text, where it would be lost: "
             "end the text without '$'");
   EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH\n"), HasSubstr("3:1: a '$' at the end of the line before joins this END-OF-PATH"));
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH  $$ op end\n"),
+              HasSubstr("3:1: a '$' at the end of the line before joins this END-OF-PATH"));
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT SEE THE $\nTOOL PATHS, AND END-OF-PATH MARKS\nGOTO/0,0,50\n"), "");
 }
 
