@@ -451,6 +451,11 @@ void check_job_options(Reader& p, const Machine& m) {
 
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
+  // Inverse time with no G93 to write it: every move that turns a rotary would be an error,
+  // several per record; said once, where the machine asks for it.
+  if (auto k = r.sub("kinematics"); k && m.kinematics.inverse_time && m.codes.inverse_time.empty())
+    if (const toml::node* n = k->find("inverse_time"))
+      k->error(*n, "inverse_time", "machine '" + m.name + "' has no codes.inverse_time (say, \"G93\") to write it with");
   if (auto k = r.sub("kinematics"); k && m.kinematics.indexed == Indexed::Plane) {
     if (const toml::node* n = k->find("indexed"); n && (m.codes.plane_on.empty() || m.codes.plane_off.empty()))
       k->error(*n, "indexed",

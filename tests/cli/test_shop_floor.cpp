@@ -186,6 +186,15 @@ TEST(ShopFloor, AnInheritedPipelineThatDoesNotFitIsSaidAtTheMachine) {
             "machine's travel (its pipeline is inherited: give the machine its own)\n 1 | [tm]\n   | ^\n");
 }
 
+// Inverse time asked for with no G93 to write it: one error where it is asked (it was several
+// per record, at every move that turned a rotary).
+TEST(ShopFloor, InverseTimeWithoutItsCodeIsOneErrorInItsFile) {
+  EXPECT_EQ(load_error("[inv]\ninherits = \"haas-umc750\"\n[inv.kinematics]\nsimultaneous = \"transform\"\n"
+                       "inverse_time = true\n[inv.codes]\ninverse_time = \"\"\n"),
+            "shop.toml:5:16: error: inv.kinematics.inverse_time: machine 'inv' has no codes.inverse_time (say, \"G93\") "
+            "to write it with\n 5 | inverse_time = true\n   |                ^\n");
+}
+
 TEST(ShopFloor, PassesOutOfOrderAreAnError) {
   EXPECT_THAT(load_error("[late]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"offset-table\", "
                          "\"kinematics\", \"drill-cycles\", \"arc-legalise\"]\n"),
