@@ -235,6 +235,8 @@ class Lowerer : public RecordSink {
   ir::Frame tracut_, copy_xf_, xf_;
   ir::Frame msys_;                 // the MSYS in force, in the program frame
   std::optional<ir::Frame> msys0_; // the file's first MSYS: the program frame
+  SourceLoc msys0_loc_;
+  bool msys0_turn_said_ = false;   // a later MSYS square to the absolute frame, the first turned: said
   bool has_tracut_ = false, has_xf_ = false;
   std::map<int, std::vector<OwnedRecord>> blocks_;
   int recording_index_ = -1;

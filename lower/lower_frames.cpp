@@ -19,7 +19,21 @@ void Lowerer::lower_matrix_frame(const Record& r, ir::FrameSource) {
   ir::SetFrame f;
   if (!read_frame(r, &d_, f.frame, f.source)) return;
   if (f.source == ir::FrameSource::Msys) {
-    if (!msys0_) msys0_ = f.frame;
+    if (!msys0_) {
+      msys0_ = f.frame;
+      msys0_loc_ = r.loc;
+    } else if (!msys0_turn_said_ && f.frame.rotation.isIdentity(1e-6) && !msys0_->rotation.isIdentity(1e-6)) {
+      // The part's setup is the first MSYS's, as written down. A later operation square to the
+      // absolute frame while the first is turned from it says the first may be a local frame
+      // (a 3+2 face first): then every face would be cut turned by the first one's tilt.
+      msys0_turn_said_ = true;
+      d_.warning(r.loc, "this MSYS is square to the absolute frame, but the first one (line " +
+                            std::to_string(msys0_loc_.line) + "), which clpc takes as the part's setup on the machine (where "
+                            "the work offset is set), is turned from it: if the part is set up square to the absolute "
+                            "frame, the first operation's MSYS is a local one and every face would be cut turned by it; "
+                            "put an operation in the setup's frame first",
+                 "frame");
+    }
     f.frame = ir::compose(msys0_->inverse(), f.frame);
     msys_ = f.frame;
     update_xf();

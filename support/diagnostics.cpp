@@ -34,6 +34,7 @@ const std::vector<WarningName>& warning_names() {
       {"cycle", "a CYCLE record's degenerate but real cases: no holes, zero depth, no clearance, no CYCLE/OFF"},
       {"data-comment", "a Creo $$-> data comment that cannot be read"},
       {"feed-unit", "a FEDRAT without a unit word after one per revolution (kept) or in inverse time (per minute)"},
+      {"frame", "the first MSYS, taken as the part's setup, turned from the absolute frame a later MSYS is square to"},
       {"force-family", "lathe data posted for a mill, or mill data for a lathe (--force-family)"},
       {"groove", "a groove cycle's cases (no CYCLE/OFF, a groove not collapsed)"},
       {"ignored-word", "a word of a PREFUN, AUXFUN (after its code) or CUTCOM, not read"},

@@ -553,6 +553,20 @@ TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
                                         "part turns, so the drill would cut a ring"));
 }
 
+// The first MSYS is the part's setup. An NX file whose first operation is a tilted face (a
+// local MCS) and whose later one is square to the absolute frame had every face cut turned by
+// the first's tilt, silently; it is said now.
+TEST(CamSystems, AFirstMsysTurnedFromALaterSquareOneIsSaid) {
+  const std::string op2 = "TOOL PATH/TOP,TOOL,EM\nMSYS/0,0,0,1,0,0,0,1,0\nRAPID\nGOTO/0,0,1\nEND-OF-PATH\n";
+  Compiled c = compile_text("UNITS/MM\nTOOL PATH/SIDE30,TOOL,EM\nTLDATA/MILL,10,0,50,0,0\n"
+                            "MSYS/2,0,1,0.8660254,0,-0.5,0,1,0\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,1\n"
+                            "END-OF-PATH\n" + op2,
+                            machine("haas-umc750"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(messages(c.diags), HasSubstr("part.cls:11:1: warning: this MSYS is square to the absolute frame, but the first "
+                                           "one (line 4), which clpc takes as the part's setup on the machine"));
+}
+
 // Creo under MULTAX/ON writes every GOTO with its tool axis. The GOTOs after a CIRCLE that go
 // on round it with the arc's own axis are the arc: only the first was joined, the others cut
 // as 30-degree chords 0.034 in inside the circle (certified: verify read them so too).
