@@ -88,16 +88,22 @@ void MillBackend::motion_code(Motion mo) {
 
 bool MillBackend::check_axis(const ir::Vec3& axis, SourceLoc loc) {
   if (m_.kinematics.has_rotaries()) {
-    // Under TCPC the program is in the part's frame, and G41/G42 offsets in its XY plane: with
-    // the tool tilted that is not the plane square to the tool, and the cutter is offset wrong
-    // (a tilted frame without TCPC is turned, and its XY is square to the tool).
-    const bool comp = comp_on_ || (comp_pending_set_ && comp_pending_.side != ir::CompSide::Off);
-    if (tcp_on_ && comp && std::abs(axis.z()) < 1 - 1e-9) {
+    // G41/G42 offset in the XY plane of the coordinates the program is in: square to the tool
+    // only where the tool is along their Z. Under TCPC they are the part's, with the tool
+    // tilted in them; a head that tilts the tool leaves it tilted in the machine's. (A table
+    // turned under the tool, or a tilted plane, leaves it along Z.) The block that cancels
+    // compensation (G40) ends it, and may tilt.
+    const bool cancels = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off;
+    const bool comp = !cancels && (comp_on_ || comp_pending_set_);
+    if (comp && std::abs(axis.z()) < 1 - 1e-9) {
       if (comp_tilt_said_) return false;  // said once: the rest of it is the same error
       comp_tilt_said_ = true;
-      d_.error(loc, "cutter compensation (CUTCOM) with the tool tilted under TCPC: G41/G42 offset in the part's XY plane, "
-                    "which is not square to the tool, so the cutter would be offset wrong; have the CAM system write the "
-                    "compensated path (CUTCOM/OFF), or cut the face in a tilted frame (3+2, kinematics.indexed \"dwo\")");
+      d_.error(loc, std::string("cutter compensation (CUTCOM) with the tool tilted ") +
+                        (tcp_on_ ? "under TCPC: G41/G42 offset in the part's XY plane"
+                                 : "by the head: G41/G42 offset in the machine's XY plane") +
+                        ", which is not square to the tool, so the cutter would be offset wrong; have the CAM system "
+                        "write the compensated path (no CUTCOM), or cut the face in a tilted frame (3+2 on a table, "
+                        "kinematics.indexed \"dwo\" or \"plane\")");
       return false;
     }
     return true;  // the kinematics pass gave the rotary positions

@@ -35,7 +35,7 @@ class MillBackend : public ProgramWriter {
   void write_offset_macro();
   void motion_code(Motion mo);
   bool check_axis(const ir::Vec3& axis, SourceLoc loc);
-  bool comp_tilt_said_ = false;  // compensation with a tilted tool under TCPC refused (said once)
+  bool comp_tilt_said_ = false;  // compensation with the tool tilted in the program's coordinates refused (said once)
   bool changed(char letter, double value) const;
 
   // The canned cycle the control has active, as last written.

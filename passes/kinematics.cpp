@@ -119,6 +119,12 @@ class Kinematics : public Pass {
     }
     for (ir::Instr& in : op.body) {
       if (auto* tc = std::get_if<ir::ToolChange>(&in.op)) {
+        // The tool goes up for a change, or for the tool in the spindle loaded with another
+        // register; loaded again as it is (CATIA's LOADTL at every operation), it stays.
+        const int offset = tc->length_offset > 0 ? tc->length_offset : tc->tool;
+        if (tc->tool != tool_ || offset != tool_offset_) tool_up_ = true;
+        tool_ = tc->tool;
+        tool_offset_ = offset;
         const ir::ToolInfo* t = ctx.info.tool(tc->tool);
         tool_length_ = t ? t->length : 0;
         modes_off(out, in.loc);  // a tool change needs the modes off
@@ -439,7 +445,7 @@ class Kinematics : public Pass {
       // change it is up there already.)
       Choice c = choose(m.axis);
       const bool turns = c.found && (std::abs(c.a[0] - cur_[0]) > 1e-9 || std::abs(c.a[1] - cur_[1]) > 1e-9);
-      if (c.found && (c.jump || (turns && m.kind == ir::MoveKind::Rapid && have_prev_))) {
+      if (c.found && (c.jump || (turns && m.kind == ir::MoveKind::Rapid && !tool_up_))) {
         modes_off(out, loc);
         out.push_back({loc, ir::RotaryPosition{c.a, true}});
         set_current(c.a, &m.axis);
@@ -526,6 +532,7 @@ class Kinematics : public Pass {
     prev_tip_ = tip;
     prev_axis_ = axis;
     prev_rapid_ = m.kind == ir::MoveKind::Rapid;
+    tool_up_ = false;
     have_prev_ = true;
     out.push_back({loc, m});
   }
@@ -751,6 +758,7 @@ class Kinematics : public Pass {
     prev_tip_ = end_in_part;
     prev_axis_ = axis_in_part;
     prev_rapid_ = false;
+    tool_up_ = false;
     have_prev_ = true;
     out.push_back({loc, a});
   }
@@ -780,6 +788,7 @@ class Kinematics : public Pass {
       h.axis = Vec3::UnitZ();
       out.push_back({loc, h});
       have_prev_ = false;
+      tool_up_ = false;  // at the hole's return level, not up
       return;
     }
     std::vector<ir::Instr> moves;
@@ -831,7 +840,11 @@ class Kinematics : public Pass {
   ir::Spindle spindle_;
   Vec3 prev_tip_ = Vec3::Zero(), prev_axis_ = Vec3::UnitZ();
   bool have_prev_ = false;
-  bool prev_rapid_ = false;  // the tool came to prev_tip_ at rapid (in the air, not at a cut)
+  bool prev_rapid_ = false;
+  // The tool is up from a tool change, no motion since (a rapid that turns the rotaries into
+  // the next operation needs no retract first). Not after a reload of the same tool.
+  bool tool_up_ = true;
+  int tool_ = -1, tool_offset_ = -1;  // the tool came to prev_tip_ at rapid (in the air, not at a cut)
 };
 
 }  // namespace

@@ -267,7 +267,20 @@ TEST(KinematicsPass, ARapidIntoAnOperationThatTurnsTheRotariesGoesUpFirst) {
   Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N75 G255\n(TOP)\nN80 G53 G00 Z0.\nN85 M11 M13\nN90 G00 B0.\nN95 M10 M12\n"
-                                  "N100 G00 G234 H01\nN105 G00 X0. Y0.\nN110 Z1.\n"));
+                                  "N100 G00 G234 H01\nN105 G00 X0. Y0.\nN110 Z1.\n"));  // CATIA loads the tool at every operation: the same tool again is no change, and the tool is
+  // not up (the retract was skipped).
+  std::string reload = cl;
+  reload.insert(reload.find("TOOL PATH/TOP,TOOL,EM12\n") + 24, "LOAD/TOOL,1,ADJUST,1\n");
+  Compiled r = compile_text(reload, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(r.ok) << r.diags;
+  EXPECT_THAT(r.output, HasSubstr("(TOP)\nN80 G53 G00 Z0.\nN85 M11 M13\nN90 G00 B0.\n"));
+  // An operation ending in a canned cycle leaves the tool at its return level, not up.
+  std::string cycle = cl;
+  const std::string last_cuts = "GOTO/2,0,-1\nGOTO/2,1,-1\nRAPID\nGOTO/3,1,-1\n";
+  cycle.replace(cycle.find(last_cuts), last_cuts.size(), "CYCLE/DRILL,0.5,IPM,20,0.1\nGOTO/2,0,-1\nGOTO/2,1,-1\nCYCLE/OFF\n");
+  Compiled h = compile_text(cycle, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(h.ok) << h.diags;
+  EXPECT_THAT(h.output, HasSubstr("N70 G80\nN75 G255\n(TOP)\nN80 G53 G00 Z0.\nN85 M11 M13\nN90 G00 B0.\n"));
 }
 
 TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {

@@ -208,4 +208,22 @@ TEST(CutterComp, CompensationWithATiltedToolUnderTcpcIsRefused) {
   ASSERT_TRUE(dwo.ok) << dwo.diags;
   EXPECT_THAT(dwo.output, HasSubstr("G254"));
   EXPECT_THAT(dwo.output, HasSubstr("G41 D11"));
+  // A head that tilts the tool leaves it tilted in the machine's coordinates, TCPC or not.
+  const std::string head =
+      "[bhead]\ninherits = \"haas-umc750\"\n[bhead.kinematics]\nsimultaneous = \"transform\"\nindexed = \"transform\"\n"
+      "[[bhead.kinematics.axes]]\nname = \"B\"\naxis = [0.0, 1.0, 0.0]\nside = \"head\"\nmin = -120.0\nmax = 120.0\n"
+      "[[bhead.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\nside = \"table\"\ncyclic = \"wind\"\n";
+  Compiled side = compile_text("UNITS/INCHES\nLOAD/TOOL,1,ADJUST,1\nSPINDL/RPM,5000,CLW\nRAPID\nGOTO/3,-1,-1,1,0,0\n"
+                               "FEDRAT/IPM,20\nGOTO/2,-1,-1\nCUTCOM/LEFT,1\nGOTO/2,0,-1\nGOTO/2,1,-1\nCUTCOM/OFF\nGOTO/2,2,-1\n",
+                               machine("bhead", head));
+  EXPECT_FALSE(side.ok);
+  EXPECT_THAT(side.diags, HasSubstr("part.cls:9:1: error: cutter compensation (CUTCOM) with the tool tilted by the head: "
+                                    "G41/G42 offset in the machine's XY plane"));
+  // The block that cancels compensation may tilt: it ends the offset.
+  const std::string vertical = "UNITS/INCHES\nLOAD/TOOL,1,ADJUST,1\nMULTAX/ON\nSPINDL/RPM,5000,CLW\nRAPID\n"
+                               "GOTO/0,-1,1,0,0,1\nFEDRAT/IPM,20\nGOTO/0,-1,0\nCUTCOM/LEFT,1\nGOTO/1,-1,0\nGOTO/2,-1,0\n"
+                               "CUTCOM/OFF\nGOTO/2,-1,0.1,0.258819,0,0.9659258\n";
+  Compiled off = compile_text(vertical, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(off.ok) << off.diags;
+  EXPECT_THAT(off.output, HasSubstr("G40"));
 }
