@@ -71,6 +71,7 @@ class ProgramWriter : public Backend {
   void comp_code();
   // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
   bool spindle_within_limit(double rpm, SourceLoc loc);
+  bool tool_changer_for(const ir::ToolChange& t, SourceLoc loc);  // false: the machine cannot change to t
   void check_lathe_frame(const ir::SetFrame& x, SourceLoc loc);  // one setup: frames shifted along Z only
   std::optional<ir::Mat3> first_csys_;                           // a lathe's first CSYS, the setup's turn
   // True (and an error at loc) when the machine's TOML leaves `code` empty: it lacks the

@@ -28,15 +28,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
     need_length_offset_ = !m_.codes.length_offset.empty() && !tcp_on_;
     return;
   }
-  // A machine without a tool changer (an empty tool_change) takes the first tool as the
-  // operator loads it before the start; another tool cannot be brought in by the program.
-  if (tool_ >= 0 && lacks(m_.codes.tool_change, loc, "tool_change",
-                          "change the tool",
-                          "tool " + std::to_string(tool_) + " would cut on for tool " + std::to_string(t.tool) +
-                              "; post each tool's operations as a program of its own")) {
-    tool_ = t.tool;
-    return;
-  }
+  if (!tool_changer_for(t, loc)) return;
   if (tool_ >= 0) retract(loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;

@@ -474,6 +474,18 @@ bool ProgramWriter::lacks(const CodeTemplate& code, SourceLoc loc, const char* k
   return true;
 }
 
+// A machine without a tool changer (an empty tool_change) takes the first tool as the operator
+// loads it before the start; another tool cannot be brought in by the program. False (and an
+// error) for such a change; the tool is taken as loaded, so no error follows at every cut.
+bool ProgramWriter::tool_changer_for(const ir::ToolChange& t, SourceLoc loc) {
+  if (tool_ < 0 || !lacks(m_.codes.tool_change, loc, "tool_change", "change the tool",
+                          "tool " + std::to_string(tool_) + " would cut on for tool " + std::to_string(t.tool) +
+                              "; post each tool's operations as a program of its own"))
+    return true;
+  tool_ = t.tool;
+  return false;
+}
+
 bool ProgramWriter::spindle_within_limit(double rpm, SourceLoc loc) {
   // S0 M03 turns nothing: every cut after it would be made with the spindle stopped.
   if (e_.round('S', rpm).q == 0) {
