@@ -64,6 +64,10 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     // The programmer's MAXRPM, never above the machine's limit.
     double clamp = s.max_rpm;
     if (m_.spindle_limit() > 0 && (clamp <= 0 || clamp > m_.spindle_limit())) clamp = m_.spindle_limit();
+    if (s.max_rpm > clamp)
+      d_.warning(loc, "MAXRPM " + num_text(s.max_rpm) + " is above machine '" + m_.name + "''s spindle limit: clamped at " +
+                          num_text(clamp) + " rpm",
+                 "spindle-clamp");
     if (clamp <= 0) {
       d_.error(loc, "constant surface speed needs a spindle limit: give SPINDL/...,MAXRPM,n or set lathe.max_rpm");
       return;

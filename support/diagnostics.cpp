@@ -52,7 +52,7 @@ const std::vector<WarningName>& warning_names() {
       {"rotary-index", "a rotary table sent to 0 on a machine without one"},
       {"seed-macro", "the seed paper's G65 macro computing an offset for other angles than the rotaries go to"},
       {"setup", "an operation cut in a setup of its own, after an operator stop"},
-      {"spindle-clamp", "constant surface speed without MAXRPM, clamped at the machine's spindle limit"},
+      {"spindle-clamp", "constant surface speed without MAXRPM, or with one above the machine's limit: clamped at that limit"},
       {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
       {"spindle-stopped", "a cutting move or an arc with the spindle stopped (a hole drilled so is an error)"},
       {"spindle-restart", "the CL gives no SPINDL after a tool change: the spindle M06 stopped is started again at the CL's last speed"},

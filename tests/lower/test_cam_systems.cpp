@@ -493,6 +493,12 @@ TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
             "part.cls:3:1: warning: constant surface speed without MAXRPM: clamped at the machine's limit of 3000 rpm (give "
             "SPINDL/...,MAXRPM,n for the part's or the chuck's limit) [-Wspindle-clamp]\n");
   EXPECT_THAT(unclamped.output, HasSubstr("\nN40 G50 S3000\nN50 G96 S200 M03\n"));
+  Compiled above = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,4000\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/40,0,2\nFINI\n",
+                                machine("fanuc-lathe"));
+  ASSERT_TRUE(above.ok) << above.diags;
+  EXPECT_EQ(messages(above.diags), "part.cls:3:1: warning: MAXRPM 4000 is above machine 'fanuc-lathe''s spindle limit: "
+                                   "clamped at 3000 rpm [-Wspindle-clamp]\n");
+  EXPECT_THAT(above.output, HasSubstr("\nN40 G50 S3000\n"));
   // After a tool change the clamp waits for the new tool's SPINDL (the last tool's speed is
   // not restarted); SPINDL/ON,MAXRPM,n restarts with the new clamp.
   Compiled changed = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,2000\nFEDRAT/0.2,MMPR\nRAPID\n"
