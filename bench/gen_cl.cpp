@@ -153,8 +153,8 @@ void drill(Writer& w, Rng& r, int op, uint64_t budget) {
   const uint64_t stop = w.written() + budget;
   const bool deep = r.next() % 2;
   w.line("RAPID\nGOTO/%.4f,%.4f,%.4f,0.0000000,0.0000000,1.0000000\n", 30.0, 30.0, 50.0);
-  if (deep) w.line("CYCLE/DEEP,FEDTO,%.4f,STEP,2.0000,MMPM,120.0000,RAPTO,3.0000\n", r.uniform(8, 20));
-  else w.line("CYCLE/DRILL,RAPTO,3.0000,FEDTO,%.4f,MMPM,150.0000\n", r.uniform(5, 15));
+  if (deep) w.line("CYCLE/DEEP,FEDTO,-%.4f,STEP,2.0000,MMPM,120.0000,RAPTO,3.0000\n", r.uniform(8, 20));
+  else w.line("CYCLE/DRILL,RAPTO,3.0000,FEDTO,-%.4f,MMPM,150.0000\n", r.uniform(5, 15));
   for (int i = 0; w.written() < stop; ++i) {
     double x = 30 + (i % 40) * 6, y = 30 + (i / 40 % 25) * 6;
     w.line("GOTO/%.4f,%.4f,0.0000,0.0000000,0.0000000,1.0000000\n", x, y);
