@@ -24,6 +24,7 @@
 #include "ir/groove_model.h"
 #include "passes/motion_state.h"
 #include "passes/passes.h"
+#include "support/text.h"
 
 namespace clpc {
 
@@ -230,6 +231,7 @@ class GrooveCycles : public Pass {
       }
     }
     bool done = false;
+    why_.clear();
     if (!other && !items.empty()) {
       for (bool face : {false, true}) {
         if (record && record->face != face) continue;
@@ -243,7 +245,8 @@ class GrooveCycles : public Pass {
     if (!done) {
       if (record)
         ctx.diags.warning(loc, std::string("CYCLE/") + (record->face ? "FACE" : "RADIUS") +
-                                   ": the motion is not a groove the cycle reproduces; it is written as motion",
+                                   ": the motion is not a groove the cycle reproduces" + (why_.empty() ? "" : " (" + why_ + ")") +
+                                   "; it is written as motion",
                           "groove");
       for (ir::Instr& in : region) {
         if (std::holds_alternative<ir::GrooveMark>(in.op)) continue;
@@ -294,6 +297,25 @@ class GrooveCycles : public Pass {
     spec.feed_mode = s0.feed_mode;
     double depth = std::abs(s0.bottom - s0.level);
     if (record) {
+      // The record's words against its motion. Its FEED is the cycle's (the seed paper writes
+      // its records under another FEDRAT), but in another mode it is a contradiction: FEED has
+      // no unit word (F0.12 per revolution was cut where every plunge was 50 mm/min, certified).
+      // A peck the motion does not make is not the CL's cut either.
+      auto differs = [](double a, double b) { return std::abs(a - b) > 1e-9 * std::max(1.0, std::abs(b)); };
+      if (record->feed > 0 && record->feed_mode != s0.feed_mode) {
+        why_ = std::string("its FEED is per ") + (record->feed_mode == ir::FeedMode::PerRev ? "revolution" : "minute") +
+               ", and the motion plunges per " + (s0.feed_mode == ir::FeedMode::PerRev ? "revolution" : "minute");
+        return false;
+      }
+      if (record->feed > 0 && differs(record->feed, s0.feed))
+        ctx.diags.warning(loc, std::string("CYCLE/") + (face ? "FACE" : "RADIUS") + ": the cycle cuts at its FEED " +
+                                   num_text(record->feed) + ", not at the feed the motion plunges at (" + num_text(s0.feed) + ")",
+                          "groove");
+      const double record_peck = face ? record->z_amount : record->x_amount;
+      if (s0.cuts.size() > 1 && differs(record_peck, std::abs(s0.cuts[0].second - s0.cuts[0].first))) {
+        why_ = "its peck is not the depth the motion pecks by";
+        return false;
+      }
       spec = *record;
       spec.face = face;
       if (spec.feed <= 0) {
@@ -392,6 +414,7 @@ class GrooveCycles : public Pass {
   }
 
   double tol_ = 1e-6;
+  std::string why_;  // why a record's motion was not its cycle, for the warning
   MotionState at_;
 };
 

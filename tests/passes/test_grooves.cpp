@@ -334,3 +334,29 @@ TEST(GrooveCorpus, EveryCollapseMatchesTheMotionItReplaced) {
   std::printf("groove cycles in the corpus: %d, their cuts checked: %d\n", collapses, cuts_checked);
   EXPECT_GE(collapses, 1);
 }
+
+// A record's FEED has no unit word. Against plunges fed per minute it was cut per revolution
+// (F0.12 where every plunge was 50 mm/min, certified): the motion stays, with the reason. The
+// same mode at another value is the cycle's (the seed paper's form), said. A record pecking by
+// other than the motion's pecks keeps the motion too.
+TEST(GrooveRecords, ARecordThatContradictsItsMotionKeepsTheMotion) {
+  auto plunges = [](const std::string& record, const std::string& feed) {
+    std::string cl = "UNITS/MM\nMACHIN/TURN,1\nTURRET/1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/12,0,-10\n" + record + "\n" + feed + "\n";
+    for (double z : {-10.0, -11.5, -13.0}) {
+      cl += "RAPID\nGOTO/12,0," + num_text(z) + "\nGOTO/8,0," + num_text(z) + "\nRAPID\nGOTO/12,0," + num_text(z) + "\n";
+    }
+    return cl + "CYCLE/OFF\nFINI\n";
+  };
+  Compiled per_min = compile_text(plunges("CYCLE/RADIUS,RETRACT,0,XAXIS,4,ZAXIS,1.5,FEED,0.12", "FEDRAT/50,MMPM"),
+                                  machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(per_min.ok) << per_min.diags;
+  EXPECT_THAT(per_min.diags, HasSubstr("part.cls:7:1: warning: CYCLE/RADIUS: the motion is not a groove the cycle reproduces "
+                                       "(its FEED is per revolution, and the motion plunges per minute); it is written as motion"));
+  EXPECT_EQ(per_min.output.find("G75"), std::string::npos);
+  Compiled other = compile_text(plunges("CYCLE/RADIUS,RETRACT,0,XAXIS,4,ZAXIS,1.5,FEED,0.12", "FEDRAT/0.08,MMPR"),
+                                machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(other.ok) << other.diags;
+  EXPECT_THAT(other.diags, HasSubstr("part.cls:7:1: warning: CYCLE/RADIUS: the cycle cuts at its FEED 0.12, not at the feed "
+                                     "the motion plunges at (0.08)"));
+  EXPECT_THAT(other.output, HasSubstr("G75 X16. Z-13. P4000 Q1500 F0.12"));
+}
