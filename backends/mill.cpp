@@ -563,6 +563,9 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
         d_.error(loc, "the peck depth " + num_text(want.peck) + " rounds to Q0 at machine '" + m_.name + "''s resolution");
       e_.word('Q', want.peck);
     }
+    // The fine bore's shift off the wall before it rapids out (Q, modal on Fanuc: left out, the
+    // last one's or none, and the bar scores the finished bore).
+    if (c.kind == ir::CycleKind::FineBore) e_.word('Q', c.shift * k_);
     if (want.dwell > 0)
       e_.code(k.cycle_dwell_word, TemplateVars().with(Var::Seconds, want.dwell).with(Var::Milliseconds, want.dwell * 1000));
     if (tap ? !write_tap_feed(want.feed, c.pitch * k_, spindle_rpm_, c.depth * k_, loc)

@@ -293,6 +293,19 @@ void Lowerer::lower_cycle(const Record& r) {
   } else if (c.dwell > 0 && c.kind == ir::CycleKind::Drill) {
     c.kind = ir::CycleKind::SpotDwell;
   }
+  if (c.kind == ir::CycleKind::BackBore) {
+    // G87 bores up from the bottom: its R is the hole's bottom and Z the level it bores up to,
+    // the other way round from every other cycle. clpc writes it as the others (R above Z), a
+    // program the control would run wrong; until that is written and read back, refused.
+    d_.error(r.loc, "CYCLE/BORE,BACK: back boring (G87) is not posted by clpc; have the CAM system write it as motion");
+    return;
+  }
+  // A dwell only the spot-drilling and dwell-boring cycles write (G82, G89 P): with another
+  // cycle it would be dropped without a word.
+  if (c.dwell > 0 && c.kind != ir::CycleKind::SpotDwell && c.kind != ir::CycleKind::BoreDwell)
+    d_.warning(r.loc, "CYCLE/" + kind + ": the dwell of " + num_text(c.dwell) + " s is not written: clpc writes a dwell with "
+                          "the DRILL (G82) and BORE (G89) cycles only",
+               "cycle");
   if ((c.kind == ir::CycleKind::FineBore || c.kind == ir::CycleKind::BackBore) && !(c.shift > 0)) {
     d_.error(r.loc, "CYCLE/BORE," + std::string(orient ? "ORIENT" : "BACK") + ": needs SHIFT,s (the tool's shift off the wall)");
     return;

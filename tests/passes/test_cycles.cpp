@@ -184,6 +184,18 @@ TEST(Cycles, BoringKinds) {
   EXPECT_THAT(cycle_blocks("CYCLE/REAM,DEPTH,6,CLEAR,2"), HasSubstr("G98 G85 X10. Y10. Z-6. R2. F100."));
   EXPECT_THAT(cycle_blocks("CYCLE/BORE,DEPTH,6,DWELL,1,CLEAR,2"), HasSubstr("G98 G89 X10. Y10. Z-6. R2. P1000 F100."));
   EXPECT_THAT(cycle_blocks("CYCLE/BORE,DRAG,DEPTH,6,CLEAR,2"), HasSubstr("G98 G86 X10. Y10. Z-6. R2. F100."));
+  // The fine bore's shift: without Q (modal on Fanuc) the bar came out unshifted and scored
+  // the bore. Back boring (G87: R at the bottom) was written as the others: refused.
+  EXPECT_THAT(cycle_blocks("CYCLE/BORE,ORIENT,SHIFT,0.2,DEPTH,6,CLEAR,2"), HasSubstr("G98 G76 X10. Y10. Z-6. R2. Q0.2 F100."));
+  Compiled back = compile_text(std::string(kHead) + "CYCLE/BORE,BACK,SHIFT,0.2,DEPTH,6,CLEAR,2\nGOTO/10,10,0\nCYCLE/OFF\n",
+                               machine("fanuc-mill"));
+  EXPECT_THAT(back.diags, HasSubstr("part.cls:7:1: error: CYCLE/BORE,BACK: back boring (G87) is not posted by clpc"));
+  // A dwell the cycle does not write is said (it was dropped silently).
+  Compiled peck = compile_text(std::string(kHead) + "CYCLE/DEEP,DEPTH,12,STEP,4,DWELL,0.5,CLEAR,2\nGOTO/10,10,0\nCYCLE/OFF\n",
+                               machine("fanuc-mill"));
+  ASSERT_TRUE(peck.ok) << peck.diags;
+  EXPECT_THAT(peck.diags, HasSubstr("part.cls:7:1: warning: CYCLE/DEEP: the dwell of 0.5 s is not written: clpc writes a "
+                                    "dwell with the DRILL (G82) and BORE (G89) cycles only [-Wcycle]"));
 }
 
 TEST(Cycles, ReturnToTheRPlaneWhenTheMachineSaysSo) {
