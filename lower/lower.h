@@ -201,6 +201,7 @@ class Lowerer : public RecordSink {
   bool arc_open_ = false;  // the last instruction is an arc that may take more points
 
   bool cycle_open_ = false;  // a CYCLE without its CYCLE/OFF yet
+  bool drilling_ = false;     // that CYCLE is a drilling cycle (not a lathe groove's)
   bool thread_open_ = false;  // a THREAD without its THREAD/OFF yet
   bool rough_open_ = false;   // a CYCLE/ROUGH without its CYCLE/OFF yet
   static constexpr size_t kMaxRoughInstructions = 10000;

@@ -325,6 +325,7 @@ void Lowerer::lower_cycle(const Record& r) {
 
 void Lowerer::start_cycle(const ir::CycleSpec& c, SourceLoc loc, const std::string& name) {
   cycle_open_ = true;
+  drilling_ = true;
   section_feed_ = c.feed > 0;
   cycle_holes_ = 0;
   cycle_loc_ = loc;

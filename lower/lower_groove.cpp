@@ -66,6 +66,7 @@ void Lowerer::lower_groove_cycle(const Record& r) {
   ensure_operation(r.loc);
   if (cycle_open_) d_.warning(r.loc, "CYCLE replaces a cycle still on (no CYCLE/OFF before it)", "cycle");
   cycle_open_ = true;
+  drilling_ = false;
   section_feed_ = g.feed > 0;
   make_room();
   op_.grooves.push_back(g);

@@ -239,6 +239,17 @@ void Lowerer::lower_feed(const Record& r) {
                "feed-unit");
   if (worded) last_feed_unit_ = FeedUnit{f.mode, to_program, r.loc};
   if (f.mode != ir::FeedMode::InverseTime) f.value *= to_program;
+  if (cycle_open_ && drilling_ && section_feed_ && !op_.cycles.empty() &&
+      (f.mode != op_.cycles.back().feed_mode ||
+       std::abs(f.value - op_.cycles.back().feed) > 1e-9 * std::max(1.0, std::abs(op_.cycles.back().feed)))) {
+    // The cycle drills at its own feed; posts differ on whether a FEDRAT between its holes
+    // changes it (ICAM-style posts take it as the cycle's new feed). Ignored, the holes after
+    // it were drilled at the record's feed.
+    d_.error(r.loc, "a FEDRAT while CYCLE/" + cycle_name_ + " (line " + std::to_string(cycle_loc_.line) +
+                        ") is on, which has a feed of its own: whether the holes after it take this feed is not known; "
+                        "end the cycle, and give it again with the feed");
+    return;
+  }
   inverse_time_ = f.mode == ir::FeedMode::InverseTime;
   if (rapid_next_) {
     // RAPID, then FEDRAT, then the move: APT posts read RAPID as the next move's only (the move

@@ -255,6 +255,15 @@ void Lowerer::lower_goto(const Record& r) {
   rapid_next_ = false;
   if (!tool_ready(r.loc, kind)) return;
   if (tool_ < 0 && !info_.tools.empty()) kind = ir::MoveKind::From;
+  if (kind == ir::MoveKind::Rapid && cycle_open_ && drilling_) {
+    // APT drills every GOTO while a cycle is on; some posts take a RAPID GOTO as a move between
+    // holes (round a boss, up over a hole). Read as a hole, a via point was drilled 2 mm deep.
+    d_.error(r.loc, "a RAPID GOTO while CYCLE/" + cycle_name_ + " (line " + std::to_string(cycle_loc_.line) +
+                        ") is on: a hole, or a move between holes? The CL does not say; end the cycle (CYCLE/OFF) "
+                        "before the move and give it again after it");
+    pos_ = p;
+    return;
+  }
   move_to(p, r.loc, kind, has_axis);
 }
 

@@ -352,6 +352,22 @@ TEST(CycleErrors, ACycleThatWouldCrossBelowTheRPlaneIsRefused) {
 // A tool already over the first hole, below its R plane (the CAM system went to the hole's top
 // before the CYCLE), rises to the R plane on the spot first: G98 then returns there, so the
 // cycle crosses to the next hole at the R plane, not at the first hole's top.
+// What a cycle's holes are, when the CL is not plain: a RAPID GOTO while a cycle is on (a
+// hole to APT, a move between holes to some posts: a via point round a boss was drilled 2 mm
+// deep), and a FEDRAT between holes of a cycle with a feed of its own (ignored: the holes were
+// drilled at the record's feed). Each is refused at its record; the same feed again is nothing.
+TEST(CycleErrors, ARapidOrAnotherFeedBetweenHolesIsRefused) {
+  const std::string head = std::string(kHead) + "CYCLE/DRILL,DEPTH,12,MMPM,100,CLEAR,3\nGOTO/10,10,0\n";
+  Compiled rapid = compile_text(head + "RAPID\nGOTO/10,30,10\nGOTO/50,10,0\nCYCLE/OFF\n", machine("fanuc-mill"));
+  EXPECT_THAT(rapid.diags, HasSubstr("part.cls:10:1: error: a RAPID GOTO while CYCLE/DRILL (line 7) is on: a hole, or a move "
+                                     "between holes? The CL does not say"));
+  Compiled feed = compile_text(head + "FEDRAT/50,MMPM\nGOTO/30,10,0\nCYCLE/OFF\n", machine("fanuc-mill"));
+  EXPECT_THAT(feed.diags, HasSubstr("part.cls:9:1: error: a FEDRAT while CYCLE/DRILL (line 7) is on, which has a feed of its "
+                                    "own"));
+  Compiled same = compile_text(head + "FEDRAT/100,MMPM\nGOTO/30,10,0\nCYCLE/OFF\n", machine("fanuc-mill"), {.certify = true});
+  EXPECT_TRUE(same.ok) << same.diags;
+}
+
 TEST(Cycles, AToolOverTheFirstHoleBelowItsRPlaneRisesToItFirst) {
   const std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,10,0\n"
                          "CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n";
