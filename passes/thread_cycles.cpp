@@ -113,8 +113,10 @@ class ThreadCycles : public Pass {
         const ir::Vec3 in = mv(n).point, cut = mv(n + 1).point, out_x = mv(n + 2).point, back = mv(n + 3).point;
         const bool infeed = mv(n).kind == ir::MoveKind::Rapid && eq(in.z(), p.z()) && !eq(in.x(), p.x());
         const bool along = mv(n + 1).kind == ir::MoveKind::Feed && eq(cut.x(), in.x()) && !eq(cut.z(), p.z());
-        const bool out_ok = eq(out_x.z(), cut.z()) && eq(out_x.x(), p.x());
-        const bool back_ok = eq(back.z(), p.z()) && eq(back.x(), p.x());
+        // The box pulls out and goes back at rapid: a CL that feeds out (it may touch) stays as
+        // it is (a fed pull-out was made a rapid, and the certificate refused it).
+        const bool out_ok = mv(n + 2).kind == ir::MoveKind::Rapid && eq(out_x.z(), cut.z()) && eq(out_x.x(), p.x());
+        const bool back_ok = mv(n + 3).kind == ir::MoveKind::Rapid && eq(back.z(), p.z()) && eq(back.x(), p.x());
         if (infeed && along && out_ok && back_ok) {
           boxes.push_back({p, ir::Vec3(in.x(), 0, cut.z()), n});
           n += 4;

@@ -108,6 +108,20 @@ TEST(Threads, FlankInfeedIsG92FromEachPassesStart) {
             "N120 ");
 }
 
+// A pass that feeds out of the thread (it may touch) is no G92 box, which pulls out at rapid:
+// the box made the fed pull-out a rapid. The passes stay G32 and G01. (verify does not yet take
+// these programs: the fed pull-out after a G32 is refused as a cut past the CL's end.)
+TEST(Threads, APassThatFeedsOutIsNoBox) {
+  std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/12,0,5\nTHREAD/TURN,LEAD,1.5,MMPR\n";
+  for (const char* x : {"9.7", "9.4", "9.08"})
+    cl += std::string("RAPID\nGOTO/") + x + ",0,5\nFEDRAT/1.5,MMPR\nGOTO/" + x + ",0,-20\nGOTO/12,0,-20\nRAPID\nGOTO/12,0,5\n";
+  cl += "THREAD/OFF\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"));
+  EXPECT_THAT(c.output, HasSubstr("N60 X19.4\nN70 G32 Z-20. F1.5\nN80 G99 G01 X24. F1.5\nN90 G00 Z5.\n"));
+  EXPECT_EQ(c.output.find("G92"), std::string::npos);
+  EXPECT_EQ(c.output.find("G76"), std::string::npos);
+}
+
 TEST(Threads, WithoutCyclesEachCutIsG32) {
   Compiled c = compile_text(thread_cl({0.3, 0.92}),
                             machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\n[my-lathe.codes]\nthread_multi = \"\"\nthread_box = \"\"\n"),
