@@ -79,6 +79,8 @@ void Lowerer::lower_cycle(const Record& r) {
 
   ir::CycleSpec c;
   bool orient = false, drag = false, back = false;
+  std::optional<ir::SpindleDir> record_dir;  // a tap's CLW or CCLW word
+  SourceLoc record_dir_loc;
   if (kind == "DRILL") c.kind = ir::CycleKind::Drill;
   else if (kind == "DEEP" || kind == "DEEP2") c.kind = ir::CycleKind::Peck;
   else if (kind == "BRKCHP") c.kind = ir::CycleKind::ChipBreak;
@@ -149,7 +151,12 @@ void Lowerer::lower_cycle(const Record& r) {
       if (w == "ORIENT") { orient = true; continue; }
       if (w == "DRAG") { drag = true; continue; }
       if (w == "BACK") { back = true; continue; }
-      if (w == "RIGID" || w == "FLOAT" || w == "NODRAG" || w == "AUTO" || w == "CLW" || w == "CCLW") continue;
+      if (w == "CLW" || w == "CCLW") {
+        record_dir = w == "CLW" ? ir::SpindleDir::Cw : ir::SpindleDir::Ccw;
+        record_dir_loc = p.loc;
+        continue;
+      }
+      if (w == "RIGID" || w == "FLOAT" || w == "NODRAG" || w == "AUTO") continue;
       // NX names the kind of a drilling cycle in a second word: CYCLE/DRILL,DEEP,... and
       // CYCLE/DRILL,BRKCHP,... are the peck and chip-break cycles.
       if (i == 1 && c.kind == ir::CycleKind::Drill && (w == "DEEP" || w == "BRKCHP")) {
@@ -284,6 +291,15 @@ void Lowerer::lower_cycle(const Record& r) {
       }
     }
     c.left_hand = last_spindle_ && last_spindle_->dir == ir::SpindleDir::Ccw;
+    // The tap's hand from the record's CLW/CCLW too: against the spindle's direction the CL
+    // contradicts itself, and a tap turned the wrong way breaks (it was tapped by the SPINDL's).
+    if (record_dir && last_spindle_ && last_spindle_->dir != ir::SpindleDir::Off && *record_dir != last_spindle_->dir) {
+      d_.error(record_dir_loc, "CYCLE/TAP says the spindle turns " +
+                                   std::string(*record_dir == ir::SpindleDir::Cw ? "clockwise (a right-hand tap)" : "counter-clockwise (a left-hand tap)") +
+                                   ", but the SPINDL in force turns it the other way: which hand the thread is, is not known");
+      return;
+    }
+    if (record_dir) c.left_hand = *record_dir == ir::SpindleDir::Ccw;
   }
   if (c.kind == ir::CycleKind::Bore) {
     if (orient) c.kind = ir::CycleKind::FineBore;

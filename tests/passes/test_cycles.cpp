@@ -177,6 +177,18 @@ TEST(Cycles, LeftHandTapWithTheSpindleCounterClockwise) {
       m);
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("G98 G74 X0. Y0. Z-8. R2. F625."));
+  // The record's own hand agrees, or the CL contradicts itself (a left-hand tap record under a
+  // clockwise spindle was tapped right-hand, G84).
+  Compiled same = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,500,CCLW\nRAPID\nGOTO/0,0,10\nCYCLE/TAP,DEPTH,8,PITCH,1.25,CLEAR,2,CCLW\n"
+      "GOTO/0,0,0\nCYCLE/OFF\n", m);
+  EXPECT_THAT(same.output, HasSubstr("G98 G74 X0. Y0. Z-8. R2. F625."));
+  Compiled contra = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,10\nCYCLE/TAP,DEPTH,8,PITCH,1.25,CLEAR,2,CCLW\n"
+      "GOTO/0,0,0\nCYCLE/OFF\n", m);
+  EXPECT_FALSE(contra.ok);
+  EXPECT_THAT(contra.diags, HasSubstr("part.cls:6:38: error: CYCLE/TAP says the spindle turns counter-clockwise (a left-hand "
+                                      "tap), but the SPINDL in force turns it the other way"));
 }
 
 TEST(Cycles, BoringKinds) {
