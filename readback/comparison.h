@@ -308,8 +308,9 @@ class Comparison : public ProgramSink {
   void groove_point(const Vec3& p, bool rapid);
 
   // Is `q` (on the CL move to `p`) on a cutting move of the program (or, `cycle_shift_ok`, on a
-  // groove cycle's own rapid shift)? False, reported, if not.
-  bool groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok);
+  // groove cycle's own rapid shift), searched from the window's segment `from`? False,
+  // reported, if not.
+  bool groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok, size_t from = 0);
 
   void end_groove();
 
@@ -391,6 +392,7 @@ class Comparison : public ProgramSink {
   ir::ThreadMark thread_;
   std::vector<std::pair<Vec3, Vec3>> thread_cuts_;  // the CL's thread cuts of the section
   std::vector<bool> thread_used_;  // the program's segments (window index) a CL thread cut took
+  size_t thread_next_ = 0;  // the window's segment after the last thread cut matched
   int limit_reported_[26] = {};
   double lo_[3] = {kInf, kInf, kInf}, hi_[3] = {-kInf, -kInf, -kInf};
   int lo_line_[3] = {}, hi_line_[3] = {};

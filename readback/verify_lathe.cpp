@@ -130,11 +130,11 @@ void Comparison::groove_point(const Vec3& p, bool rapid) {
   if (groove_cut(p, p, shift) && have_from && (p - from).norm() > 2 * tol_) groove_cut((from + p) / 2, p, shift);
 }
 
-bool Comparison::groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok) {
+bool Comparison::groove_cut(const Vec3& q, const Vec3& p, bool cycle_shift_ok, size_t from) {
   double best = kInf;
   size_t best_at = 0;
   int rapid_line = 0;  // a rapid through the cut, while no feed made it
-  for (size_t j = 0; j < kMaxLookahead; ++j) {
+  for (size_t j = from; j < kMaxLookahead; ++j) {
     const TipSegment* s = peek(j);
     if (!s) break;
     if (!finite(s->start) || !finite(s->end)) continue;
@@ -200,6 +200,7 @@ void Comparison::begin_thread(const ir::ThreadMark& t) {
   groove_reach_ = 0;
   thread_cuts_.clear();
   thread_used_.clear();
+  thread_next_ = 0;
 }
 
 bool Comparison::along_thread(const Vec3& from, const Vec3& to) const {
@@ -217,8 +218,10 @@ void Comparison::thread_point(const Vec3& p, bool rapid) {
   if (!have_from) return;
   if (!along_thread(from, p)) {
     if ((p - from).norm() <= tol_) return;  // no move
-    ++rep_.cl_groove_points;  // an infeed or pull-out at feed: on the path, like a groove's
-    groove_cut(p, p, false);
+    // An infeed or pull-out at feed: on the path, like a groove's, after the pass before it
+    // (passes pull out along the same line: the first pass's pull-out is not the last's).
+    ++rep_.cl_groove_points;
+    groove_cut(p, p, false, thread_next_);
     return;
   }
   ++rep_.cl_thread_cuts;
@@ -259,6 +262,7 @@ void Comparison::thread_cut(const Vec3& from, const Vec3& p, double lead) {
     groove_reach_ = std::max(groove_reach_, best_at + 1);
     if (thread_used_.size() <= best_at) thread_used_.resize(best_at + 1, false);
     thread_used_[best_at] = true;
+    thread_next_ = std::max(thread_next_, best_at + 1);
     const double length = (p - from).norm();
     const double drift = lead > 0 ? std::abs(s.raw.feed - lead) * length / lead : kInf;
     if (drift > tol_)
@@ -305,6 +309,7 @@ void Comparison::end_thread() {
   groove_reach_ = 0;
   thread_cuts_.clear();
   thread_used_.clear();
+  thread_next_ = 0;
   consume_rapids_to(prev_);
 }
 

@@ -109,15 +109,24 @@ TEST(Threads, FlankInfeedIsG92FromEachPassesStart) {
 }
 
 // A pass that feeds out of the thread (it may touch) is no G92 box, which pulls out at rapid:
-// the box made the fed pull-out a rapid. The passes stay G32 and G01. (verify does not yet take
-// these programs: the fed pull-out after a G32 is refused as a cut past the CL's end.)
+// the box made the fed pull-out a rapid. The passes stay G32 and G01, and verify takes each
+// pull-out as the one after its own pass (all lie on one line: the first pass's is not the last's).
 TEST(Threads, APassThatFeedsOutIsNoBox) {
   std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/12,0,5\nTHREAD/TURN,LEAD,1.5,MMPR\n";
   for (const char* x : {"9.7", "9.4", "9.08"})
     cl += std::string("RAPID\nGOTO/") + x + ",0,5\nFEDRAT/1.5,MMPR\nGOTO/" + x + ",0,-20\nGOTO/12,0,-20\nRAPID\nGOTO/12,0,5\n";
   cl += "THREAD/OFF\n";
-  Compiled c = compile_text(cl, machine("fanuc-lathe"));
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr("3 groove cuts, 3 thread cuts checked"));
   EXPECT_THAT(c.output, HasSubstr("N60 X19.4\nN70 G32 Z-20. F1.5\nN80 G99 G01 X24. F1.5\nN90 G00 Z5.\n"));
+  // The last pass's pull-out made at rapid is caught, though the first pass's lies on it.
+  std::string rapid_out = c.output;
+  const size_t last = rapid_out.rfind("G01 X24.");
+  rapid_out.replace(last, 3, "G00");
+  Compiled rapid = verify_text(cl, machine("fanuc-lathe"), rapid_out);
+  EXPECT_FALSE(rapid.ok);
+  EXPECT_THAT(rapid.diags, HasSubstr("is made at rapid traverse (G00)"));
   EXPECT_EQ(c.output.find("G92"), std::string::npos);
   EXPECT_EQ(c.output.find("G76"), std::string::npos);
 }
