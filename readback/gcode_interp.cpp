@@ -1,6 +1,7 @@
 #include "readback/gcode_interp.h"
 #include "support/text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -66,6 +67,7 @@ class Interp {
     double inc = std::max({std::abs(dequantize(1, m.format('X'))), std::abs(dequantize(1, m.format('I'))),
                            std::abs(dequantize(1, m.format('K')))});
     radius_tol_ = opt.arc_radius_tolerance > 0 ? opt.arc_radius_tolerance : inc;
+    if (m.is_lathe()) alias_lathe_codes();
   }
 
   Result run(std::string_view text) {
@@ -147,6 +149,35 @@ class Interp {
 
   static bool is_g(double v, double code) { return std::abs(v - code) < 1e-6; }
 
+  // A lathe's G-code system (Fanuc A, B or C) renames its functions: G33 threads where system A
+  // writes G32, G95 feeds per revolution where A writes G99, G92 clamps the spindle where A
+  // writes G50. The reader runs system A's numbers; a G word the machine's own codes give to a
+  // function is read as system A's number for it, so the program clpc wrote for a system B or C
+  // lathe is read as that control runs it. (System A's own codes alias nothing.)
+  void alias_lathe_codes() {
+    const Codes& c = m_.codes;
+    const std::pair<const CodeTemplate*, double> functions[] = {
+        {&c.units_inch, 20},      {&c.units_mm, 21},        {&c.feed_per_minute, 98}, {&c.feed_per_rev, 99},
+        {&c.spindle_rpm_mode, 97}, {&c.spindle_css_mode, 96}, {&c.spindle_clamp, 50},  {&c.thread, 32},
+        {&c.thread_box, 92},      {&c.thread_multi, 76},    {&c.rough_turn, 71},      {&c.rough_face, 72},
+        {&c.rough_finish, 70},    {&c.groove_face, 74},     {&c.groove_radial, 75},   {&c.absolute, 90},
+        {&c.incremental, 91}};
+    for (const auto& [t, a_number] : functions) {
+      const std::string& text = t->text;
+      if (text.size() < 2 || (text[0] != 'G' && text[0] != 'g')) continue;
+      double g = 0;
+      const char* end = text.data() + text.size();
+      const char* stop = std::find_if(text.data() + 1, end, [](char ch) { return ch == ' ' || ch == '\t'; });
+      if (std::from_chars(text.data() + 1, stop, g).ec != std::errc() || is_g(g, a_number)) continue;
+      lathe_alias_.push_back({g, a_number});
+    }
+  }
+  double lathe_code(double g) const {
+    for (const auto& [code, a_number] : lathe_alias_)
+      if (is_g(g, code)) return a_number;
+    return g;
+  }
+
   void block(std::string_view l, int line) {
     std::vector<Word>& words = words_;
     words.clear();
@@ -173,6 +204,7 @@ class Interp {
     int new_offset = 0;
     bool lathe = m_.is_lathe();
     for (double g : gs) {
+      if (!lathe_alias_.empty()) g = lathe_code(g);
       if (is_g(g, 0)) motion_ = Motion::Rapid, motion_word = true;
       else if (is_g(g, 1)) motion_ = Motion::Linear, motion_word = true;
       else if (is_g(g, 2)) motion_ = Motion::Cw, motion_word = true;
@@ -1028,6 +1060,7 @@ class Interp {
   std::vector<Word> words_;  // per block, kept for their capacity
   Words a_;
   std::vector<double> gs_, ms_;
+  std::vector<std::pair<double, double>> lathe_alias_;  // a lathe code -> system A's number for its function
   double radius_tol_;
   Vec3 pos_;
   std::array<double, 3> rotary_{0, 0, 0};

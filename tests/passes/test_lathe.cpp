@@ -337,3 +337,39 @@ TEST(LatheMotion, OutsideTheXzPlaneIsRefusedWithTheRule) {
     ++errors;
   EXPECT_EQ(errors, 2u) << arc.diags;  // the GOTO, and the arc
 }
+
+// A lathe of Fanuc's G-code system B (G33/G78 thread, G92 clamp, G94/G95 feeds), described in
+// TOML: the program uses its codes, and verify reads them as that control runs them (the reader
+// knew system A only and refused every such program).
+TEST(Threads, ALatheOfGCodeSystemBIsWrittenAndReadInItsOwnCodes) {
+  const std::string toml =
+      "[lathe-b]\ninherits = \"fanuc-lathe\"\n[lathe-b.program]\nsafe_start = [\"G00 G18 G40 G80 G95\"]\n"
+      "[lathe-b.codes]\nfeed_per_minute = \"G94\"\nfeed_per_rev = \"G95\"\nthread = \"G33\"\nthread_box = \"G78\"\n"
+      "thread_multi = \"\"\nspindle_clamp = \"G92 S{max}\"\n";
+  std::string cl = thread_cl({0.3, 0.92}, "SPINDL/SMM,120,CLW,MAXRPM,2000");
+  cl.replace(cl.find("RAPID\nGOTO/15,0,5\n"), 18, "RAPID\nGOTO/15,0,5\nGOTO/10,0,2\nGOTO/10,0,-10\nFEDRAT/100,MMPM\nGOTO/14,0,-10\nRAPID\nGOTO/15,0,5\n");
+  Compiled c = compile_text(cl, machine("lathe-b", toml), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_EQ(blocks(c.output, "N40 "),
+            "N40 G92 S2000\n"
+            "N50 G96 S120 M03\n"
+            "N60 G00 X30. Z5.\n"
+            "N70 G95 G01 X20. Z2. F0.2\n"
+            "N80 Z-10.\n"
+            "N90 G94 X28. F100.\n"
+            "N100 G00 X30. Z5.\n"
+            "N110 G97 S1968 M03\n"  // 120 m/min at the first pass's 19.4 mm
+            "N120 G78 X19.4 Z-20. F1.5\n"
+            "N130 G78 X18.16 Z-20. F1.5\n"
+            "N140 G96 S120 M03\n"
+            "N150 G00 X60. Z30.\n"
+            "N160 ");
+  EXPECT_THAT(c.diags, HasSubstr("2 thread cuts checked"));
+  // Read as system A, G95 was an unknown code; read as system B, a feed per minute written
+  // where the CL feeds per revolution is still caught.
+  std::string wrong = c.output;
+  wrong.replace(wrong.find("G95 G01"), 3, "G94");
+  Compiled bad = verify_text(cl, machine("lathe-b", toml), wrong);
+  EXPECT_FALSE(bad.ok);
+  EXPECT_THAT(bad.diags, HasSubstr("the block feeds per minute, the CL's FEDRAT"));
+}
