@@ -28,7 +28,10 @@ double LatheBackend::thread_lead(SourceLoc loc) const {
 }
 
 // F is the lead; its rounding accumulates turn by turn: refused where the thread's end would
-// be half an increment off.
+// be off by more than the path tolerance clpc allows itself (arcs.tolerance, the chord error)
+// and half an increment. Every pass starts at the spindle's index, so the error does not add
+// up pass by pass: an inch thread on a metric control (13 TPI written F1.9538) ends 0.0006 mm
+// off over 30 mm, as on any post; a longer one or a coarser format is refused.
 bool LatheBackend::write_lead(double lead, double length, SourceLoc loc) {
   const AddressFormat& f = m_.feeds.lead;
   const double value = lead * k_;
@@ -40,7 +43,7 @@ bool LatheBackend::write_lead(double lead, double length, SourceLoc loc) {
   const double written = dequantize(q, f);
   const double drift = std::abs(written - value) * (length * k_) / value;
   const double increment = std::abs(dequantize(1, m_.format('Z')));
-  if (q == 0 || drift >= 0.5 * increment) {
+  if (q == 0 || drift >= std::max(0.5 * increment, m_.arcs.tolerance)) {
     std::string text;
     append_quantized(q, f, text);
     if (lead_refused_) return false;  // once per THREAD

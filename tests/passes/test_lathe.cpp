@@ -171,7 +171,8 @@ TEST(Threads, SurfaceSpeedIsHeldAtOneSpeedWhileThreading) {
 
 TEST(Threads, ALeadThatRoundingWouldChangeIsRefused) {
   // 13 threads per inch, 0.0769231 in, written with 3 decimals: F0.077, 0.0000769 a turn,
-  // 25 mm (0.98425 in, 12.8 turns) end 0.000984 in off: more than half an increment (0.00005 in).
+  // 25 mm (0.98425 in, 12.8 turns) end 0.000984 in off: more than the path tolerance (arcs.tolerance,
+  // 0.0002 in).
   std::string cl = thread_cl({0.3, 0.92});
   cl.replace(cl.find("THREAD/TURN,1.5"), 15, "THREAD/TURN,0.0769231,IPR");
   Compiled c = compile_text(cl, machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\nunits = \"inch\"\n[my-lathe.feeds]\nlead = { decimals = 3 }\n"));
@@ -182,6 +183,11 @@ TEST(Threads, ALeadThatRoundingWouldChangeIsRefused) {
   Compiled ok = compile_text(cl, machine("my-lathe", "[my-lathe]\ninherits = \"fanuc-lathe\"\nunits = \"inch\"\n"), {.certify = true});
   EXPECT_TRUE(ok.ok) << ok.diags;
   EXPECT_THAT(ok.output, HasSubstr("F0.076923\n"));
+  // On the metric lathe (4 decimals) it is F1.9538, 0.0006 mm off over 25 mm: within its path
+  // tolerance (0.005 mm), as any post writes it.
+  Compiled metric = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  EXPECT_TRUE(metric.ok) << metric.diags;
+  EXPECT_THAT(metric.output, HasSubstr(" F1.9538\n"));
 }
 
 TEST(Threads, TheReaderRunsG32G92AndG76) {
