@@ -536,7 +536,8 @@ TEST(CamSystems, ADrillOnTheSpindlesAxisTurnsAtItsOwnSurfaceSpeed) {
       machine("fanuc-lathe"));
   EXPECT_FALSE(no_diameter.ok);
   EXPECT_THAT(no_diameter.diags, HasSubstr("part.cls:8:1: error: drilling on the spindle's axis under constant surface "
-                                           "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));  // The drill's speed ends with its cuts: the next tool's G71 (no SPINDL of its own) roughed at
+                                           "speed (G96): the spindle would turn at its clamp; tool 5 has no diameter"));
+  // The drill's speed ends with its cuts: the next tool's G71 (no SPINDL of its own) roughed at
   // the drill's 2546 rpm, with G96 written inside P..Q where the control reads no S.
   Compiled next_op = compile_text(
       "UNITS/MM\nTLDATA/DRILL,10,118,50,0\nLOAD/TOOL,5\nSPINDL/SMM,80,CLW,MAXRPM,3000\nFEDRAT/MMPR,0.1\nRAPID\n"
