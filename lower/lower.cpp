@@ -503,6 +503,10 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
     check_from_gap(loc, op);
   if (zero_feed_at_) [[unlikely]]
     check_zero_feed(loc, op);
+  if (from_approach_) [[unlikely]]
+    approach_from(op);
+  if (!cut_since_tool_change_) [[unlikely]]
+    check_first_cut(loc, op);
   if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
   else if (const auto* m = std::get_if<ir::Move>(&op)) {
     if (m->kind != ir::MoveKind::From) at_home_ = false;
@@ -536,6 +540,38 @@ void Lowerer::check_from_gap(SourceLoc loc, const ir::Op& op) {
                       ": cut from there it would run along a line the CL does not have; have the CAM system "
                       "write the move to where the cut starts (a RAPID GOTO)");
   from_gap_.reset();
+}
+
+// A FROM says where the tool stands before its first move. Where the first move is a cut (a
+// feed or an arc), the CL's line runs from the FROM point, but after the tool change the tool
+// is wherever the change left it: cut from there it fed diagonally from the tool change
+// position (certified, since verify too started at the FROM). The tool is brought to the FROM
+// point at rapid first, as a first rapid is (X Y, then Z with the length offset). A rapid,
+// GOHOME or hole next positions the tool itself; a FROM again replaces this one.
+void Lowerer::approach_from(const ir::Op& op) {
+  const auto* m = std::get_if<ir::Move>(&op);
+  if (std::holds_alternative<ir::ToolChange>(op) || (m && m->kind == ir::MoveKind::From)) return;
+  const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op);
+  if (!m && !cut && !std::holds_alternative<ir::Hole>(op)) return;
+  from_approach_ = false;
+  if (!cut || (tool_ < 0 && !info_.tools.empty())) return;
+  ir::Move up;
+  up.kind = ir::MoveKind::Rapid;
+  up.point = from_;
+  up.axis = from_axis_;
+  push(from_loc_, up);
+}
+
+// A tool's first move a cut, with no FROM or rapid before it: the CL does not say where it
+// starts, and the control feeds it straight from where the tool change (or the program's
+// start) left the tool. Said; the approach is the CAM system's to write.
+void Lowerer::check_first_cut(SourceLoc loc, const ir::Op& op) {
+  const auto* m = std::get_if<ir::Move>(&op);
+  const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op);
+  if (!cut || tool_ < 0) return;
+  d_.warning(loc, "the first move of T" + std::to_string(tool_) + " is a cut, with no FROM or rapid before it to say where it starts: it is fed straight from "
+                      "where the tool change (or the program's start) leaves the tool",
+             "approach");
 }
 
 // Under a FEDRAT/0, a cut with no feed of its own (a cycle's, a thread's lead): refused once

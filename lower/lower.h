@@ -51,6 +51,8 @@ class Lowerer : public RecordSink {
   // lower.cpp: operations and dispatch
   ir::Instr& push(SourceLoc loc, ir::Op op);
   void check_from_gap(SourceLoc loc, const ir::Op& op);
+  void approach_from(const ir::Op& op);
+  void check_first_cut(SourceLoc loc, const ir::Op& op);
   void check_zero_feed(SourceLoc loc, const ir::Op& op);
   void check_retract(SourceLoc loc, const ir::Op& op);  // the move after a RETRCT
   // An instruction whose text goes in the operation's pool (Comment, Insert, Passthrough):
@@ -164,7 +166,12 @@ class Lowerer : public RecordSink {
   ir::Vec3 direction_ = ir::Vec3::UnitX();  // the way the last motion went at its end
   bool has_direction_ = false;
   ir::Vec3 from_ = ir::Vec3::Zero();
+  ir::Vec3 from_axis_ = ir::Vec3::UnitZ();
   bool has_from_ = false;
+  // A FROM the tool has made no move since (before its first motion, perhaps before the tool
+  // change): a cut next starts there, so the tool is first brought there at rapid.
+  bool from_approach_ = false;
+  SourceLoc from_loc_;
   bool rapid_next_ = false;
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)

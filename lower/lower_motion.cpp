@@ -301,6 +301,9 @@ void Lowerer::lower_from(const Record& r) {
   if (has_axis) axis_ = a;
   from_ = p;
   has_from_ = true;
+  from_approach_ = !cut_since_tool_change_;
+  from_loc_ = r.loc;
+  from_axis_ = xf_dir(axis_);
   if (pending_arc_) {
     d_.error(r.loc, "FROM cannot end a CIRCLE");
     pending_arc_.reset();

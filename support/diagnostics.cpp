@@ -29,6 +29,7 @@ std::string printable(std::string_view s) {
 const std::vector<WarningName>& warning_names() {
   static const std::vector<WarningName> names = {
       {"after-fini", "records after FINI, which are ignored"},
+      {"approach", "a tool's first move a cut, with no FROM or rapid to say where it starts"},
       {"arc-geometry", "an arc whose neighbouring moves say it turns the other way than the CL says"},
       {"coolant", "a COOLNT record that says nothing, or a coolant the machine has no code for"},
       {"cycle", "a CYCLE record's degenerate but real cases: no holes, zero depth, no clearance, no CYCLE/OFF"},

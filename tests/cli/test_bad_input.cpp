@@ -79,7 +79,7 @@ TEST(BadInput, AGcodeProgramIsNamedForWhatItIs) {
 // Windows editors write a UTF-8 byte-order mark: read past, columns counted after it (and the
 // source line shown without it). UTF-16 text is refused at 1:1 with what to do.
 TEST(BadInput, ByteOrderMarks) {
-  Outcome utf8 = compile_bytes("bom.cls", "\xEF\xBB\xBF" + kHead + "GOTO/0,0,5\nGOTO/1.2.3,0,5\nFINI\n");
+  Outcome utf8 = compile_bytes("bom.cls", "\xEF\xBB\xBF" + kHead + "FROM/0,0,5\nGOTO/1.2.3,0,5\nFINI\n");
   expect_refused(utf8, "bom.cls:6:6: error: GOTO: expected a number, found '1.2.3'\n 6 | GOTO/1.2.3,0,5\n");
   EXPECT_THAT(utf8.err, HasSubstr("clpc: 1 error, 0 warnings"));  // UNITS/MM on the first line was read
   Outcome first = compile_bytes("bom1.cls", "\xEF\xBB\xBFGOTX/1\n" + kHead);

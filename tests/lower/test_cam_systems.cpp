@@ -394,6 +394,8 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
   EXPECT_EQ(messages(c.diags),
             "part.cls: warning: the file says its units are millimetres, but the feed at line 10 is in inches: if its "
             "numbers are inches, --input-units inch reads them so [-Wunits]\n"
+            "part.cls:5:1: warning: the first move of T1 is a cut, with no FROM or rapid before it to say where it starts: "
+            "it is fed straight from where the tool change (or the program's start) leaves the tool [-Wapproach]\n"
             "part.cls:8:1: warning: FEDRAT/0.3 has no unit word: per revolution, as the FEDRAT at line 6 set it (the feed "
             "mode stays until a FEDRAT names another) [-Wfeed-unit]\n");
   EXPECT_THAT(c.output, HasSubstr(" G94 G01 X0. Y0. Z1. F200.\nN60 G95 X10. F0.2\nN70 X20. F0.3\nN80 G94 X30. F254.\n"
@@ -693,7 +695,7 @@ TEST(CamSystems, CompensationOnResumesTheLastSide) {
 // comment: RAPID,GOTO lost its move, exit 0) or ignoring the words would post a guess: refused.
 // Before an unknown record or a text one they travel with it, as before.
 TEST(CamSystems, WordsBeforeARecordThatCutsAreRefusedNotDropped) {
-  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nGOTO/0,0,10\n";
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nFROM/0,0,10\n";
   Compiled rapid = compile_text(head + "RAPID,GOTO/5,5,10\nFINI\n", machine("fanuc-mill"));
   EXPECT_FALSE(rapid.ok);
   EXPECT_EQ(messages(rapid.diags),
@@ -711,7 +713,7 @@ TEST(CamSystems, WordsBeforeARecordThatCutsAreRefusedNotDropped) {
             "part.cls:6:1: warning: 'XX,PPRINT': the words before PPRINT are not read (the record is passed through as a "
             "comment) [-Wignored-word]\n"
             "part.cls:7:1: warning: unknown record 'FOO' (passed through as a comment) [-Wunknown-record]\n");
-  EXPECT_THAT(text.output, HasSubstr("\n(CL: XX,PPRINT/HELLO)\n(CL: XX,FOO/1)\nN60 X5. Y5.\n"));
+  EXPECT_THAT(text.output, HasSubstr("\n(CL: XX,PPRINT/HELLO)\n(CL: XX,FOO/1)\nN50 G54 G00 X0. Y0.\nN60 G43 H01 Z10.\nN70 G94 G01 X5. Y5. F200.\n"));
 }
 
 // Creo writes "$$-> CUTTER" after its load, also when a tool number is loaded again: it was
@@ -1041,4 +1043,31 @@ TEST(CamSystems, AFeedAboveTheMachinesLimitIsClampedWithAWarning) {
   EXPECT_THAT(c.output, HasSubstr("G01 Z-1. F10000.\n"));
   EXPECT_THAT(c.diags, HasSubstr("part.cls:6:1: warning: feed 99999 is above machine 'fanuc-mill''s max_feed 10000: "
                                  "written as 10000, slower than the CL asks [-Wfeed-clamped]"));
+}
+
+// A FROM before a tool's first move says where the CL's first line starts. Where that move is
+// a cut, the tool was fed diagonally from where the tool change left it (certified: verify too
+// started at the FROM); it is brought to the FROM point at rapid first (X Y, then Z with the
+// length offset), and an arc right after FROM has its start (it was refused). With no FROM,
+// the first cut is said (-Wapproach).
+TEST(CamSystems, AFirstCutAfterFromStartsAtTheFrom) {
+  Compiled line = compile_text("UNITS/MM\nCUTTER/10\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFROM/20,0,10\nFEDRAT/100,MMPM\n"
+                               "GOTO/30,0,0\nGOTO/40,0,0\nLOADTL/2\nSPINDL/1000,RPM,CLW\nGOTO/50,0,0\nFINI\n",
+                               machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(line.ok) << line.diags;
+  EXPECT_THAT(line.output, HasSubstr("N40 S1000 M03\nN50 G54 G00 X20. Y0.\nN60 G43 H01 Z10.\nN70 G94 G01 X30. Z0. F100.\n"));
+  EXPECT_EQ(messages(line.diags),
+            "part.cls:11:1: warning: the first move of T2 is a cut, with no FROM or rapid before it to say where it "
+            "starts: it is fed straight from where the tool change (or the program's start) leaves the tool [-Wapproach]\n");
+  Compiled arc = compile_text("UNITS/MM\nCUTTER/10\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFROM/20,0,0\nFEDRAT/100,MMPM\n"
+                              "CIRCLE/0,0,0,0,0,1,20\nGOTO/-20,0,0\nFINI\n",
+                              machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(arc.ok) << arc.diags;
+  EXPECT_THAT(arc.output, HasSubstr("N50 G54 G00 X20. Y0.\nN60 G43 H01 Z0.\nN70 G17 G94 G03 X-20. I-20. J0. F100.\n"));
+  // A rapid after the FROM positions the tool itself: nothing is added.
+  Compiled rapid = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFROM/0,0,100\nRAPID\nGOTO/30,0,5\n"
+                                "FEDRAT/100,MMPM\nGOTO/30,0,0\nFINI\n",
+                                machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(rapid.ok) << rapid.diags;
+  EXPECT_THAT(rapid.output, HasSubstr("N40 S1000 M03\nN50 G54 G00 X30. Y0.\nN60 G43 H01 Z100.\nN70 Z5.\nN80 G94 G01 Z0. F100.\n"));
 }

@@ -48,8 +48,9 @@ TEST(Lower, RapidIsOneShot) {
 }
 
 TEST(Lower, FromGohomeGodlta) {
+  // A cut first after FROM starts at the FROM point: the tool is brought there at rapid.
   EXPECT_THAT(instrs("FROM/0,0,100\nGOTO/1,1,1\nGODLTA/1,2,3\nGODLTA/-2\nGOHOME\nGOHOME/5,5,50\n"),
-              ElementsAre("from (0, 0, 100)", "feed (1, 1, 1)", "feed (2, 3, 4)", "feed (2, 3, 2)", "rapid (0, 0, 100)",
+              ElementsAre("from (0, 0, 100)", "rapid (0, 0, 100)", "feed (1, 1, 1)", "feed (2, 3, 4)", "feed (2, 3, 2)", "rapid (0, 0, 100)",
                           "rapid (5, 5, 50)"));
 }
 
@@ -211,7 +212,7 @@ TEST(Lower, ToolTableFromTldataCutterAndCreoCutter) {
 }
 
 TEST(Lower, NxToolByNameOnly) {
-  Lowered l = lower_text("LOAD/TOOL,1\nGOTO/0,0,0\nTOOL PATH/OP1,TOOL,BALL6\nTLDATA/MILL,6,3,40,0,0\nSPINDL/RPM,5000,CLW\nGOTO/1,1,1\n");
+  Lowered l = lower_text("LOAD/TOOL,1\nFROM/0,0,0\nTOOL PATH/OP1,TOOL,BALL6\nTLDATA/MILL,6,3,40,0,0\nSPINDL/RPM,5000,CLW\nGOTO/1,1,1\n");
   EXPECT_THAT(l.ir, HasSubstr("tool T2 \"BALL6\" MILL d 6 r 3 l 40 (numbered by clpc)"));
   // The change comes at TOOL PATH, before the spindle starts.
   EXPECT_THAT(l.ir, HasSubstr("operation 2 \"OP1\" at 3:1\n  3:1\ttool-change T2\n  5:1\tspindle 5000 rpm cw"));
@@ -553,7 +554,7 @@ TEST(Lower, FromAfterMotionElsewhereIsRefused) {
             "4:1: this cut starts by the FROM at line 3, elsewhere than the rapid before it left the tool, at (10, 0, "
             "10): cut from there it would run along a line the CL does not have; have the CAM system write the move to "
             "where the cut starts (a RAPID GOTO)");
-  EXPECT_THAT(instrs("RAPID\nFROM/0,0,50\nGOTO/0,0,-5\n"), ElementsAre("from (0, 0, 50)", "feed (0, 0, -5)"));
+  EXPECT_THAT(instrs("RAPID\nFROM/0,0,50\nGOTO/0,0,-5\n"), ElementsAre("from (0, 0, 50)", "rapid (0, 0, 50)", "feed (0, 0, -5)"));
   EXPECT_EQ(err("RAPID/OFF\nGOTO/0,0,-5\n"),
             "1:7: RAPID takes no words: 'OFF' may ask for something else than the next move at rapid, which the CL "
             "cannot be read without; write RAPID alone before the move");
