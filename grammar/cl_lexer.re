@@ -420,12 +420,38 @@ Lexer::Symbol Lexer::error_token(SourceLoc loc, const std::string& msg) {
 // 12-Jan", a sentence typed into the file): it carries nothing a post could use, so it is
 // skipped with a warning, not an error. (A known major word written wrong is an error.)
 Lexer::Symbol Lexer::not_a_record() {
-  if (diags_ && !data_comment_)
-    diags_->warning(record_start_, "not a CL record (a word that is no major word, then neither '/' nor the line end): "
-                                   "the line is ignored",
-                    "not-a-record");
+  if (diags_ && !data_comment_) {
+    if (const char* motion = motion_word_in_line())
+      diags_->error(record_start_, std::string("not a CL record, yet the line holds ") + motion +
+                                       "/ further on: skipped, its motion would be lost (an APT statement label is "
+                                       "written 'NAME)' before the record)");
+    else
+      diags_->warning(record_start_, "not a CL record (a word that is no major word, then neither '/' nor the line "
+                                     "end): the line is ignored",
+                      "not-a-record");
+  }
   mode_ = Mode::SkipRecord;
   return Parser::make_YYerror(record_start_);
+}
+
+// The first motion record name followed by '/' in the rest of the line (what the buffer holds
+// of it), or null. A line skipped as no record must not hide a move.
+const char* Lexer::motion_word_in_line() const {
+  static const char* const kMotion[] = {"GOTO", "GODLTA", "FROM", "GOHOME", "CIRCLE", "MOVARC", "GOFWD", "GOLFT",
+                                        "GORGT", "GOBACK", "GOUP", "GODOWN", "CYCLE", "RAPID", "FEDRAT"};
+  const unsigned char* e = cur_;
+  while (e < lim_ && *e != '\n' && *e != '\0') ++e;
+  std::string line;
+  for (const unsigned char* p = tok_; p < e; ++p) line += char(std::toupper(*p));
+  for (const char* w : kMotion) {
+    for (size_t at = line.find(w); at != std::string::npos; at = line.find(w, at + 1)) {
+      size_t after = at + std::strlen(w);
+      while (after < line.size() && (line[after] == ' ' || line[after] == '\t')) ++after;
+      const bool word_start = at == 0 || !(std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_');
+      if (word_start && after < line.size() && line[after] == '/') return w;
+    }
+  }
+  return nullptr;
 }
 
 Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned char* e) {
@@ -590,6 +616,9 @@ Lexer::Symbol Lexer::lex_line_start() {
       nl  { newline(cur_); continue; }
 
       "$$->" [ \t]* / [A-Za-z_] { data_mark = true; continue; }
+      // An APT statement label ("L1) GOTO/..."): up to six letters and digits and ')' before
+      // the record, which is read as if the label were not there (docs/cl-input.md).
+      [A-Za-z0-9]{1,6} ")" [ \t]* { continue; }
       "$$" {
         if (wanted_) { skip_record(); continue; }
         record_start_ = loc_of(tok_);

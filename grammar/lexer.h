@@ -74,6 +74,7 @@ class Lexer {
   Symbol major(MajorId id, const unsigned char* b, const unsigned char* e);
   Symbol free_text_major(MajorId id, size_t keyword_len);
   bool skip_record();               // to the end of the record; false at end of input
+  const char* motion_word_in_line() const;
   void check_text(const unsigned char* b, const unsigned char* e, const char* what);
   std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }
 

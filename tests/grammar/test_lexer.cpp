@@ -230,6 +230,19 @@ TEST(Lexer, TextThatIsNoRecordIsSkippedWithAWarning) {
   EXPECT_THAT(p.records, ElementsAre("2:1 GOTO/1,2,3"));
   // A known major word written wrong stays an error.
   EXPECT_EQ(first_error(parse_text("GOTO 1,2,3\n").diags), "1:6: expected '/' or the end of the record, found '1'");
+  // A line skipped so must hold no move: 'label: GOTO/...' lost its plunge (exit 0, certified).
+  EXPECT_EQ(first_error(parse_text("GOTO/1,2,3\nlabel: GOTO/20,0,-1\n").diags),
+            "2:1: not a CL record, yet the line holds GOTO/ further on: skipped, its motion would be lost (an APT "
+            "statement label is written 'NAME)' before the record)");
+}
+
+// APT statement labels: up to six letters and digits and ')' before the record (APT-360's
+// 'L1) GOTO/...'); the record is read as if the label were not there.
+TEST(Lexer, AptStatementLabelsAreReadPast) {
+  Parsed p = parse_text("L1) GOTO/20,0,-1\nLAB1)GOTO/40,0,-1\n  P2) FEDRAT/100,MMPM\n");
+  EXPECT_EQ(first_error(p.diags), "");
+  EXPECT_TRUE(p.diags.empty());
+  EXPECT_THAT(p.records, ElementsAre("1:5 GOTO/20,0,-1", "2:6 GOTO/40,0,-1", "3:7 FEDRAT/100,MMPM"));
 }
 
 // NX's information window: the header and the last line are no records (nx-course/).
