@@ -413,15 +413,33 @@ constexpr MotionWord kMotionWords[] = {
 
 }  // namespace
 
+namespace {
+
+// A name no CAM system's record list has, that reads as motion: a misspelt GOTO (GOTOO, GOT,
+// GOTOPT), another system's move (MOVETO, POSITN, RAPTO, PLUNGE, RAMP), an arc, a helix or a
+// spline. Passed through as a comment, its move would be lost: refused.
+bool reads_as_motion(std::string_view major) {
+  static constexpr std::string_view kStarts[] = {"GO", "MOV", "ARC", "CIRC", "HELI", "SPLIN", "BSPL", "POSIT", "RAPTO",
+                                                 "FEDTO", "PLUNG", "RAMP"};
+  for (std::string_view s : kStarts)
+    if (major.size() >= s.size() && iequals(major.substr(0, s.size()), s)) return true;
+  return false;
+}
+
+}  // namespace
+
 bool motion_word(std::string_view major) {
   for (const MotionWord& w : kMotionWords)
     if (iequals(major, w.word)) return true;
-  return false;
+  return reads_as_motion(major);
 }
 
 std::string_view motion_hint(std::string_view major) {
   for (const MotionWord& w : kMotionWords)
     if (iequals(major, w.word)) return w.hint;
+  if (reads_as_motion(major))
+    return "no CAM system's record of that name is known, and the name reads as motion (a misspelt GOTO, an arc, a "
+           "helix, a spline?); have the CAM system write the motion as GOTO and CIRCLE records";
   return "have the CAM system write the motion as GOTO and CIRCLE records";
 }
 

@@ -311,6 +311,15 @@ TEST(Lower, DisplayRecordsDroppedSilently) {
 }
 
 TEST(Lower, UnknownRecordWarnsAndPassesThrough) {
+  // An unknown name that reads as motion (a misspelt GOTO, an arc, a helix, another system's
+  // move) is refused: as a comment its move was lost, certified.
+  for (const char* rec : {"GOTOO/10,30,-1", "GOT/1,2,3", "ARC/40,20,-1,0,0,1,10,ANGLE,180", "HELIX/0,0,-1,0,0,1,10,-5",
+                          "MOVETO/1,2,3", "POSITN/1,2,3", "SPLINE/1,2,3", "PLUNGE/5"})
+    EXPECT_THAT(err(std::string("GOTO/0,0,0\n") + rec + "\n"),
+                ::testing::EndsWith("moves the tool and clpc does not read it: no CAM system's record of that name is "
+                                    "known, and the name reads as motion (a misspelt GOTO, an arc, a helix, a spline?); "
+                                    "have the CAM system write the motion as GOTO and CIRCLE records"))
+        << rec;
   Lowered l = lower_text("GOTO/0,0,0\nFOO/1,BAR\n");
   ASSERT_EQ(l.diags.size(), 1u);
   EXPECT_EQ(l.diags[0].severity, Severity::Warning);
