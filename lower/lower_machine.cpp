@@ -81,6 +81,7 @@ void Lowerer::lower_spindle(const Record& r) {
   ir::Spindle s;
   bool have_speed = false, off = false, on = false, dir_given = false;
   double per_unit = 1;  // surface speed words convert to m/min
+  std::string kind_word, dir_word;  // the first of RPM/SFM/SMM, of CLW/CCLW
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
     if (p.is_number()) {
@@ -93,6 +94,20 @@ void Lowerer::lower_spindle(const Record& r) {
       continue;
     }
     std::string w = upper(p.text);
+    // Two words that say opposite things: the last one won (SPINDL/1000,RPM,SMM turned at
+    // 31831 rpm). Which one the CAM system meant is not known.
+    std::string& first = (w == "RPM" || w == "SFM" || w == "SMM") ? kind_word : (w == "CLW" || w == "CCLW") ? dir_word : w;
+    if (&first != &w) {
+      if (!first.empty() && first != w) {
+        d_.error(p.loc, "SPINDL: " + first + " and " + w + " say opposite things in one record; which is meant is not known");
+        return;
+      }
+      first = w;
+    }
+    if ((w == "ON" && off) || (w == "OFF" && on)) {
+      d_.error(p.loc, "SPINDL: ON and OFF in one record; which is meant is not known");
+      return;
+    }
     if (w == "RPM") s.mode = ir::SpindleMode::Rpm;
     else if (w == "SFM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 0.3048; }
     else if (w == "SMM") { s.mode = ir::SpindleMode::SurfaceSpeed; per_unit = 1; }
@@ -174,6 +189,7 @@ void Lowerer::lower_feed(const Record& r) {
   bool have = false, worded = false;
   double to_program = 1;  // factor from the record's length unit to program units
   const double prog_mm = ir::mm_per_unit(info_.units);
+  std::string unit_word, mode_word;  // the first unit word (MMPM...), the first mode word (PERMIN...)
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
     if (!p.is_number()) worded = true;
@@ -187,6 +203,25 @@ void Lowerer::lower_feed(const Record& r) {
       continue;
     }
     std::string w = upper(p.text);
+    // Two words that say opposite things (MMPM and IPM, MMPR and MMPM, INVERS and MMPM): the
+    // last one won, a feed 25.4 times off or in another mode. PERMIN or PERREV with a unit of
+    // its own mode agree.
+    {
+      auto mode_of = [](const std::string& x) {
+        return x == "MMPM" || x == "IPM" || x == "FPM" || x == "PERMIN" ? 'M' : x == "MMPR" || x == "IPR" || x == "PERREV" ? 'R'
+               : x == "INVERS"                                                                               ? 'I'
+                                                                                                               : 0;
+      };
+      const char mode = mode_of(w);
+      const bool unit = w == "MMPM" || w == "IPM" || w == "FPM" || w == "MMPR" || w == "IPR";
+      const std::string& other = !unit_word.empty() ? unit_word : mode_word;
+      if (mode && !other.empty() && ((unit && !unit_word.empty() && unit_word != w) || mode_of(other) != mode)) {
+        d_.error(p.loc, "FEDRAT: " + other + " and " + w + " say opposite things in one record; which is meant is not known");
+        return;
+      }
+      if (unit && unit_word.empty()) unit_word = w;
+      else if (mode && !unit && mode_word.empty()) mode_word = w;
+    }
     if (w == "MMPM") { f.mode = ir::FeedMode::PerMinute; to_program = 1 / prog_mm; }
     else if (w == "IPM") { f.mode = ir::FeedMode::PerMinute; to_program = 25.4 / prog_mm; }
     else if (w == "FPM") { f.mode = ir::FeedMode::PerMinute; to_program = 304.8 / prog_mm; }
@@ -322,6 +357,12 @@ void Lowerer::lower_cutcom(const Record& r) {
   bool side = false, on = false;
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
+    if (side && (p.is("LEFT") || p.is("RIGHT") || p.is("OFF"))) {
+      // CUTCOM/LEFT,RIGHT: the last one won. Which side is meant is not known.
+      d_.error(p.loc, "CUTCOM: " + std::string(c.side == ir::CompSide::Left ? "LEFT" : c.side == ir::CompSide::Right ? "RIGHT" : "OFF") +
+                          " and " + upper(p.text) + " in one record; which is meant is not known");
+      return;
+    }
     if (p.is("ON")) on = true;
     else if (p.is("LEFT")) { c.side = ir::CompSide::Left; side = true; }
     else if (p.is("RIGHT")) { c.side = ir::CompSide::Right; side = true; }
@@ -402,6 +443,13 @@ void Lowerer::lower_units(const Record& r) {
     return;
   }
   ir::Units u = *units_word(r.params[0].text);
+  for (size_t i = 1; i < r.params.size(); ++i)
+    if (r.params[i].is_word() && units_word(r.params[i].text) && *units_word(r.params[i].text) != u) {
+      // UNITS/INCHES,MM: every number is 25.4 times off one way or the other.
+      d_.error(r.params[i].loc, std::string(r.major) + ": " + upper(r.params[0].text) + " and " + upper(r.params[i].text) +
+                                    " in one record; which unit the file is in is not known");
+      return;
+    }
   // The file's unit is its UNITS record's, wherever it stands. After motion whose feed named the
   // other unit, the moves before it were written in that one: read in this, they would be 25.4
   // times off (a8: 10 mm became 10 inches, certified).

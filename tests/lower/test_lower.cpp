@@ -220,6 +220,21 @@ TEST(Lower, NxToolByNameOnly) {
   EXPECT_EQ(l.diags[0].message, "operation 'OP1' names tool 'BALL6' but loads no tool number; using T2");
 }
 
+// Two words of one record that say opposite things: the last one won, silently (SPINDL/1000,
+// RPM,SMM turned at 31831 rpm; FEDRAT/100,MMPM,IPM fed 2540; UNITS/INCHES,MM read millimetres).
+TEST(Lower, WordsThatContradictEachOtherAreRefused) {
+  EXPECT_EQ(err("SPINDL/1000,RPM,SMM\n"), "1:17: SPINDL: RPM and SMM say opposite things in one record; which is meant is not known");
+  EXPECT_EQ(err("SPINDL/1000,RPM,CLW,CCLW\n"), "1:21: SPINDL: CLW and CCLW say opposite things in one record; which is meant is not known");
+  EXPECT_EQ(err("SPINDL/1000,RPM,ON,OFF\n"), "1:20: SPINDL: ON and OFF in one record; which is meant is not known");
+  EXPECT_EQ(err("FEDRAT/100,MMPM,IPM\n"), "1:17: FEDRAT: MMPM and IPM say opposite things in one record; which is meant is not known");
+  EXPECT_EQ(err("FEDRAT/100,MMPR,MMPM\n"), "1:17: FEDRAT: MMPR and MMPM say opposite things in one record; which is meant is not known");
+  EXPECT_EQ(err("FEDRAT/100,INVERS,MMPM\n"), "1:19: FEDRAT: INVERS and MMPM say opposite things in one record; which is meant is not known");
+  EXPECT_EQ(err("CUTCOM/LEFT,RIGHT\n"), "1:13: CUTCOM: LEFT and RIGHT in one record; which is meant is not known");
+  EXPECT_EQ(err("UNITS/INCHES,MM\n"), "1:14: UNITS: INCHES and MM in one record; which unit the file is in is not known");
+  // Words that agree stay read: a mode with a unit of its own mode, a word said twice.
+  EXPECT_EQ(err("FEDRAT/100,PERMIN,MMPM\nFEDRAT/0.2,MMPR,PERREV\nSPINDL/RPM,1000,CLW,RPM\nUNITS/MM,MM\n"), "");
+}
+
 TEST(Lower, SpindleBothOrdersAndKinds) {
   EXPECT_THAT(instrs("SPINDL/RPM,1000,CLW\nSPINDL/2000,RPM,CCLW\nSPINDL/SMM,200,CLW,MAXRPM,3000\nSPINDL/SFM,500\n"
                      "SPINDL/OFF\nSPINDL/ON\nSPINDL/750\n"),
