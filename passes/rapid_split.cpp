@@ -14,8 +14,8 @@
 // own rates again: there only rapids with the tool along the program's Z are split.
 //
 // A rapid is split only where the position before it is known (a move or an arc before it;
-// a load of the tool already in the spindle, or a frame or work offset already in force, is
-// no motion: NX writes them at every operation), the tool axis does not change along it (a rapid that turns a
+// a load of the tool already in the spindle, or a frame or work offset, is no motion: NX
+// writes them at every operation), the tool axis does not change along it (a rapid that turns a
 // rotary is left as the CL gives it), and cutter compensation is off and not switched by it
 // (a block more would change the compensated path, or start or cancel it on a Z move). The first move after a tool change is the backend's (X Y,
 // then Z with the length offset).
@@ -70,12 +70,11 @@ class RapidSplit : public Pass {
       } else if (const auto* t = std::get_if<ir::ToolChange>(&in.op)) {
         if (t->tool != tool_) known_ = false;  // the same tool again: the backend writes nothing
         tool_ = t->tool;
-      } else if (const auto* f = std::get_if<ir::SetFrame>(&in.op)) {
-        if (!frame_ || !frame_->same_as(f->frame, 1e-9)) known_ = false;
-        frame_ = f->frame;
-      } else if (const auto* o = std::get_if<ir::SelectOffset>(&in.op)) {
-        if (o->reg != reg_) known_ = false;
-        reg_ = o->reg;
+      } else if (std::holds_alternative<ir::SetFrame>(in.op) || std::holds_alternative<ir::SelectOffset>(in.op)) {
+        // Another frame or work offset moves no axis: the tool stands where it stood, and the
+        // points before and after are in the one part frame. (The first rapid after one was
+        // left whole: 100 mm across and 50 down in one non-linear G00, Z at the bottom first.)
+        // Where the backend retracts first (a 3+2 frame), it then positions X Y before Z.
       } else if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) {
         comp_ = c->side != ir::CompSide::Off;
         comp_switch_ = true;  // the next move carries G41, G42 or G40
@@ -114,8 +113,7 @@ class RapidSplit : public Pass {
   double eps_ = 0;
   bool head_ = false, tilting_table_ = false;  // the machine's rotaries
   bool known_ = false, comp_ = false, comp_switch_ = false, split_ = false;
-  int tool_ = -1, reg_ = -1;
-  std::optional<ir::Frame> frame_;
+  int tool_ = -1;
   ir::Vec3 at_ = ir::Vec3::Zero(), axis_ = ir::Vec3::UnitZ();
 };
 

@@ -423,7 +423,9 @@ TEST(OffsetTable, AFrameWithoutSetAfterASetsFrameSelectsTheDefaultRegisterAgain)
   Compiled c = compile_text(head + b, machine("fanuc-mill"));
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N50 G55 G00 X10. Y0.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N80 G54 G00 X210. Y0. Z20.\n"));
+  // The rapid to the next frame rises first (rapid-split: the tool stands where the last
+  // frame's cut left it, another register moves no axis), then crosses.
+  EXPECT_THAT(c.output, HasSubstr("N80 G54 G00 X110. Y60. Z20.\nN90 X210. Y0.\n"));
   for (const char* m : {"fanuc-mill", "haas-umc750"}) {
     Compiled v = verify_text(head + b, machine(m));
     EXPECT_TRUE(v.ok) << m << v.diags;
@@ -467,4 +469,20 @@ TEST(OffsetTable, SetWithoutFrameSelectsItsRegister) {
                                   "(G54.1 P1 = SET/101 BASE FRAME LINE 9 ORIGIN X0 Y0 Z0)\n"));
   EXPECT_THAT(c.output, HasSubstr("N50 G56 G00 X1. Y2.\n"));
   EXPECT_THAT(c.output, HasSubstr("N80 G54.1 P1 X6. Y2. Z3.\n"));  // another offset: every axis again
+}
+
+// The first rapid in another frame (NX's MSYS of the next operation, 100 across and 50 down)
+// was one non-linear G00: Z could reach the bottom before X crossed. The tool stands where the
+// last cut left it, and another frame or register moves no axis: split, across and then down.
+TEST(OffsetTable, TheFirstRapidInAnotherFrameIsSplitToo) {
+  const std::string op = "TOOL PATH/OP,TOOL,EM\nTLDATA/MILL,10,0,50,0,0\nLOAD/TOOL,1,ADJUST,1\n";
+  const std::string moves = "SPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,20,0,0,1\nFEDRAT/MMPM,100\nGOTO/0,0,0\nRAPID\nGOTO/0,0,20\nEND-OF-PATH\n";
+  const std::string cl = "UNITS/MM\n" + op + "MSYS/0,0,0,1,0,0,0,1,0\n" + moves + op + "MSYS/100,0,-50,1,0,0,0,1,0\n" + moves;
+  Compiled one = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(one.ok) << one.diags;
+  EXPECT_THAT(one.output, HasSubstr("(OP)\nN90 S3000 M03\nN100 X100.\nN110 Z-30.\nN120 G01 Z-50.\n"));
+  Compiled per_frame = compile_text(cl, machine("my-mill", "[my-mill]\ninherits = \"fanuc-mill\"\n[my-mill.offsets]\nper_frame = true\n"),
+                                    {.certify = true});
+  ASSERT_TRUE(per_frame.ok) << per_frame.diags;
+  EXPECT_THAT(per_frame.output, HasSubstr("N90 S3000 M03\nN100 G55 X0. Y0. Z70.\nN110 Z20.\nN120 G01 Z0.\n"));
 }
