@@ -590,6 +590,7 @@ Lexer::Symbol Lexer::lex() {
   {                                                                      \
     if (overflow_) return error_token(overflow_at_, too_long());    \
     if (!wanted_ || wanted_[int(MajorId::id)]) return major(MajorId::id, tok_, cur_); \
+    if (MajorId::id == MajorId::Goto || MajorId::id == MajorId::Circle || MajorId::id == MajorId::Godlta || MajorId::id == MajorId::Movarc) ++motion_skipped_; \
     skip_record();                                                       \
     continue;                                                            \
   }

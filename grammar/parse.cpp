@@ -93,6 +93,7 @@ void ParseState::end_statement(SourceLoc end) {
   rec_.params = params_;
   rec_.head = head_;
   rec_.end = end;
+  rec_.motion_skipped = lexer.motion_skipped();
   sink_.record(rec_);
 }
 

@@ -41,6 +41,7 @@ class TableBuilder : public RecordSink {
         frame_seen_ = true;
         info_.frames.push_back(u);
         last_frame_unpaired_ = u.set_register == 0;
+        frame_motion_ = r.motion_skipped;
         break;
       }
       case MajorId::Set: {
@@ -48,6 +49,10 @@ class TableBuilder : public RecordSink {
         // with none there selects its register for the frame in force (passes/offset_table.cpp).
         int reg = read_set_register(r, nullptr);
         if (reg <= 0) break;
+        // A frame record cut in (motion between) is no longer next to a SET that follows: that
+        // SET is the next frame's (APT files with no operation records: CAMERA, the cuts, SET/55,
+        // CAMERA). It named the first frame, whose part was cut in G55 while G55 held the second.
+        if (r.motion_skipped != frame_motion_) last_frame_unpaired_ = false;
         if (last_frame_unpaired_ && !info_.frames.empty()) {
           info_.frames.back().set_register = reg;
           last_frame_unpaired_ = false;
@@ -321,6 +326,7 @@ class TableBuilder : public RecordSink {
   ir::FrameUse frame_ = base_frame();  // the frame in force
   bool frame_seen_ = false;
   bool last_frame_unpaired_ = false;
+  uint32_t frame_motion_ = 0;  // motion records skipped before the last frame record
 
   static ir::FrameUse base_frame() {
     ir::FrameUse u;

@@ -177,6 +177,7 @@ class OffsetTablePass : public Pass {
         unpaired_ = false;
         setup_end_ = out.size() + 1;
       }
+      if (motion) unpaired_ = false;  // a SET after the frame's cuts is the next frame's (the pre-scan's rule)
       if (motion && !active_) activate(op, i, in.loc, out, ctx);
       if (transform_ && motion) {
         apply(in);

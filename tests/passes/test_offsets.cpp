@@ -486,3 +486,26 @@ TEST(OffsetTable, TheFirstRapidInAnotherFrameIsSplitToo) {
   ASSERT_TRUE(per_frame.ok) << per_frame.diags;
   EXPECT_THAT(per_frame.output, HasSubstr("N90 S3000 M03\nN100 G55 X0. Y0. Z70.\nN110 Z20.\nN120 G01 Z0.\n"));
 }
+
+// SET pairs with the frame record next to it, with no motion between. In an APT file with no
+// operation records (CAMERA, its cuts, SET/55, CAMERA) the SET after the first frame's cuts
+// named the first frame: its part was cut in G55, the second in G54, while the shop's G55
+// held the second fixture as the CL means.
+TEST(OffsetTable, ASetAfterAFramesCutsIsTheNextFrames) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\n" + camera(rz(0), Vec3(0, 0, 0)) +
+                         "SPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,20\nFEDRAT/MMPM,100\nGOTO/10,0,0\nGOTO/20,0,0\nRAPID\n"
+                         "GOTO/20,0,20\nSET/55\n" + camera(rz(0), Vec3(100, 0, 0)) +
+                         "RAPID\nGOTO/110,0,20\nGOTO/110,0,0\nGOTO/120,0,0\nRAPID\nGOTO/120,0,20\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(G55 = SET/55 CAMERA LINE 14 ORIGIN X100 Y0 Z0)\n"));
+  EXPECT_THAT(c.output, HasSubstr("N50 G54 G00 X10. Y0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N100 G55 X10. Y0. Z20.\nN110 G01 Z0.\n"));
+  // Right after its frame record, before the cuts, it is that frame's.
+  std::string before = cl;
+  before.erase(before.find("SET/55\n"), 7);
+  before.insert(before.find("SPINDL"), "SET/55\n");
+  Compiled b = compile_text(before, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(b.ok) << b.diags;
+  EXPECT_THAT(b.output, HasSubstr("(G55 = SET/55 CAMERA LINE 3 ORIGIN X0 Y0 Z0)\n"));
+}
