@@ -151,6 +151,7 @@ class OffsetTablePass : public Pass {
       ir::Instr& in = op.body[i];
       if (auto* f = std::get_if<ir::SetFrame>(&in.op)) {
         frame_ = f->frame;
+        frame_loc_ = in.loc;
         source_ = f->source;
         reg_ = pending_;
         pending_ = 0;
@@ -174,11 +175,28 @@ class OffsetTablePass : public Pass {
       const bool motion = (std::holds_alternative<ir::Move>(in.op) && std::get<ir::Move>(in.op).kind != ir::MoveKind::From) ||
                           std::holds_alternative<ir::Arc>(in.op) || std::holds_alternative<ir::Hole>(in.op);
       if (std::holds_alternative<ir::ToolChange>(in.op)) {
+        in_cut_ = false;
         unpaired_ = false;
         setup_end_ = out.size() + 1;
       }
       if (motion) unpaired_ = false;  // a SET after the frame's cuts is the next frame's (the pre-scan's rule)
-      if (motion && !active_) activate(op, i, in.loc, out, ctx);
+      const bool cut = (std::holds_alternative<ir::Move>(in.op) && std::get<ir::Move>(in.op).kind == ir::MoveKind::Feed) ||
+                       std::holds_alternative<ir::Arc>(in.op);
+      if (motion && !active_) {
+        const Vec3 z_before = z_;
+        activate(op, i, in.loc, out, ctx);
+        // A cut that runs on from the last frame's cut into a 3+2 frame (or out of one): the
+        // program retracts and turns the rotaries between the two, so the CL's cut from the
+        // one to the other is not made (a feed down from the retract height took its place,
+        // certified). Another register alone moves nothing: the feed goes on in it.
+        if (cut && in_cut_ && entry_ && (z_ - z_before).norm() > 1e-9)
+          ctx.diags.error(in.loc, "this cut runs on from the last point of the frame before into the frame of line " +
+                                      std::to_string(frame_loc_.line) + ", a 3+2 position of its own (work offset " +
+                                      std::to_string(selected_) + "): the program retracts and turns the rotaries between "
+                                      "the two points, so the cut between is not made; have the CAM system leave the "
+                                      "material (a RAPID) before the frame changes");
+      }
+      if (motion) in_cut_ = cut || std::holds_alternative<ir::Hole>(in.op);
       if (transform_ && motion) {
         apply(in);
         if (!along_z(in)) {
@@ -240,6 +258,8 @@ class OffsetTablePass : public Pass {
     active_ = true;
     transform_ = false;
     const ir::WorkOffset* w = find(ctx.info.offsets, frame_, reg_);
+    entry_ = w != nullptr;
+    z_ = frame_.rotation.col(2);
     if (!w) {
       if (!ctx.machine.offsets.per_frame && reg_ == 0 && selected_ && selected_ != ctx.machine.offsets.default_index) {
         // A frame record with no SET after a SET's frame: its points are in the part frame (as
@@ -365,6 +385,10 @@ class OffsetTablePass : public Pass {
   std::vector<ir::Instr> scratch_;
   ir::Frame frame_;
   int selected_ = 0;     // the register last selected (0: none yet)
+  bool in_cut_ = false;  // the last motion cut (a feed, an arc, a hole): the tool may be in the material
+  bool entry_ = false;   // the frame in force has an entry of the table (a register, a rotary position)
+  Vec3 z_ = Vec3::UnitZ();  // the Z of the frame in force
+  SourceLoc frame_loc_;  // the frame record in force
   ir::FrameSource source_ = ir::FrameSource::Csys;
   int reg_ = 0;       // the SET register in force (0: none)
   bool setups_ = false;  // frames become setups (a machine without rotaries)

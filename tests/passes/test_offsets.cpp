@@ -509,3 +509,22 @@ TEST(OffsetTable, ASetAfterAFramesCutsIsTheNextFrames) {
   ASSERT_TRUE(b.ok) << b.diags;
   EXPECT_THAT(b.output, HasSubstr("(G55 = SET/55 CAMERA LINE 3 ORIGIN X0 Y0 Z0)\n"));
 }
+
+// A cut that runs on from one frame into a 3+2 frame with an entry of the table: the program
+// retracts (G53 Z0) and turns the table between the two points, and the CL's cut (10,0,0) to
+// (50,0,-20) was replaced by a feed down from the retract height, certified. Refused; as
+// simultaneous five-axis (no register for the frame) it is the CL's move.
+TEST(OffsetTable, ACutIntoAThreePlusTwoFrameIsRefused) {
+  const std::string cl =
+      "UNITS/MM\nTOOL PATH/OP1,TOOL,EM\nTLDATA/MILL,10,0,50,0,0\nLOAD/TOOL,1,ADJUST,1\nMSYS/0,0,0,1,0,0,0,1,0\n"
+      "SPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,20,0,0,1\nFEDRAT/MMPM,100\nGOTO/0,0,0\nGOTO/10,0,0\n"
+      "MSYS/50,0,-20,0,1,0,0,0,1\nGOTO/0,0,0,0,0,1\nGOTO/10,0,0\nRAPID\nGOTO/10,0,20\nEND-OF-PATH\n";
+  Compiled per_frame = compile_text(cl, machine("my-umc", "[my-umc]\ninherits = \"haas-umc750\"\n[my-umc.offsets]\nper_frame = true\n"));
+  EXPECT_FALSE(per_frame.ok);
+  EXPECT_THAT(per_frame.diags, HasSubstr("part.cls:13:1: error: this cut runs on from the last point of the frame before into "
+                                         "the frame of line 12, a 3+2 position of its own (work offset 2): the program retracts "
+                                         "and turns the rotaries between the two points"));
+  Compiled simultaneous = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(simultaneous.ok) << simultaneous.diags;
+  EXPECT_THAT(simultaneous.output, HasSubstr("X1.9685 Z-0.7874 B90."));
+}
