@@ -5,7 +5,9 @@
 // checked in machine coordinates (the tool tip moved through the table axes, as the control
 // will have it): against kinematics.travel absolutely when kinematics.work_zero says where the
 // program zero is on the machine; otherwise the program's extent along each axis must fit the
-// travel wherever the part is set up.
+// travel wherever the part is set up. A point in a work-offset register's frame (the offset
+// table puts them there) is taken back to the part frame first, where the register's frame is
+// only shifted and turned in the part's first setup; in another setup only the span counts.
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
 // is limits_pass() at the end of this file.
@@ -39,6 +41,8 @@ class Limits : public Pass {
           plane_ = plane::rotation(m->angles, ctx.machine.kinematics.plane_euler);
         }
         if (m->kind == ir::ModeKind::PlaneOff) plane_on_ = false;
+      } else if (auto* o = std::get_if<ir::SelectOffset>(&in.op)) {
+        select(*o, ctx);
       } else if (auto* t = std::get_if<ir::ToolChange>(&in.op)) {
         const ir::ToolInfo* tool = ctx.info.tool(t->tool);
         tool_length_ = tool ? tool->length : 0;
@@ -117,14 +121,35 @@ class Limits : public Pass {
     return kin::machine_point(k_, rot_, given, k_.pivot + tool_length_) * to_out;
   }
 
-  void linear(const ir::Vec3& given, SourceLoc loc, PassContext& ctx, double to_out) {
+  // Another register: the offset table put the points in its frame (passes/offset_table.cpp).
+  // Where the register's frame is only shifted and turned from the part frame in the part's
+  // first setup, with the rotaries at zero, a point in it is the frame's point in the part
+  // frame, which work_zero places on the machine. (Each SET frame was taken as the program
+  // zero: 400 mm across, a fixture's cuts passed a 300 mm travel.) In another setup the part
+  // is set up again, so only the span is checked there.
+  void select(const ir::SelectOffset& o, PassContext& ctx) {
+    frame_ = nullptr;
+    other_setup_ = false;
+    for (const ir::WorkOffset& w : ctx.info.offsets) {
+      if (w.index != o.index) continue;
+      const bool rotaries_at_zero = !w.has_rotary || (std::abs(w.rotary[0]) < 1e-9 && std::abs(w.rotary[1]) < 1e-9);
+      if (w.setup > 1) other_setup_ = true;
+      else if (rotaries_at_zero && !w.base) frame_ = &w.frame;
+      return;
+    }
+  }
+
+  void linear(const ir::Vec3& given_in_frame, SourceLoc loc, PassContext& ctx, double to_out) {
     const KinematicsSettings& k = ctx.machine.kinematics;
     if (!k.travel.set) return;
+    const bool plain = !(tcp_ || dwo_ || plane_on_);
+    const ir::Vec3 given =
+        frame_ && plain ? ir::Vec3(frame_->rotation * given_in_frame + frame_->origin) : given_in_frame;
     ir::Vec3 p = machine_position(given, to_out);
     const char* names = "XYZ";
     const char* unit = ctx.machine.units == ir::Units::Inch ? " in" : " mm";
     for (int i = 0; i < 3; ++i) {
-      if (k.work_zero_set) {
+      if (k.work_zero_set && !other_setup_) {
         double v = k.work_zero[i] + p[i];
         if (v < k.travel.min[i] - 1e-9 || v > k.travel.max[i] + 1e-9)
           ctx.diags.error(loc, std::string(1, names[i]) + " reaches " + num_text(std::round(v * 1e4) / 1e4) +
@@ -148,6 +173,8 @@ class Limits : public Pass {
   }
 
   KinematicsSettings k_;
+  const ir::Frame* frame_ = nullptr;  // the selected register's frame, where its points are in it
+  bool other_setup_ = false;          // the selected register is in another setup than the first
   kin::Angles rot_{0, 0};
   bool tcp_ = false, dwo_ = false, plane_on_ = false;
   ir::Mat3 plane_ = ir::Mat3::Identity();  // the tilted plane in force (plane -> part)

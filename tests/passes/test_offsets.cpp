@@ -528,3 +528,29 @@ TEST(OffsetTable, ACutIntoAThreePlusTwoFrameIsRefused) {
   ASSERT_TRUE(simultaneous.ok) << simultaneous.diags;
   EXPECT_THAT(simultaneous.output, HasSubstr("X1.9685 Z-0.7874 B90."));
 }
+
+// The travel check in a SET register's frame: the offset table puts the points in the frame,
+// and the limits pass took them as from the program zero (a fixture 400 mm across on 300 mm of
+// travel passed, certified). With work_zero, the frame's points are placed from it; without,
+// the span counts the frames' origins.
+TEST(OffsetTable, TravelIsCheckedInEachRegistersFrame) {
+  const std::string toml = "[lim]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"arc-legalise\", "
+                           "\"drill-cycles\", \"rapid-split\", \"offset-table\", \"limits\"]\n[lim.kinematics]\ntravel = { x = [0.0, 300.0], y = [0.0, 200.0], "
+                           "z = [-300.0, 0.0] }\n";
+  auto fixtures = [](double apart) {
+    const std::string x = std::to_string(int(apart) + 10);
+    return "UNITS/MM\nLOADTL/1\nSET/54\n" + camera(rz(0), Vec3(0, 0, 0)) +
+           "SPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,20\nFEDRAT/MMPM,100\nGOTO/10,0,0\nRAPID\nGOTO/10,0,20\nSET/55\n" +
+           camera(rz(0), Vec3(apart, 0, 0)) + "RAPID\nGOTO/" + x + ",0,20\nGOTO/" + x + ",0,0\nRAPID\nGOTO/" + x + ",0,20\nFINI\n";
+  };
+  Compiled at = compile_text(fixtures(400), machine("lim", toml + "work_zero = [100.0, 100.0, -200.0]\n"));
+  EXPECT_FALSE(at.ok);
+  EXPECT_THAT(at.diags, HasSubstr("part.cls:17:1: error: X reaches 510 mm in machine coordinates, beyond the travel (0 to 300)"));
+  Compiled span = compile_text(fixtures(400), machine("lim", toml));
+  EXPECT_FALSE(span.ok);
+  EXPECT_THAT(span.diags, HasSubstr("part.cls:17:1: error: the program's X positions now span 400 mm, more than the machine's "
+                                    "300 mm of travel"));
+  // 200 mm apart, from X50: 60 to 260, it fits.
+  Compiled fits = compile_text(fixtures(200), machine("lim", toml + "work_zero = [50.0, 100.0, -200.0]\n"), {.certify = true});
+  EXPECT_TRUE(fits.ok) << fits.diags;
+}
