@@ -407,6 +407,8 @@ constexpr MotionWord kMotionWords[] = {
     {"POSTN", "it positions machine axes directly; have the CAM system write the move as GOTO points"},
     {"SAFPOS", "a move to a safe position the post would choose; have the CAM system write the move as GOTO points"},
     {"GOCLER", "a move to the clearance plane the post would make; have the CAM system write the retract as GOTO points"},
+    {"FIXTURE", "it selects a work offset (a fixture) that clpc does not read: the cuts after it would land in the "
+                "register in force; give the frame's register with SET (SET/55) and its frame (CAMERA, MSYS)"},
     {"TRANS", "it shifts the coordinates that follow; set the part's origin in the CAM system or with the work offset (SET, CAMERA)"},
     {"PIVOTZ", "it moves the point the coordinates name along the tool; have the CAM system output the tool tip"},
 };

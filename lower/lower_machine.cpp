@@ -132,6 +132,13 @@ void Lowerer::lower_spindle(const Record& r) {
       d_.warning(r.loc, "SPINDL/" + w + " (live-tool orientation) is ignored: the machine has no such head",
                  "spindle-orientation");
       return;
+    } else if (w == "ORIENT" || w == "LOCK") {
+      // ISO 4343's oriented stop (M19) and spindle lock: no motion, and no cut relies on them
+      // (a fine-boring cycle orients the spindle itself). Not a reason to stop the post.
+      d_.warning(r.loc, "SPINDL/" + w + " (" + (w == "ORIENT" ? "an oriented spindle stop" : "a spindle lock") +
+                            ") is not written: clpc's machines have no code for it",
+                 "spindle-orientation");
+      return;
     } else {
       d_.error(p.loc, "SPINDL: unknown word '" + std::string(p.text) + "'");
       return;

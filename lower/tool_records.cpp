@@ -122,6 +122,15 @@ ToolGeometry read_tool_geometry(const Record& r, Diagnostics* d) {
     g.diameter = v[0];
     if (g.kind != "DRILL") g.corner_radius = n > 1 ? v[1] : 0;
     if (r.id == MajorId::Tldata && n > 2) g.length = v[2];
+    // A corner radius beyond the tool's radius is no milling cutter (CUTTER/10,30): the numbers
+    // are in another order than read, or mistyped. Only the tool list shows them: said. (CATIA's
+    // seven-number CUTTER also describes turning tools, where it is no such radius: not judged.)
+    const bool plain_mill = (r.id == MajorId::Cutter && r.params.size() == 2) || g.kind == "MILL";
+    if (d && plain_mill && g.corner_radius > g.diameter / 2 + 1e-9)
+      d->warning(r.params[i + 1].loc, std::string(r.major) + ": a corner radius of " + num_text(g.corner_radius) +
+                                          " is more than the tool's radius (" + num_text(g.diameter / 2) +
+                                          "): are the numbers in the order " + (r.id == MajorId::Cutter ? "CUTTER/d,r" : "TLDATA/MILL,d,r,...") + "?",
+                 "tool-geometry");
   }
   g.any = true;
   return g;

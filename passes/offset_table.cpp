@@ -58,7 +58,14 @@ class OffsetTablePass : public Pass {
     if (!s.per_frame && !any_set && !setups_) return;
     for (const RotaryAxis& r : k_.rotaries)
       if (!r.table) {
-        ctx.diags.error({}, "work offsets per frame need rotary axes on the table side; machine '" + ctx.machine.name +
+        // Located at the first frame that asks for a register (a SET, or a Z the head cannot turn to).
+        SourceLoc at;
+        for (const ir::FrameUse& u : ctx.info.frames)
+          if (u.set_register != 0 || !reachable(u.frame.z_axis()) || s.per_frame) {
+            at = u.loc;
+            break;
+          }
+        ctx.diags.error(at, "work offsets per frame need rotary axes on the table side; machine '" + ctx.machine.name +
                                 "' turns its head");
         return;
       }

@@ -641,3 +641,19 @@ TEST(Lower, ACycleWithoutAFeedUnderInverseTimeIsRefused) {
             "drilling feed; give the cycle its feed (MMPM, IPM, MMPR, IPR)");
   EXPECT_EQ(err("LOADTL/1\nFEDRAT/INVERS,2\nGOTO/0,0,19\nCYCLE/DRILL,FEDTO,10,RAPTO,3,MMPM,100\nGOTO/0,0,0\nCYCLE/OFF\n"), "");
 }
+
+// Probe findings: FIXTURE/2 selects a work offset (as a comment, the cuts landed in G54); an
+// oriented stop or spindle lock moves nothing and stops no post; a corner radius beyond the
+// tool's radius is said.
+TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
+  EXPECT_THAT(err("FIXTURE/2\nGOTO/0,0,0\n"), ::testing::StartsWith("1:1: 'FIXTURE' moves the tool and clpc does not read it: it "
+                                                                    "selects a work offset (a fixture)"));
+  Lowered orient = lower_text("SPINDL/RPM,1000,CLW\nSPINDL/ORIENT\nSPINDL/LOCK\nGOTO/0,0,0\n");
+  EXPECT_EQ(first_error(orient.diags), "");
+  ASSERT_EQ(orient.diags.size(), 2u);
+  EXPECT_EQ(orient.diags[0].message, "SPINDL/ORIENT (an oriented spindle stop) is not written: clpc's machines have no code for it");
+  Lowered radius = lower_text("CUTTER/10,30\nLOADTL/1\nRAPID\nGOTO/0,0,0\n");
+  ASSERT_EQ(radius.diags.size(), 1u);
+  EXPECT_EQ(radius.diags[0].loc, (SourceLoc{1, 11}));
+  EXPECT_EQ(radius.diags[0].message, "CUTTER: a corner radius of 30 is more than the tool's radius (5): are the numbers in the order CUTTER/d,r?");
+}
