@@ -527,7 +527,16 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
     approach_from(op);
   if (!cut_since_tool_change_) [[unlikely]]
     check_first_cut(loc, op);
-  if (std::holds_alternative<ir::ToolChange>(op)) cut_since_tool_change_ = false;
+  if (std::holds_alternative<ir::ToolChange>(op)) {
+    cut_since_tool_change_ = false;
+    if (pending_arc_) [[unlikely]] {
+      // A tool change between a CIRCLE and the GOTO that ends it: the arc would start where
+      // the change leaves the tool (verify refused it with no word on why).
+      d_.error(loc, "a tool change between a CIRCLE (line " + std::to_string(pending_arc_->loc.line) +
+                        ") and the GOTO that ends it: the arc cannot be cut across it");
+      pending_arc_.reset();
+    }
+  }
   else if (const auto* m = std::get_if<ir::Move>(&op)) {
     if (m->kind != ir::MoveKind::From) at_home_ = false;
     cut_since_tool_change_ |= m->kind != ir::MoveKind::From;

@@ -656,4 +656,8 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   ASSERT_EQ(radius.diags.size(), 1u);
   EXPECT_EQ(radius.diags[0].loc, (SourceLoc{1, 11}));
   EXPECT_EQ(radius.diags[0].message, "CUTTER: a corner radius of 30 is more than the tool's radius (5): are the numbers in the order CUTTER/d,r?");
+  // A tool change between a CIRCLE and its end point: refused at the change (verify refused
+  // the program with no word on why).
+  EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nLOADTL/2\nGOTO/-10,0,0\n"),
+            "5:1: a tool change between a CIRCLE (line 4) and the GOTO that ends it: the arc cannot be cut across it");
 }
