@@ -660,4 +660,11 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   // the program with no word on why).
   EXPECT_EQ(err("LOADTL/1\nRAPID\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nLOADTL/2\nGOTO/-10,0,0\n"),
             "5:1: a tool change between a CIRCLE (line 4) and the GOTO that ends it: the arc cannot be cut across it");
+  // A CATIA contour with no INDIRV after a ramp: the plane tilted with the ramp, the arc rose
+  // out of the circle's plane (certified). Refused; after a move in the plane it is read.
+  const std::string ramp = "RAPID\nGOTO/10,-10,-1\nGOTO/10,0,0\n";
+  const std::string contour = "TLON,GOFWD/(CIRCLE/0,0,0,10),ON,(LINE/0,0,0,-10,0,0)\n";
+  EXPECT_EQ(err(ramp + contour), "4:1: TLON,GOFWD with no INDIRV: the plane the tool turns in is taken from the motion before "
+                                 "it, which is square to no axis (a ramp?); give INDIRV before the contour");
+  EXPECT_EQ(err("RAPID\nGOTO/10,-10,0\nGOTO/10,0,0\n" + contour), "");
 }
