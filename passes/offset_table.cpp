@@ -266,6 +266,21 @@ class OffsetTablePass : public Pass {
     transform_ = false;
     const ir::WorkOffset* w = find(ctx.info.offsets, frame_, reg_);
     entry_ = w != nullptr;
+    if (!w && reg_ == 0 && !ctx.machine.offsets.per_frame && !default_taken_reported_) {
+      // Motion in the part frame, which the default register holds: a SET that gives that
+      // register to a frame elsewhere leaves it one origin for two (verify refused every point
+      // of one of them, with no word on why).
+      for (const ir::WorkOffset& t : ctx.info.offsets)
+        if (t.set_register && t.index == ctx.machine.offsets.default_index && !t.frame.is_identity(1e-9)) {
+          ctx.diags.error(loc, "this motion is in the part frame, whose register is the default one, but SET/" +
+                                   std::to_string(t.set_register) + " (line " + std::to_string(t.loc.line) +
+                                   ") gives that register to another frame: one register cannot hold both origins; "
+                                   "give that frame another register (SET/55), or every frame its own "
+                                   "(offsets.per_frame = true)");
+          default_taken_reported_ = true;
+          break;
+        }
+    }
     z_ = frame_.rotation.col(2);
     if (!w) {
       if (!ctx.machine.offsets.per_frame && reg_ == 0 && selected_ && selected_ != ctx.machine.offsets.default_index) {
@@ -394,6 +409,7 @@ class OffsetTablePass : public Pass {
   int selected_ = 0;     // the register last selected (0: none yet)
   bool in_cut_ = false;  // the last motion cut (a feed, an arc, a hole): the tool may be in the material
   bool entry_ = false;   // the frame in force has an entry of the table (a register, a rotary position)
+  bool default_taken_reported_ = false;  // motion in the part frame met a SET frame in the default register
   Vec3 z_ = Vec3::UnitZ();  // the Z of the frame in force
   SourceLoc frame_loc_;  // the frame record in force
   ir::FrameSource source_ = ir::FrameSource::Csys;

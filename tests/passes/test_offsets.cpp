@@ -554,3 +554,19 @@ TEST(OffsetTable, TravelIsCheckedInEachRegistersFrame) {
   Compiled fits = compile_text(fixtures(200), machine("lim", toml + "work_zero = [50.0, 100.0, -200.0]\n"), {.certify = true});
   EXPECT_TRUE(fits.ok) << fits.diags;
 }
+
+// Motion in the part frame (the default register) and a SET/54 frame elsewhere: one register
+// for two origins. verify refused every point of the first with "never reached" and no word
+// on why; refused at the first such motion, naming the SET.
+TEST(OffsetTable, ASetThatTakesTheDefaultRegisterFromThePartFrameIsRefused) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,0,20\nFEDRAT/MMPM,100\nGOTO/10,0,0\nRAPID\n"
+                         "GOTO/10,0,20\nSET/54\n" + camera(rz(0), Vec3(100, 0, 0)) + "RAPID\nGOTO/110,0,20\nGOTO/110,0,0\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:5:1: error: this motion is in the part frame, whose register is the default one, "
+                                 "but SET/54 (line 11) gives that register to another frame"));
+  std::string other = cl;
+  other.replace(other.find("SET/54"), 6, "SET/55");
+  Compiled ok = compile_text(other, machine("fanuc-mill"), {.certify = true});
+  EXPECT_TRUE(ok.ok) << ok.diags;
+}
