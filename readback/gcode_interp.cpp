@@ -118,6 +118,9 @@ class Interp {
       }
       if (c == ';') break;  // end of block
       if (c == '%' ) { ++i; continue; }
+      // A macro variable set by a block of its own (#100=1, an INSERT for a probing macro):
+      // it moves nothing. A word that uses a variable is still no number the reader knows.
+      if (c == '#' && words.empty() && l.find('=', i) != std::string_view::npos) return true;
       char letter = char(std::toupper(static_cast<unsigned char>(c)));
       if (letter < 'A' || letter > 'Z') {
         problem(line, std::string("unexpected character '") + c + "'");

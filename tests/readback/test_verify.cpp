@@ -287,3 +287,18 @@ TEST_F(VerifyPlate, HtmlReport) {
   EXPECT_THAT(red, HasSubstr("fill=\"#d73027\"/>"));
   EXPECT_THAT(red, HasSubstr("<h2>Problems</h2>"));
 }
+
+// A macro variable set by an INSERT (#100=1, for a probing macro) moves nothing: the program
+// is read past it (verify refused it: "unexpected character '#'"). A word that uses a
+// variable is still no number the reader can check.
+TEST(Verify, AMacroVariableSetByAnInsertIsReadPast) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,5\nINSERT/#100=1\nFEDRAT/100,MMPM\n"
+                         "GOTO/0,0,0\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\n#100=1\n"));
+  std::string uses = c.output;
+  uses.replace(uses.find("Z0. F100."), 3, "Z#100");
+  Compiled bad = verify_text(cl, machine("fanuc-mill"), uses);
+  EXPECT_FALSE(bad.ok);
+}
