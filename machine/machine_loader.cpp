@@ -582,8 +582,12 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         s->reported(k);
         continue;
       }
-      if (auto f = s->sub(k))
-        read_format(*f, m.formats[size_t(k[0] - 'A')], std::string_view("XYZUVWIJKRQF").find(k[0]) != std::string_view::npos);
+      // A lathe's P is G74/G75's peck in least input increments, a length like Q (a mill's P
+      // is a dwell): given for a metric lathe and inherited by an inch one, it kept 3 decimals
+      // and the peck was written 10 times too small.
+      const bool length_like = std::string_view("XYZUVWIJKRQF").find(k[0]) != std::string_view::npos ||
+                               (k[0] == 'P' && m.is_lathe());
+      if (auto f = s->sub(k)) read_format(*f, m.formats[size_t(k[0] - 'A')], length_like);
     }
     s->finish();
   }

@@ -360,3 +360,15 @@ TEST(GrooveRecords, ARecordThatContradictsItsMotionKeepsTheMotion) {
                                      "the motion plunges at (0.08)"));
   EXPECT_THAT(other.output, HasSubstr("G75 X16. Z-13. P4000 Q1500 F0.12"));
 }
+
+// An inch lathe that inherits the metric fanuc-lathe: G75's P (the peck, in least input
+// increments) is a length like Q. It kept the metric 3 decimals, and P59 (0.0059 in) pecked
+// 10 times too little where the CL asks 1.5 mm (0.0591 in).
+TEST(GrooveRecords, AnInchLatheInheritingTheMetricOneWritesThePeckInItsIncrements) {
+  const std::string cl = "UNITS/MM\nMACHIN/TURN,1\nTURRET/1\nSPINDL/RPM,600,CLW\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/32,0,-10\n"
+                         "CYCLE/RADIUS,RETRACT,0.3,XAXIS,1.5,ZAXIS,2,FEED,0.05\nGOTO/30,0,-10\nGOTO/24,0,-10\nGOTO/30,0,-10\n"
+                         "CYCLE/OFF\nFINI\n";
+  Compiled c = compile_text(cl, machine("inch-lathe", "[inch-lathe]\ninherits = \"fanuc-lathe\"\nunits = \"inch\"\n"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G75 X1.8898 Z-0.3937 P591 Q787 F0.00197\n"));
+}
