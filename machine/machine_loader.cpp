@@ -588,6 +588,17 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       const bool length_like = std::string_view("XYZUVWIJKRQF").find(k[0]) != std::string_view::npos ||
                                (k[0] == 'P' && m.is_lathe());
       if (auto f = s->sub(k)) read_format(*f, m.formats[size_t(k[0] - 'A')], length_like);
+      // A scale on an axis of the arcs' plane stretches or mirrors X while I, J, K and the
+      // arcs' directions stay the CL's: scale = -1 on a mill's X wrote a 90 degree G03 that a
+      // control cuts as 270 (verify divided by the same scale, and certified it).
+      const double scale = m.formats[size_t(k[0] - 'A')].scale;
+      const bool diameter_x = m.is_lathe() && k[0] == 'X';
+      if (std::string_view("XYZIJK").find(k[0]) != std::string_view::npos &&
+          !(scale == 1 || (diameter_x && scale == 2)))
+        c.error(key->source(), s->key_path(k) + ".scale: " + num_text(scale) + " would stretch or mirror " + k +
+                                   " while the arcs' centres and directions stay the CL's; a lathe's X is 1 (radius) or "
+                                   "2 (diameter), every other axis 1 (a lathe that views its arcs from -Y says "
+                                   "lathe.arcs_seen_from)");
     }
     s->finish();
   }
