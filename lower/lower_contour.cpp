@@ -246,13 +246,14 @@ void Lowerer::lower_contour(const Record& r) {
   n.normalize();
   if (c.size() == 4 && !from_indirv) {
     // No INDIRV: the plane holds the direction of the motion before. After a ramp it tilted
-    // with the ramp, and the arc rose out of the plane the circle's centre lies in (CATIA
-    // writes INDIRV before every contour: 405 of 405 in the corpus, in XY and, on its
-    // lathes, ZX). A plane square to no axis is refused, not guessed.
+    // with the ramp, after a plunge it stood upright, and the arc left the plane the circle's
+    // centre lies in (CATIA writes INDIRV before every contour: 405 of 405 in the corpus, in
+    // XY and, on its lathes, ZX). Only a motion in the XY plane says the plane: any other is
+    // refused, not guessed.
     const ir::Vec3 local = has_xf_ ? ir::Vec3(xf_.rotation.transpose() * n) : n;  // in the CL's own axes
-    if (std::max({std::abs(local.x()), std::abs(local.y()), std::abs(local.z())}) < 1 - 1e-9) {
+    if (std::abs(local.z()) < 1 - 1e-9) {
       d_.error(r.loc, "TLON,GOFWD with no INDIRV: the plane the tool turns in is taken from the motion before it, "
-                      "which is square to no axis (a ramp?); give INDIRV before the contour");
+                      "which is not in the XY plane (a ramp, a plunge?); give INDIRV before the contour");
       return;
     }
   }

@@ -133,11 +133,13 @@ void Lowerer::lower_spindle(const Record& r) {
                  "spindle-orientation");
       return;
     } else if (w == "ORIENT" || w == "LOCK") {
-      // ISO 4343's oriented stop (M19) and spindle lock: no motion, and no cut relies on them
-      // (a fine-boring cycle orients the spindle itself). Not a reason to stop the post.
-      d_.warning(r.loc, "SPINDL/" + w + " (" + (w == "ORIENT" ? "an oriented spindle stop" : "a spindle lock") +
-                            ") is not written: clpc's machines have no code for it",
-                 "spindle-orientation");
+      // ISO 4343's oriented stop (M19) and spindle lock. The moves after one rely on it (a
+      // boring bar shifted off the wall before it comes out): left out, they would be made
+      // with the spindle turning. clpc's machines have no code for them.
+      d_.error(p.loc, "SPINDL/" + w + " (" + (w == "ORIENT" ? "an oriented spindle stop" : "a spindle lock") +
+                          "): clpc's machines have no code for it, and the moves after it would be made with the "
+                          "spindle turning; have the CAM system use a cycle that orients the spindle itself "
+                          "(CYCLE/BORE with ORIENT, G76)");
       return;
     } else {
       d_.error(p.loc, "SPINDL: unknown word '" + std::string(p.text) + "'");
@@ -364,7 +366,8 @@ void Lowerer::lower_cutcom(const Record& r) {
   bool side = false, on = false;
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
-    if (side && (p.is("LEFT") || p.is("RIGHT") || p.is("OFF"))) {
+    const ir::CompSide said = p.is("LEFT") ? ir::CompSide::Left : p.is("RIGHT") ? ir::CompSide::Right : ir::CompSide::Off;
+    if (side && (p.is("LEFT") || p.is("RIGHT") || p.is("OFF")) && said != c.side) {
       // CUTCOM/LEFT,RIGHT: the last one won. Which side is meant is not known.
       d_.error(p.loc, "CUTCOM: " + std::string(c.side == ir::CompSide::Left ? "LEFT" : c.side == ir::CompSide::Right ? "RIGHT" : "OFF") +
                           " and " + upper(p.text) + " in one record; which is meant is not known");

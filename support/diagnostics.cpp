@@ -54,7 +54,7 @@ const std::vector<WarningName>& warning_names() {
       {"seed-macro", "the seed paper's G65 macro computing an offset for other angles than the rotaries go to"},
       {"setup", "an operation cut in a setup of its own, after an operator stop"},
       {"spindle-clamp", "constant surface speed without MAXRPM, or with one above the machine's limit: clamped at that limit"},
-      {"spindle-orientation", "SPINDL/PARLEL, PERPTO, ORIENT or LOCK, ignored"},
+      {"spindle-orientation", "SPINDL/PARLEL or PERPTO, ignored"},
       {"spindle-stopped", "a cutting move or an arc with the spindle stopped (a hole drilled so is an error)"},
       {"spindle-restart", "the CL gives no SPINDL after a tool change: the spindle M06 stopped is started again at the CL's last speed"},
       {"subroutine", "INDEX and DEFSUB blocks that end or redefine others"},

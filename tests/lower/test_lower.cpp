@@ -232,7 +232,7 @@ TEST(Lower, WordsThatContradictEachOtherAreRefused) {
   EXPECT_EQ(err("CUTCOM/LEFT,RIGHT\n"), "1:13: CUTCOM: LEFT and RIGHT in one record; which is meant is not known");
   EXPECT_EQ(err("UNITS/INCHES,MM\n"), "1:14: UNITS: INCHES and MM in one record; which unit the file is in is not known");
   // Words that agree stay read: a mode with a unit of its own mode, a word said twice.
-  EXPECT_EQ(err("FEDRAT/100,PERMIN,MMPM\nFEDRAT/0.2,MMPR,PERREV\nSPINDL/RPM,1000,CLW,RPM\nUNITS/MM,MM\n"), "");
+  EXPECT_EQ(err("FEDRAT/100,PERMIN,MMPM\nFEDRAT/0.2,MMPR,PERREV\nSPINDL/RPM,1000,CLW,RPM\nUNITS/MM,MM\nCUTCOM/LEFT,LEFT\n"), "");
 }
 
 TEST(Lower, SpindleBothOrdersAndKinds) {
@@ -643,15 +643,14 @@ TEST(Lower, ACycleWithoutAFeedUnderInverseTimeIsRefused) {
 }
 
 // Probe findings: FIXTURE/2 selects a work offset (as a comment, the cuts landed in G54); an
-// oriented stop or spindle lock moves nothing and stops no post; a corner radius beyond the
-// tool's radius is said.
+// oriented stop clpc cannot write is refused (the moves after it rely on it); a corner radius
+// beyond the tool's radius is said.
 TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   EXPECT_THAT(err("FIXTURE/2\nGOTO/0,0,0\n"), ::testing::StartsWith("1:1: 'FIXTURE' moves the tool and clpc does not read it: it "
                                                                     "selects a work offset (a fixture)"));
-  Lowered orient = lower_text("SPINDL/RPM,1000,CLW\nSPINDL/ORIENT\nSPINDL/LOCK\nGOTO/0,0,0\n");
-  EXPECT_EQ(first_error(orient.diags), "");
-  ASSERT_EQ(orient.diags.size(), 2u);
-  EXPECT_EQ(orient.diags[0].message, "SPINDL/ORIENT (an oriented spindle stop) is not written: clpc's machines have no code for it");
+  EXPECT_THAT(err("SPINDL/RPM,1000,CLW\nSPINDL/ORIENT\nGOTO/0,0,0\n"),
+              ::testing::StartsWith("2:8: SPINDL/ORIENT (an oriented spindle stop): clpc's machines have no code for it, and "
+                                    "the moves after it would be made with the spindle turning"));
   Lowered radius = lower_text("CUTTER/10,30\nLOADTL/1\nRAPID\nGOTO/0,0,0\n");
   ASSERT_EQ(radius.diags.size(), 1u);
   EXPECT_EQ(radius.diags[0].loc, (SourceLoc{1, 11}));
@@ -665,6 +664,7 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   const std::string ramp = "RAPID\nGOTO/10,-10,-1\nGOTO/10,0,0\n";
   const std::string contour = "TLON,GOFWD/(CIRCLE/0,0,0,10),ON,(LINE/0,0,0,-10,0,0)\n";
   EXPECT_EQ(err(ramp + contour), "4:1: TLON,GOFWD with no INDIRV: the plane the tool turns in is taken from the motion before "
-                                 "it, which is square to no axis (a ramp?); give INDIRV before the contour");
+                                 "it, which is not in the XY plane (a ramp, a plunge?); give INDIRV before the contour");
+  EXPECT_THAT(err("RAPID\nGOTO/10,0,10\nGOTO/10,0,0\n" + contour), ::testing::HasSubstr("which is not in the XY plane"));
   EXPECT_EQ(err("RAPID\nGOTO/10,-10,0\nGOTO/10,0,0\n" + contour), "");
 }
