@@ -31,7 +31,7 @@ double LatheBackend::thread_lead(SourceLoc loc) const {
 // be off by more than the path tolerance clpc allows itself (arcs.tolerance, the chord error)
 // and half an increment. Every pass starts at the spindle's index, so the error does not add
 // up pass by pass: an inch thread on a metric control (13 TPI written F1.9538) ends 0.0006 mm
-// off over 30 mm, as on any post; a longer one or a coarser format is refused.
+// off over 25 mm, as on any post; a longer one or a coarser format is refused.
 bool LatheBackend::write_lead(double lead, double length, SourceLoc loc) {
   const AddressFormat& f = m_.feeds.lead;
   const double value = lead * k_;

@@ -586,11 +586,23 @@ Lexer::Symbol Lexer::lex() {
   return Parser::make_END(loc_of(cur_));
 }
 
+// Records that move the tool, for a pre-scan that skips them (Record::motion_skipped): what the
+// offset-table pass counts as motion (a move, an arc, a hole), record by record.
+constexpr bool moves_the_tool(MajorId id) {
+  switch (id) {
+    case MajorId::Goto: case MajorId::Circle: case MajorId::Godlta: case MajorId::Movarc: case MajorId::Gohome:
+    case MajorId::Gofwd: case MajorId::Golft: case MajorId::Gorgt: case MajorId::Goback: case MajorId::Goup:
+    case MajorId::Godown:
+      return true;
+    default: return false;
+  }
+}
+
 #define MAJOR(id)                                                        \
   {                                                                      \
     if (overflow_) return error_token(overflow_at_, too_long());    \
     if (!wanted_ || wanted_[int(MajorId::id)]) return major(MajorId::id, tok_, cur_); \
-    if (MajorId::id == MajorId::Goto || MajorId::id == MajorId::Circle || MajorId::id == MajorId::Godlta || MajorId::id == MajorId::Movarc) ++motion_skipped_; \
+    if (moves_the_tool(MajorId::id)) ++motion_skipped_; \
     skip_record();                                                       \
     continue;                                                            \
   }
@@ -617,9 +629,10 @@ Lexer::Symbol Lexer::lex_line_start() {
       nl  { newline(cur_); continue; }
 
       "$$->" [ \t]* / [A-Za-z_] { data_mark = true; continue; }
-      // An APT statement label ("L1) GOTO/..."): up to six letters and digits and ')' before
-      // the record, which is read as if the label were not there (docs/cl-input.md).
-      [A-Za-z0-9]{1,6} ")" [ \t]* { continue; }
+      // An APT statement label ("L1) GOTO/..."): a letter, up to five more letters and digits,
+      // and ')' before a record (a word, then '/', ',' or the line end), which is read as if the
+      // label were not there (docs/cl-input.md). A numbered note ("1) Set up the vise") is none.
+      [A-Za-z][A-Za-z0-9]{0,5} ")" [ \t]* / mword [ \t]* [/,\n] { continue; }
       "$$" {
         if (wanted_) { skip_record(); continue; }
         record_start_ = loc_of(tok_);

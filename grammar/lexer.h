@@ -50,7 +50,7 @@ class Lexer {
   static constexpr size_t kMaxToken = 64 * 1024;  // longest word, number, text or comment
   static constexpr size_t kArenaSize = 1 << 20;   // all text of one record
 
-  // GOTO, CIRCLE, GODLTA and MOVARC records skipped so far because the caller (a pre-scan) did not want them.
+  // Records that move the tool (GOTO, CIRCLE, GOHOME, GOFWD, ...) skipped so far because the caller (a pre-scan) did not want them.
   uint32_t motion_skipped() const { return motion_skipped_; }
 
  private:
@@ -78,7 +78,7 @@ class Lexer {
   Symbol free_text_major(MajorId id, size_t keyword_len);
   bool skip_record();               // to the end of the record; false at end of input
   const char* motion_word_in_line() const;
-  uint32_t motion_skipped_ = 0;  // GOTO, CIRCLE, GODLTA, MOVARC records skipped as not wanted
+  uint32_t motion_skipped_ = 0;  // records that move the tool skipped as not wanted
   void check_text(const unsigned char* b, const unsigned char* e, const char* what);
   std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }
 

@@ -65,7 +65,7 @@ struct Record {
   std::string_view text;      // free text or comment text
   SourceLoc loc;              // of the major word (or of "$$")
   SourceLoc end;              // just past the last token: where a missing value would go
-  // Motion records (GOTO, CIRCLE, GODLTA, MOVARC) a pre-scan skipped before this one, counted from the file's
+  // Records that move the tool (GOTO, CIRCLE, GOHOME, GOFWD, ...) a pre-scan skipped before this one, counted from the file's
   // start: a pre-scan that wants no motion still sees where some came between two records.
   uint32_t motion_skipped = 0;
 };

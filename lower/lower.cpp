@@ -304,7 +304,7 @@ bool Lowerer::blank_joined_record(const Record& r) {
   for (size_t k = 0; k < words.size(); ++k) {
     const std::string_view w = words[k];
     const MajorId id = major_id(w);
-    if ((id != MajorId::Unknown && !carries_nothing_to_cut(id)) || motion_word(w)) {
+    if ((id != MajorId::Unknown && !carries_nothing_to_cut(id)) || motion_word_exact(w)) {
       d_.error(r.loc, "'" + upper(name) + "': a record name of several words, and " + upper(w) +
                           " moves the tool or changes how it cuts: APT separates the words before the major word with "
                           "commas (TLON,GOFWD/...) and ignores blanks inside a word; write the record as " +
@@ -430,11 +430,15 @@ bool reads_as_motion(std::string_view major) {
 
 }  // namespace
 
-bool motion_word(std::string_view major) {
+bool motion_word_exact(std::string_view major) {
   for (const MotionWord& w : kMotionWords)
     if (iequals(major, w.word)) return true;
-  return reads_as_motion(major);
+  return false;
 }
+
+// A record's name of one word: a known motion word, or a name that reads as motion. (The words
+// of a line of typed text, "Move clamps clear", are judged by the exact names only.)
+bool motion_word(std::string_view major) { return motion_word_exact(major) || reads_as_motion(major); }
 
 std::string_view motion_hint(std::string_view major) {
   for (const MotionWord& w : kMotionWords)
@@ -527,8 +531,10 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
     approach_from(op);
   if (!cut_since_tool_change_) [[unlikely]]
     check_first_cut(loc, op);
-  if (std::holds_alternative<ir::ToolChange>(op)) {
+  if (const auto* tc = std::get_if<ir::ToolChange>(&op)) {
     cut_since_tool_change_ = false;
+    same_tool_again_ = tc->tool == last_tool_loaded_;  // NX loads the tool at every operation
+    last_tool_loaded_ = tc->tool;
     if (pending_arc_) [[unlikely]] {
       // A tool change between a CIRCLE and the GOTO that ends it: the arc would start where
       // the change leaves the tool (verify refused it with no word on why).
@@ -597,7 +603,7 @@ void Lowerer::approach_from(const ir::Op& op) {
 void Lowerer::check_first_cut(SourceLoc loc, const ir::Op& op) {
   const auto* m = std::get_if<ir::Move>(&op);
   const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op);
-  if (!cut || tool_ < 0) return;
+  if (!cut || tool_ < 0 || same_tool_again_) return;  // a load of the tool in the spindle moves nothing
   d_.warning(loc, "the first move of T" + std::to_string(tool_) + " is a cut, with no FROM or rapid before it to say where it starts: it is fed straight from "
                       "where the tool change (or the program's start) leaves the tool",
              "approach");

@@ -23,6 +23,7 @@ bool carries_nothing_to_cut(MajorId id);
 std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
 bool motion_word(std::string_view major);
+bool motion_word_exact(std::string_view major);  // the exact names of kMotionWords only
 std::string_view motion_hint(std::string_view major);
 // The sense of rotation a CIRCLE's axis stands for (lower/lower_motion.cpp).
 ir::ArcDir circle_convention(ir::CamSystem cam, ir::ArcLayout layout);
@@ -171,6 +172,8 @@ class Lowerer : public RecordSink {
   // A FROM the tool has made no move since (before its first motion, perhaps before the tool
   // change): a cut next starts there, so the tool is first brought there at rapid.
   bool from_approach_ = false;
+  bool same_tool_again_ = false;  // the last tool change loaded the tool already in the spindle
+  int last_tool_loaded_ = -1;
   SourceLoc from_loc_;
   bool rapid_next_ = false;
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion

@@ -197,7 +197,8 @@ const PassInfo& limits_pass() {
       .guarantees = "an error naming the CL record for a rotary beyond its limits, or a tool tip beyond "
                     "kinematics.travel in machine coordinates: absolutely when kinematics.work_zero is given, "
                     "otherwise when the program's extent along an axis exceeds the travel",
-      .settings = "kinematics.axes (min, max), kinematics.travel, kinematics.work_zero",
+      .settings = "kinematics.axes (min, max), kinematics.travel, kinematics.work_zero; the offset table's "
+                  "frames (offset-table, before it in the pipeline)",
       .needs = ir::Kinematic,
       .provides = ir::LimitsChecked,
       .breaks = 0,

@@ -243,6 +243,10 @@ TEST(Lexer, AptStatementLabelsAreReadPast) {
   EXPECT_EQ(first_error(p.diags), "");
   EXPECT_TRUE(p.diags.empty());
   EXPECT_THAT(p.records, ElementsAre("1:5 GOTO/20,0,-1", "2:6 GOTO/40,0,-1", "3:7 FEDRAT/100,MMPM"));
+  // A note that only looks like one ('A) cutter 10mm': no record after it) stays a line of text.
+  Parsed note = parse_text("A) cutter 10mm\nGOTO/1,2,3\n");
+  EXPECT_EQ(first_error(note.diags), "");
+  EXPECT_THAT(note.records, ElementsAre("2:1 GOTO/1,2,3"));
 }
 
 // NX's information window: the header and the last line are no records (nx-course/).

@@ -1064,6 +1064,13 @@ TEST(CamSystems, AFirstCutAfterFromStartsAtTheFrom) {
                               machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(arc.ok) << arc.diags;
   EXPECT_THAT(arc.output, HasSubstr("N50 G54 G00 X20. Y0.\nN60 G43 H01 Z0.\nN70 G17 G94 G03 X-20. I-20. J0. F100.\n"));
+  // NX loads the tool at every operation: a load of the tool in the spindle moves nothing, and
+  // its first cut is no approach.
+  Compiled again = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/100,MMPM\nGOTO/0,0,0\n"
+                                "LOADTL/1\nGOTO/10,0,0\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(again.ok) << again.diags;
+  EXPECT_EQ(messages(again.diags), "");
   // A rapid after the FROM positions the tool itself: nothing is added.
   Compiled rapid = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFROM/0,0,100\nRAPID\nGOTO/30,0,5\n"
                                 "FEDRAT/100,MMPM\nGOTO/30,0,0\nFINI\n",
