@@ -96,6 +96,19 @@ void Emitter::forget_all() {
   for (bool& k : known_) k = false;
 }
 
+// A dwell keeps its meaning after formatting, as a feed does (feeds.max_rounding): 0.4 s written
+// P0 with a whole-seconds P, or 1.5 s as P2, was certified (verify reads the block's dwell as
+// written and has no CL time to hold it to).
+void Emitter::check_dwell(Var var, double value, double written) {
+  if ((var != Var::Seconds && var != Var::Milliseconds) || !(value > 0)) return;
+  if (written != 0 && std::abs(written - value) <= m_.feeds.max_rounding * value) return;
+  const bool ms = var == Var::Milliseconds;
+  d_.error(loc_, "the dwell of " + num_text(ms ? value / 1000 : value) + " s would be written as " + num_text(written) +
+                     (ms ? " ms" : " s") + ": " + (written == 0 ? "no dwell at all" : "rounding changes it by more than " +
+                                                                        num_text(m_.feeds.max_rounding * 100) + "%") +
+                     "; give the dwell's address more decimals (format.P, or the placeholder's width)");
+}
+
 void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, std::string& word) {
   char letter = 0;
   for (size_t i = 0; i < w.size(); ++i) {
@@ -123,6 +136,7 @@ void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, st
                            ":" + std::to_string(p.width) + "}): the control would read another number");
         continue;
       }
+      check_dwell(Var(p.var), x, double(n));
       append_int(n, p.width, word);
       continue;
     }
@@ -134,6 +148,7 @@ void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, st
         d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(x));
         continue;
       }
+      check_dwell(Var(p.var), x, dequantize(q, m_.format(letter)));
       append_quantized(q, m_.format(letter), word);
     } else {
       word += num_text(x);

@@ -84,6 +84,7 @@ class Emitter {
  private:
   void add_word_text(std::string_view w);
   void render_word(const CodeTemplate::Word& w, const TemplateVars& v, std::string& out);
+  void check_dwell(Var var, double value, double written);  // a dwell that rounds to nothing or far off: an error
   void add_quantized(char letter, int64_t q);
 
   const Machine& m_;

@@ -559,3 +559,18 @@ TEST(CommandLine, EveryWarningNameIsDocumented) {
   const std::string doc = read_file(std::string(CLPC_SOURCE_DIR) + "/docs/reliability.md");
   for (const WarningName& w : warning_names()) EXPECT_THAT(doc, HasSubstr("| `" + std::string(w.name) + "` |")) << w.name;
 }
+
+// A dwell keeps its meaning after formatting, as a feed does: with a whole-seconds P, 0.4 s was
+// written P0 and 1.5 s P2, certified (so was a cycle's dwell).
+TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/10,0,5\nFEDRAT/MMPM,250\nGOTO/10,0,-2\n"
+                         "DELAY/0.4\nGOTO/20,0,-2\nDELAY/1.5\nFINI\n";
+  Compiled c = compile_text(cl, machine("my-mill", "[my-mill]\ninherits = \"fanuc-mill\"\n[my-mill.codes]\ndwell = \"G04 P{seconds}\"\n"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:8:1: error: the dwell of 0.4 s would be written as 0 s: no dwell at all"));
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:10:1: error: the dwell of 1.5 s would be written as 2 s: rounding changes it by "
+                                 "more than 5%"));
+  Compiled ok = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(ok.ok) << ok.diags;
+  EXPECT_THAT(ok.output, HasSubstr("G04 P400\n"));
+}
