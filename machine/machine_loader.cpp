@@ -599,6 +599,20 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                                    " while the arcs' centres and directions stay the CL's; a lathe's X is 1 (radius) or "
                                    "2 (diameter), every other axis 1 (a lathe that views its arcs from -Y says "
                                    "lathe.arcs_seen_from)");
+      // Numbers without a point are counted in the control's one least input increment: two
+      // axes written so with other decimals (X in 0.001, Y in 0.0001) put one 10 times off.
+      const AddressFormat& mine = m.formats[size_t(k[0] - 'A')];
+      if (std::string_view("XYZIJKUVW").find(k[0]) != std::string_view::npos && mine.point == AddressFormat::Point::Never)
+        for (char o : std::string_view("XYZIJKUVW")) {
+          const AddressFormat& other = m.formats[size_t(o - 'A')];
+          if (o != k[0] && other.point == AddressFormat::Point::Never && other.decimals != mine.decimals) {
+            c.error(key->source(), s->key_path(k) + ": written without a point in " + std::to_string(mine.decimals) +
+                                       " decimals, while " + o + " is in " + std::to_string(other.decimals) +
+                                       ": a control counts both in its one least input increment, so one would be off "
+                                       "by a power of ten");
+            break;
+          }
+        }
     }
     s->finish();
   }

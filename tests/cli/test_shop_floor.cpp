@@ -574,3 +574,17 @@ TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
   ASSERT_TRUE(ok.ok) << ok.diags;
   EXPECT_THAT(ok.output, HasSubstr("G04 P400\n"));
 }
+
+// Formats a control cannot read as meant, refused at load: a scale on a mill's axis (X
+// stretched or mirrored while I, J, K and the arcs' directions stay: scale = -1 wrote a 90
+// degree G03 cut as 270, certified), and two axes without a point in other decimals (X in
+// 0.001 mm, Y in 0.0001 mm: one 10 times off, certified).
+TEST(ShopFloor, FormatsTheControlWouldReadOtherwiseAreRefusedAtLoad) {
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nX = { scale = -1.0 }\n"),
+              HasSubstr("shop.toml:4:1: error: m.format.X.scale: -1 would stretch or mirror X while the arcs' centres and "
+                        "directions stay the CL's"));
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nX = { point = \"never\" }\nY = { point = \"never\", decimals = 4 }\n"),
+              HasSubstr("shop.toml:5:1: error: m.format.Y: written without a point in 4 decimals, while X is in 3"));
+  EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-lathe\"\n[m.format]\nX = { scale = 2.0 }\n"), "");
+  EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nX = { point = \"never\" }\nY = { point = \"never\" }\n"), "");
+}
