@@ -103,6 +103,10 @@ class Interp {
   }
 
   bool parse(std::string_view l, int line, std::vector<Word>& words) {
+    // A macro variable set by a block of its own (#100=1, an INSERT for a probing macro): it
+    // moves nothing. A word that uses a variable is still no number the reader knows.
+    if (!l.empty() && l.front() == '#' && l.find('=') != std::string_view::npos) [[unlikely]]
+      return true;
     size_t i = 0;
     while (i < l.size()) {
       char c = l[i];
@@ -118,9 +122,6 @@ class Interp {
       }
       if (c == ';') break;  // end of block
       if (c == '%' ) { ++i; continue; }
-      // A macro variable set by a block of its own (#100=1, an INSERT for a probing macro):
-      // it moves nothing. A word that uses a variable is still no number the reader knows.
-      if (c == '#' && words.empty() && l.find('=', i) != std::string_view::npos) return true;
       char letter = char(std::toupper(static_cast<unsigned char>(c)));
       if (letter < 'A' || letter > 'Z') {
         problem(line, std::string("unexpected character '") + c + "'");
@@ -206,8 +207,9 @@ class Interp {
     int g71 = 0;
     int new_offset = 0;
     bool lathe = m_.is_lathe();
+    if (!lathe_alias_.empty()) [[unlikely]]
+      for (double& g : gs) g = lathe_code(g);
     for (double g : gs) {
-      if (!lathe_alias_.empty()) g = lathe_code(g);
       if (is_g(g, 0)) motion_ = Motion::Rapid, motion_word = true;
       else if (is_g(g, 1)) motion_ = Motion::Linear, motion_word = true;
       else if (is_g(g, 2)) motion_ = Motion::Cw, motion_word = true;
@@ -1063,7 +1065,6 @@ class Interp {
   std::vector<Word> words_;  // per block, kept for their capacity
   Words a_;
   std::vector<double> gs_, ms_;
-  std::vector<std::pair<double, double>> lathe_alias_;  // a lathe code -> system A's number for its function
   double radius_tol_;
   Vec3 pos_;
   std::array<double, 3> rotary_{0, 0, 0};
@@ -1086,6 +1087,7 @@ class Interp {
   std::vector<Profile> profiles_;
   StockCycle stock_;
   thread_model::Multi multi_;  // G76's first block
+  std::vector<std::pair<double, double>> lathe_alias_;  // a lathe code -> system A's number for its function
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
   double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;
