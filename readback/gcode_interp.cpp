@@ -172,7 +172,7 @@ class Interp {
       double g = 0;
       const char* end = text.data() + text.size();
       const char* stop = std::find_if(text.data() + 1, end, [](char ch) { return ch == ' ' || ch == '\t'; });
-      if (std::from_chars(text.data() + 1, stop, g).ec != std::errc() || is_g(g, a_number)) continue;
+      if (read_decimal(text.data() + 1, stop, g).ec != std::errc() || is_g(g, a_number)) continue;  // (no double from_chars in the browser build)
       lathe_alias_.push_back({g, a_number});
     }
   }
