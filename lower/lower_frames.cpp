@@ -20,6 +20,15 @@ void Lowerer::lower_matrix_frame(const Record& r, ir::FrameSource) {
   if (!read_frame(r, &d_, f.frame, f.source)) return;
   if (f.source == ir::FrameSource::Msys) {
     if (!msys0_) {
+      // Points before the file's first MSYS: NX writes an MSYS with each operation, so they may
+      // be in the absolute frame (no MCS) or in this one (its MSYS left out). Where the two
+      // differ the part would be cut in the wrong place either way: both were posted alike.
+      if (has_pos_ && !(f.frame.rotation.isIdentity(1e-6) && f.frame.origin.norm() < 1e-4)) {
+        d_.error(r.loc, "the file's first MSYS comes after motion and is not the absolute frame: the points before "
+                        "it may be in the absolute frame or in this one, and the two put the part in different "
+                        "places; give the first operation its MSYS");
+        return;
+      }
       msys0_ = f.frame;
       msys0_loc_ = r.loc;
     } else if (!msys0_turn_said_ && f.frame.rotation.isIdentity(1e-6) && !msys0_->rotation.isIdentity(1e-6)) {

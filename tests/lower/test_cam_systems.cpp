@@ -634,6 +634,25 @@ TEST(CamSystems, ALatheFrameTurnedFromTheFirstIsASetupOfItsOwn) {
   EXPECT_THAT(creo.diags, HasSubstr("part.cls:9:6: error: this frame is turned from the first one"));
 }
 
+// Points before the file's first MSYS are in the absolute frame, or in that MSYS if NX left it
+// out of the first operation: where the MSYS is elsewhere the two put the part in different
+// places. Both operations were cut at the same place, certified.
+TEST(CamSystems, MotionBeforeAFirstMsysElsewhereIsRefused) {
+  const std::string op1 = "UNITS/MM\nTOOL PATH/OP1,TOOL,MILL\nTLDATA/MILL,10,0,75,0,0\nLOAD/TOOL,1\nSPINDL/RPM,3000,CLW\n"
+                          "RAPID\nGOTO/0,0,50,0,0,1\nFEDRAT/MMPM,250\nGOTO/0,0,10\nGOTO/20,0,10\nRAPID\nGOTO/20,0,50\n"
+                          "END-OF-PATH\nTOOL PATH/OP2,TOOL,MILL\n";
+  const std::string op2 = "RAPID\nGOTO/0,0,50,0,0,1\nFEDRAT/MMPM,250\nGOTO/0,0,10\nGOTO/20,0,10\nEND-OF-PATH\n";
+  Compiled shifted = compile_text(op1 + "MSYS/100,0,0,1,0,0,0,1,0\n" + op2, machine("fanuc-mill"));
+  EXPECT_FALSE(shifted.ok);
+  EXPECT_EQ(messages(shifted.diags),
+            "part.cls:15:1: error: the file's first MSYS comes after motion and is not the absolute frame: the points "
+            "before it may be in the absolute frame or in this one, and the two put the part in different places; "
+            "give the first operation its MSYS\n");
+  // The absolute frame itself: both readings agree.
+  Compiled absolute = compile_text(op1 + "MSYS/0,0,0,1,0,0,0,1,0\n" + op2, machine("fanuc-mill"), {.certify = true});
+  EXPECT_TRUE(absolute.ok) << absolute.diags;
+}
+
 // Numbers and words after a code or a tool that clpc does not read are said, never dropped
 // silently: a number after the tool's that could be an offset register (TURRET/5,12) keeps the
 // tool's own offset with a warning; ISO 4343's AUXFUN/n,NEXT is read, AUXFUN/8,2 is warned.
