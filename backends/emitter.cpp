@@ -206,7 +206,7 @@ void Emitter::end(bool tool_change) {
   const SequenceSettings& s = m_.sequence;
   if (forced_n_ >= 0 || (s.enabled && (!s.tool_change_only || tool_change))) {
     std::string n = "N";
-    append_int(forced_n_ >= 0 ? forced_n_ : next_n_, 0, n);
+    append_int(forced_n_ >= 0 ? forced_n_ : next_n_, m_.format('N').digits, n);  // format.N: digits pads
     out_.write(n);
     out_.write(m_.separator.empty() ? std::string_view() : std::string_view(m_.separator));
     if (forced_n_ >= 0) {

@@ -588,6 +588,13 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       const bool length_like = std::string_view("XYZUVWIJKRQF").find(k[0]) != std::string_view::npos ||
                                (k[0] == 'P' && m.is_lathe());
       if (auto f = s->sub(k)) read_format(*f, m.formats[size_t(k[0] - 'A')], length_like);
+      // A block number is a whole number: only its zero-padding (digits) is the user's to choose.
+      if (k[0] == 'N') {
+        const AddressFormat& nf = m.formats[size_t('N' - 'A')];
+        if (nf.decimals != 0 || nf.scale != 1 || nf.plus)
+          c.error(key->source(), s->key_path(k) + ": a block number is a whole number, written as counted "
+                                     "([sequence] start and step): only digits (zero-padding) applies");
+      }
       // A scale on an axis of the arcs' plane stretches or mirrors X while I, J, K and the
       // arcs' directions stay the CL's: scale = -1 on a mill's X wrote a 90 degree G03 that a
       // control cuts as 270 (verify divided by the same scale, and certified it).

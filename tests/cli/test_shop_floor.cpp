@@ -587,4 +587,15 @@ TEST(ShopFloor, FormatsTheControlWouldReadOtherwiseAreRefusedAtLoad) {
               HasSubstr("shop.toml:5:1: error: m.format.Y: written without a point in 4 decimals, while X is in 3"));
   EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-lathe\"\n[m.format]\nX = { scale = 2.0 }\n"), "");
   EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nX = { point = \"never\" }\nY = { point = \"never\" }\n"), "");
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nN = { decimals = 2 }\n"),
+              HasSubstr("shop.toml:4:1: error: m.format.N: a block number is a whole number, written as counted "
+                        "([sequence] start and step): only digits (zero-padding) applies"));
+}
+
+// format.N's digits pads the block numbers (N00010); it was read and then ignored.
+TEST(ShopFloor, BlockNumbersArePaddedToTheirDigits) {
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/100,MMPM\nGOTO/0,0,10\n",
+                            machine("n5", "[n5]\ninherits = \"fanuc-mill\"\n[n5.format]\nN = { digits = 5 }\n"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN00010 G21\nN00020 G00 G17 G40 G49 G80 G90\n"));
 }
