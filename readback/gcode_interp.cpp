@@ -324,7 +324,21 @@ class Interp {
       pending_tool_ = int(std::round(a['T']));
     }
     if (has('S')) (g50 ? max_rpm_ : spindle_) = a['S'];
-    if (has('F')) feed_ = a['F'];
+    if (has('F')) {
+      // Without a point, F counts the increments of the feed's own format (feeds.per_rev, .lead,
+      // .tap ...), not format.F's: a per-rev feed of 4 implied decimals was read 10^4 too fast.
+      const bool thread = motion_ == Motion::Thread || motion_ == Motion::ThreadBox || g76;
+      const AddressFormat& f = thread ? m_.feeds.lead
+                               : !lathe && (cycle_ == 84 || cycle_ == 74) ? m_.feeds.tap
+                               : m_.feed_format(inverse_time_ ? ir::FeedMode::InverseTime
+                                                : per_rev_    ? ir::FeedMode::PerRev
+                                                              : ir::FeedMode::PerMinute);
+      feed_ = a['F'];
+      if (!a.with_point('F')) {
+        feed_ = a.raw['F' - 'A'];
+        if (f.point == AddressFormat::Point::Never && f.decimals > 0) feed_ /= std::pow(10.0, f.decimals);
+      }
+    }
 
     if (g04) {
       // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are

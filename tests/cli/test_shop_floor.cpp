@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "helpers.h"
+#include "thread_cl.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -590,6 +591,26 @@ TEST(ShopFloor, FormatsTheControlWouldReadOtherwiseAreRefusedAtLoad) {
   EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nN = { decimals = 2 }\n"),
               HasSubstr("shop.toml:4:1: error: m.format.N: a block number is a whole number, written as counted "
                         "([sequence] start and step): only digits (zero-padding) applies"));
+}
+
+// Feeds written without a point count the increments of their own format (feeds.per_rev,
+// feeds.lead, feeds.tap), and are read back so: verify read them by format.F and refused every
+// per-revolution block of a correct program (F2032 read as 2032 mm/rev).
+TEST(ShopFloor, FeedsWithoutAPointAreReadInTheirOwnIncrements) {
+  const Machine lathe = machine("lathe4", "[lathe4]\ninherits = \"fanuc-lathe\"\n[lathe4.feeds]\n"
+                                          "per_rev = { decimals = 4, point = \"never\" }\nlead = { decimals = 4, point = \"never\" }\n");
+  Compiled turn = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/30,0,2\nFEDRAT/0.2032,MMPR\n"
+                               "GOTO/30,0,-20\nGOTO/40,0,-20\n", lathe, {.certify = true});
+  ASSERT_TRUE(turn.ok) << turn.diags;
+  EXPECT_THAT(turn.output, HasSubstr(" G01 Z-20. F2032\n"));
+  Compiled thread = compile_text(test::thread_cl({0.3, 0.6, 0.8, 0.92}), lathe, {.certify = true});
+  ASSERT_TRUE(thread.ok) << thread.diags;
+  EXPECT_THAT(thread.output, HasSubstr("F15000"));
+  const Machine mill = machine("tap3", "[tap3]\ninherits = \"fanuc-mill\"\n[tap3.feeds]\ntap = { decimals = 3, point = \"never\" }\n");
+  Compiled tap = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,10,10\n"
+                              "CYCLE/TAP,DEPTH,10,PITCH,1.25,CLEAR,2\nGOTO/20,10,0\nCYCLE/OFF\n", mill, {.certify = true});
+  ASSERT_TRUE(tap.ok) << tap.diags;
+  EXPECT_THAT(tap.output, HasSubstr("F625000"));
 }
 
 // format.N's digits pads the block numbers (N00010); it was read and then ignored.
