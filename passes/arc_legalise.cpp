@@ -3,7 +3,9 @@
 // tolerance; sweeps over the maximum are split; R-format machines never get a full circle;
 // an arc too short to survive rounding (its rounded ends would meet, which a control reads as
 // a full circle) becomes a straight move; an arc over half a turn whose centre, once its ends
-// are rounded, would put the arc off the CL arc by more than the tolerance is split in two.
+// are rounded, would put the arc off the CL arc by more than the tolerance is split in two; an
+// R-format arc whose rounded R and ends put its centre off (near half or a full turn) is split
+// into the fewest equal pieces that are not.
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
 // is arc_legalise_pass() at the end of this file.
@@ -55,6 +57,46 @@ double rounded_centre_deviation(const ir::Arc& a, const Machine& m, double to_ou
   return choose_arc_center(in, m.format(p.cu), m.format(p.cv), m.arcs.center == ArcCenter::Incremental).deviation;
 }
 
+// The same for an R-format arc: the control puts the centre on the chord's bisector at the
+// distance the rounded R gives. Near half a turn that distance is small and each increment of
+// R moves it by R/distance increments (179.5 degrees of R10 came out 0.044 off), and near a
+// full turn the short chord's direction turns with each increment at its ends. Infinite when
+// the rounded R cannot span the rounded chord (a control alarm).
+double r_format_deviation(const ir::Arc& a, const Machine& m, double to_out) {
+  int u = 0, v = 1, n = 2;
+  if (std::abs(a.axis.y()) > 1 - 1e-9) u = 2, v = 0, n = 1;
+  else if (std::abs(a.axis.x()) > 1 - 1e-9) u = 1, v = 2, n = 0;
+  const char letters[] = {'X', 'Y', 'Z'};
+  const ir::Vec3 s = a.start * to_out, e = a.end * to_out, c = a.center * to_out;
+  const bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.dot(ir::Vec3::Unit(n)) > 0);
+  const double su = rounded(s[u], m.format(letters[u])), sv = rounded(s[v], m.format(letters[v]));
+  const double eu = rounded(e[u], m.format(letters[u])), ev = rounded(e[v], m.format(letters[v]));
+  const double r = std::hypot(c[u] - s[u], c[v] - s[v]);
+  const double written_r = rounded(r, m.format('R'));
+  const double du = eu - su, dv = ev - sv, chord = std::hypot(du, dv);
+  if (chord < 1e-12 || written_r < chord / 2) return INFINITY;
+  const double h = std::sqrt(written_r * written_r - chord * chord / 4);
+  const double side = ccw == (a.sweep <= 180) ? 1 : -1;  // the centre left of the chord (CCW, up to half a turn)
+  const double cu = (su + eu) / 2 - side * h * dv / chord, cv = (sv + ev) / 2 + side * h * du / chord;
+  return std::hypot(cu - c[u], cv - c[v]) + std::abs(written_r - r);
+}
+
+// The fewest equal pieces of an R-format arc whose centres the control puts within `tol`.
+int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, double tol) {
+  for (; n < 64; ++n) {
+    double worst = 0;
+    for (int i = 0; i < n && worst <= tol; ++i) {
+      ir::Arc piece = a;
+      piece.start = arcgeo::point_at(a, double(i) / n);
+      piece.end = arcgeo::point_at(a, double(i + 1) / n);
+      piece.sweep = a.sweep / n;
+      worst = std::max(worst, r_format_deviation(piece, m, to_out));
+    }
+    if (worst <= tol) break;
+  }
+  return n;
+}
+
 class ArcLegalise : public Pass {
  public:
   void run(ir::Operation& op, PassContext& ctx) override {
@@ -101,6 +143,7 @@ class ArcLegalise : public Pass {
       if (n <= 1 && !closed && a->sweep > 180 &&
           rounded_centre_deviation(*a, ctx.machine, 1 / to_prog) > s.tolerance)
         n = 2;  // each half's chord is nearly a diameter: its centre is well placed
+      if (r_format && !closed) n = r_format_pieces(*a, std::max(n, 1), ctx.machine, 1 / to_prog, s.tolerance);
       if (n <= 1) return false;
       arcedit::split(*a, n, in.loc, out);
       return true;
@@ -121,7 +164,9 @@ const PassInfo& arc_legalise_pass() {
                     "whose rounded ends would meet (chord under two increments and sweep under 180 degrees: a "
                     "straight move; a circle smaller than one increment: nothing); an arc over 180 degrees whose "
                     "centre, chosen for its rounded ends, would leave its midpoint more than arcs.tolerance off "
-                    "is split in two",
+                    "is split in two; an R-format arc whose centre, found from its rounded ends and R, would be "
+                    "more than arcs.tolerance off (near a half or a full turn) is split into the fewest equal "
+                    "pieces that hold",
       .settings = "arcs.planes, arcs.min_radius, arcs.max_radius, arcs.max_sweep, arcs.center, arcs.tolerance, "
                   "format.X, format.Y, format.Z, format.I, format.J, format.K",
       .needs = ir::ArcsDecided | ir::ArcsOneTurn,

@@ -448,3 +448,24 @@ TEST(ArcLegalise, RFormatOutputSignsTheRadius) {
   EXPECT_NE(c.output.find("G03 X0. Y-10. R-10."), std::string::npos) << c.output;  // 270 degrees
   EXPECT_NE(c.output.find("X10. Y0. R10."), std::string::npos) << c.output;        // 90 degrees
 }
+
+// Near half a turn the centre an R-format control finds for the rounded R lies R/distance
+// increments off for each increment of R (179.5 degrees of R10 was cut 0.044 off and refused
+// by verify, unlocated): such an arc is split into the fewest pieces whose centres hold.
+TEST(ArcLegalise, AnRFormatArcNearHalfATurnIsSplitWhereItsCentreWouldNotHold) {
+  Machine rm = machine("r-mill", "[r-mill]\ninherits = \"fanuc-mill\"\n[r-mill.arcs]\ncenter = \"radius\"\n");
+  const std::string head = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/10,0,0\nINDIRV/0,1,0\nCIRCLE/0,0,0,0,0,1,10\n";
+  Compiled near_half = compile_text(head + "GOTO/-9.9996,0.0873,0\n", rm, {.certify = true});  // 179.5 degrees
+  ASSERT_TRUE(near_half.ok) << near_half.diags;
+  EXPECT_THAT(near_half.output, HasSubstr(" G03 X0.044 Y10. R10.\nN"));
+  EXPECT_THAT(near_half.output, HasSubstr(" X-10. Y0.087 R10.\n"));
+  Compiled near_full = compile_text(head + "GOTO/9.9998,-0.0175,0\n", rm, {.certify = true});  // 359.9 degrees
+  ASSERT_TRUE(near_full.ok) << near_full.diags;
+  size_t pieces = 0;
+  for (size_t at = near_full.output.find(" R10.\n"); at != std::string::npos; at = near_full.output.find(" R10.\n", at + 1))
+    ++pieces;
+  EXPECT_EQ(pieces, 3u) << near_full.output;
+  Compiled quarter = compile_text(head + "GOTO/0,10,0\n", rm, {.certify = true});
+  ASSERT_TRUE(quarter.ok) << quarter.diags;
+  EXPECT_THAT(quarter.output, HasSubstr(" G03 X0. Y10. R10.\n"));
+}
