@@ -979,7 +979,8 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
                           "GOTO/10,10,0\nCYCLE/OFF\n" + tail;
   Compiled s = compile_text(g49, machine("fanuc-mill"));
   ASSERT_TRUE(s.ok) << s.diags;
-  EXPECT_THAT(s.output, HasSubstr("\nG49\nG18\nM01 (G17 NEXT)\nN70 G43 H01 G17 G94 G98 G81 X10. Y10. Z-2. R1. F100.\n"));
+  // (The M01 stops the spindle, as OPSTOP's does: it is started again before the hole.)
+  EXPECT_THAT(s.output, HasSubstr("\nG49\nG18\nM01 (G17 NEXT)\nN70 S1000 M03\nN80 G43 H01 G17 G94 G98 G81 X10. Y10. Z-2. R1. F100.\n"));
   verifies(g49, machine("fanuc-mill"));
   // A lathe's G50 with axis words sets the coordinate system; G50 S alone is the spindle clamp.
   const std::string lathe_head = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/50,0,5\n";
@@ -991,6 +992,13 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   Compiled clamp = compile_text(lathe_head + "INSERT/G50 S2500\n" + lathe_tail, machine("fanuc-lathe"));
   ASSERT_TRUE(clamp.ok) << clamp.diags;
   EXPECT_THAT(clamp.output, HasSubstr("\nG50 S2500\n"));
+  // G96 makes every S after it a surface speed, with no clamp: the face ran at 800 m/min where
+  // the CL said 800 rpm (certified).
+  Compiled css = compile_text(lathe_head + "PREFUN/96\n" + lathe_tail, machine("fanuc-lathe"));
+  EXPECT_FALSE(css.ok);
+  EXPECT_THAT(css.diags, HasSubstr("part.cls:7:1: error: the block 'G96' (INSERT, PREFUN or AUXFUN) turns constant "
+                                   "surface speed on (G96), so every S after it would be read as the other kind of "
+                                   "speed: SPINDL/SMM|SFM (with MAXRPM) or SPINDL/RPM gives it"));
 }
 
 // Cuts with the spindle stopped: an arc said nothing (only straight feeds were warned), and a
@@ -1044,6 +1052,13 @@ TEST(CamSystems, TheSpindleTheControlStopsIsStartedAgainAsTheClLeftIt) {
   ASSERT_TRUE(stop.ok) << stop.diags;
   EXPECT_THAT(stop.output, HasSubstr("N90 M01\nN100 T2 M06 (T2)\n"));
   EXPECT_THAT(stop.diags, HasSubstr("part.cls:11:1: warning: the spindle is started again for T2"));
+  // A stop written raw (AUXFUN/0, INSERT/M01) stops them as STOP does: the next hole was drilled
+  // with the spindle stopped, and without coolant.
+  Compiled raw = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nCOOLNT/ON\nRAPID\nGOTO/20,0,50\n"
+                              "CYCLE/DRILL,DEPTH,10,MMPM,100,CLEAR,2\nGOTO/20,0,0\nAUXFUN/0\nGOTO/40,0,0\nCYCLE/OFF\nFINI\n",
+                              machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(raw.ok) << raw.diags;
+  EXPECT_THAT(raw.output, HasSubstr("\nM0\nN100 S1000 M03\nN110 M08\nN120 G98 G81 X40."));
   // SPINDL/OFF before the change: nothing to start again.
   Compiled off = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/20,0,5\nSPINDL/OFF\nLOADTL/2\n"
                               "RAPID\nGOTO/30,0,5\nFINI\n",
