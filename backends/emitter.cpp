@@ -96,6 +96,11 @@ void Emitter::forget_all() {
   for (bool& k : known_) k = false;
 }
 
+void Emitter::forget_all_but(std::string_view letters) {
+  for (size_t i = 0; i < 26; ++i)
+    if (letters.find(char('A' + i)) == std::string_view::npos) known_[i] = false;
+}
+
 // A dwell keeps its meaning after formatting, as a feed does (feeds.max_rounding): 0.4 s written
 // P0 with a whole-seconds P, or 1.5 s as P2, was certified (verify reads the block's dwell as
 // written and has no CL time to hold it to).

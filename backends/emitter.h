@@ -70,6 +70,7 @@ class Emitter {
   bool modal_word(char letter, const Rounded& r);  // e.g. after a move the emitter did not write
   void forget(char letter) { known_[size_t(letter - 'A')] = false; }
   void forget_all();
+  void forget_all_but(std::string_view letters);  // the letters named stay known
   void forget_linear();  // X Y Z U V W: after something moved or reframed them
   // Rounds as the control would: the value it will take for `value` at this address.
   double as_written(char letter, double value) const;

@@ -290,7 +290,12 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
               need_length_offset_ = true;
           }
           motion_ = Motion::None;
-          e_.forget_all();
+          // The rotaries stay where they were unless the block names them: restating them
+          // unclamped the rotary brakes in the middle of a cut (Haas: M11 M13, then the feed).
+          std::string rotaries_kept;
+          for (const RotaryAxis& r : m_.kinematics.rotaries)
+            if (code_numbers(text, r.name[0]).empty()) rotaries_kept += r.name[0];
+          e_.forget_all_but(rotaries_kept);
           feed_written_ = false;
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
           e_.comment("CL: " + std::string(op.str(x.text)));
@@ -750,6 +755,15 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
       return "calls or returns from a subprogram (M" + std::to_string(n) + "): in a main program M99 starts it again "
              "from the top, endlessly; the post writes no subprograms";
     if (n == 6) return "changes the tool (M06): LOADTL gives it";
+    // The post clamps the rotaries after each positioning and unclamps them before the next:
+    // one clamped behind its back is turned against its brake.
+    for (const RotaryAxis& r : m_.kinematics.rotaries)
+      for (const std::string* brake : {&r.clamp, &r.unclamp})
+        for (double b : code_numbers(*brake, 'M'))
+          if (std::lround(b) == n)
+            return "clamps or unclamps the rotary axis " + r.name + " (M" + std::to_string(n) +
+                   "), which the post does around each rotary move: the next would turn it against its brake, "
+                   "or cut with it free";
     if (n == 3 || n == 4 || n == 5 || n == 19)
       return "turns, stops or orients the spindle (M" + std::to_string(n) + ") where the post's spindle state does not "
              "follow: SPINDL gives it";

@@ -992,6 +992,18 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   Compiled clamp = compile_text(lathe_head + "INSERT/G50 S2500\n" + lathe_tail, machine("fanuc-lathe"));
   ASSERT_TRUE(clamp.ok) << clamp.diags;
   EXPECT_THAT(clamp.output, HasSubstr("\nG50 S2500\n"));
+  // On a five-axis machine the rotaries stay where they were: written again after the block they
+  // were unclamped (M11 M13) in the middle of the cut. The post's own brake codes are refused.
+  const std::string haas = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,10,5\nFEDRAT/MMPM,200\n"
+                           "GOTO/10,10,-2\nGOTO/60,10,-2\n";
+  Compiled brake = compile_text(haas + "AUXFUN/50\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(brake.ok) << brake.diags;
+  EXPECT_THAT(brake.output, HasSubstr("\nM50\nN60 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
+  Compiled clamp_raw = compile_text(haas + "INSERT/M10\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
+  EXPECT_FALSE(clamp_raw.ok);
+  EXPECT_THAT(clamp_raw.diags, HasSubstr("part.cls:9:1: error: the block 'M10' (INSERT, PREFUN or AUXFUN) clamps or "
+                                         "unclamps the rotary axis B (M10), which the post does around each rotary "
+                                         "move: the next would turn it against its brake, or cut with it free"));
   // G96 makes every S after it a surface speed, with no clamp: the face ran at 800 m/min where
   // the CL said 800 rpm (certified).
   Compiled css = compile_text(lathe_head + "PREFUN/96\n" + lathe_tail, machine("fanuc-lathe"));
