@@ -69,7 +69,11 @@ void ProgramWriter::end() {
   comp_pending_set_ = false;
   write_smoothing(false);
   // The finish sequence, less a spindle or coolant stop the program has already made; the
-  // park blocks before its last block (the program end, M30).
+  // park blocks before its last block (the program end, M30). A coolant with its own off code
+  // is stopped by it first (the finish's M09 may leave it on).
+  if ((coolant_ == ir::CoolantKind::Thru && !m_.codes.coolant_thru_off.empty()) ||
+      (coolant_ == ir::CoolantKind::Air && !m_.codes.coolant_air_off.empty()))
+    write_coolant(ir::Coolant{ir::CoolantKind::Off}, {});
   for (size_t i = 0; i < m_.finish.size(); ++i) {
     const CodeTemplate& t = m_.finish[i];
     if (m_.park && i + 1 == m_.finish.size()) blocks(m_.park_blocks, {});
@@ -647,6 +651,24 @@ bool ProgramWriter::write_tap_feed(double value, double pitch, double rpm, doubl
 
 void ProgramWriter::write_coolant(const ir::Coolant& c, SourceLoc loc) {
   const Codes& k = m_.codes;
+  // One coolant replaces another: the one on is stopped first (COOLNT/AIR after FLOOD blew air
+  // into the flood). Through-spindle coolant and air with their own off code (Haas M89, M84)
+  // are stopped by it, before another coolant or none: coolant_off alone may leave them on.
+  const CodeTemplate* own_off = coolant_ == ir::CoolantKind::Thru ? &k.coolant_thru_off
+                                : coolant_ == ir::CoolantKind::Air ? &k.coolant_air_off
+                                                                   : nullptr;
+  auto flood = [](ir::CoolantKind x) { return x == ir::CoolantKind::On ? ir::CoolantKind::Flood : x; };
+  const bool changes = flood(c.kind) != flood(coolant_);
+  const bool replaced = coolant_ != ir::CoolantKind::Off && c.kind != ir::CoolantKind::Off && changes;
+  if (own_off && own_off->empty()) own_off = nullptr;
+  if (replaced && !own_off && !k.coolant_off.empty()) own_off = &k.coolant_off;
+  if (own_off && changes) {
+    e_.begin(loc);
+    e_.code(*own_off);
+    e_.end();
+    coolant_ = ir::CoolantKind::Off;
+    if (c.kind == ir::CoolantKind::Off) return;
+  }
   const CodeTemplate* t = nullptr;
   switch (c.kind) {
     case ir::CoolantKind::Off: t = &k.coolant_off; break;

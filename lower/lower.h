@@ -179,6 +179,7 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
   std::optional<ir::Spindle> last_spindle_;
+  std::optional<ir::CoolantKind> last_coolant_;  // the last kind a COOLNT named (a bare ON resumes it)
   std::optional<SourceLoc> comp_on_at_;  // the CUTCOM/LEFT|RIGHT in force (none after CUTCOM/OFF)
   std::optional<ir::CutterComp> last_comp_;  // the last CUTCOM/LEFT|RIGHT, which CUTCOM/ON resumes
   bool inverse_time_ = false;  // the feed in force is inverse time (FEDRAT/INVERS)

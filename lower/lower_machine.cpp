@@ -355,7 +355,10 @@ void Lowerer::lower_coolant(const Record& r) {
   }
   for (const Param* p : ignored)
     d_.warning(p->loc, "COOLNT: '" + std::string(p->text) + "' is not read", "ignored-word");
-  c.kind = off ? ir::CoolantKind::Off : kind ? *kind : ir::CoolantKind::On;
+  // A bare ON turns on the coolant last chosen, as SPINDL/ON and CUTCOM/ON resume theirs: after
+  // COOLNT/THRU, OFF, ON the cut went on with flood.
+  if (kind && !off) last_coolant_ = *kind;
+  c.kind = off ? ir::CoolantKind::Off : kind ? *kind : last_coolant_.value_or(ir::CoolantKind::On);
   ensure_operation(r.loc);
   push(r.loc, c);
 }

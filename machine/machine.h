@@ -158,6 +158,7 @@ struct Codes {
   CodeTemplate spindle_cw, spindle_ccw, spindle_off;
   CodeTemplate spindle_rpm_mode, spindle_css_mode, spindle_clamp;
   CodeTemplate coolant_flood, coolant_mist, coolant_thru, coolant_air, coolant_tap, coolant_off;
+  CodeTemplate coolant_thru_off, coolant_air_off;  // where coolant_off does not stop them (Haas M89, M84)
   CodeTemplate dwell;
   CodeTemplate optional_stop, stop;
   CodeTemplate comp_left, comp_right, comp_off;

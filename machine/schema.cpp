@@ -321,6 +321,7 @@ std::vector<KeySpec> build() {
       {"coolant_flood", &Codes::coolant_flood, none}, {"coolant_mist", &Codes::coolant_mist, none},
       {"coolant_thru", &Codes::coolant_thru, none}, {"coolant_air", &Codes::coolant_air, none},
       {"coolant_tap", &Codes::coolant_tap, none}, {"coolant_off", &Codes::coolant_off, none},
+      {"coolant_thru_off", &Codes::coolant_thru_off, none}, {"coolant_air_off", &Codes::coolant_air_off, none},
       {"dwell", &Codes::dwell, bit(Var::Seconds) | bit(Var::Milliseconds)},
       {"optional_stop", &Codes::optional_stop, none}, {"stop", &Codes::stop, none},
       {"comp_left", &Codes::comp_left, bit(Var::Register) | bit(Var::Tip)},

@@ -1080,6 +1080,21 @@ TEST(CamSystems, TheSpindleTheControlStopsIsStartedAgainAsTheClLeftIt) {
   EXPECT_THAT(off.diags, Not(HasSubstr("spindle-restart")));
 }
 
+// Through-spindle coolant and air with their own off codes (the UMC-750's M89 and M84) are
+// stopped by them: the M09 written for COOLNT/OFF, another coolant, or the finish left the
+// through-spindle coolant running.
+TEST(CamSystems, ACoolantWithItsOwnOffCodeIsStoppedByIt) {
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nCOOLNT/THRU\nRAPID\nGOTO/10,10,5\n"
+                            "FEDRAT/MMPM,200\nGOTO/10,10,-2\nCOOLNT/OFF\nGOTO/60,10,-2\nCOOLNT/ON\nGOTO/60,40,-2\n"
+                            "COOLNT/AIR\nGOTO/10,40,-2\nCOOLNT/FLOOD\nGOTO/10,10,-2\nCOOLNT/AIR\nRAPID\nGOTO/10,10,50\nFINI\n",
+                            machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  std::string codes;
+  for (size_t at = c.output.find(" M"); at != std::string::npos; at = c.output.find(" M", at + 1))
+    if (c.output.compare(at, 3, " M8") == 0 || c.output.compare(at, 3, " M0") == 0) codes += c.output.substr(at + 1, 3) + " ";
+  EXPECT_EQ(codes, "M06 M03 M88 M89 M88 M89 M83 M84 M08 M09 M83 M84 M05 ");
+}
+
 // A feed above the machine's max_feed was written as max_feed without a word.
 TEST(CamSystems, AFeedAboveTheMachinesLimitIsClampedWithAWarning) {
   Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,99999\nGOTO/0,0,-1\n"

@@ -270,6 +270,13 @@ TEST(Lower, CoolantCutcomDelayStops) {
                           "stop"));
 }
 
+// A bare ON turns on the coolant last chosen (as SPINDL/ON and CUTCOM/ON resume theirs): after
+// THRU, OFF, ON the cut went on with flood.
+TEST(Lower, ABareCoolantOnResumesTheLastKind) {
+  EXPECT_THAT(instrs("COOLNT/THRU\nCOOLNT/OFF\nCOOLNT/ON\nCOOLNT/MIST,ON\nCOOLNT/ON\n"),
+              ElementsAre("coolant thru", "coolant off", "coolant thru", "coolant mist", "coolant mist"));
+}
+
 TEST(Lower, TextRecords) {
   EXPECT_THAT(instrs("PARTNO BRACKET\nPPRINT hello world\nINSERT/M100\nAUXFUN/8\nREMARK nothing\n"),
               ElementsAre("comment \"hello world\"", "insert \"M100\"", "insert \"M8\""));
