@@ -84,6 +84,17 @@ void Lowerer::record(const Record& r) {
     return;
   }
 
+  // A record of no motion with nothing after its slash says nothing: said, never a stop.
+  // (COOLNT/, INSERT/, PPRINT/ were read past while FEDRAT/ stopped the post.)
+  if (r.params.empty() && r.head.empty()) {
+    switch (r.id) {
+      case MajorId::Fedrat: case MajorId::Spindl: case MajorId::Delay: case MajorId::Auxfun: case MajorId::Prefun:
+      case MajorId::Tldata: case MajorId::Cutter: case MajorId::Units:
+        d_.warning(r.loc, upper(r.major) + " with nothing after it says nothing; ignored", "empty-record");
+        return;
+      default: break;
+    }
+  }
   switch (r.id) {
     case MajorId::Goto: lower_goto(r); return;
     case MajorId::From: lower_from(r); return;

@@ -32,6 +32,7 @@ const std::vector<WarningName>& warning_names() {
       {"approach", "a tool's first move a cut, with no FROM or rapid to say where it starts"},
       {"arc-geometry", "an arc whose neighbouring moves say it turns the other way than the CL says"},
       {"coolant", "a COOLNT record that says nothing, or a coolant the machine has no code for"},
+      {"empty-record", "a FEDRAT, SPINDL, DELAY, AUXFUN, PREFUN, TLDATA, CUTTER or UNITS with nothing after it"},
       {"cycle", "a CYCLE record's degenerate but real cases: no holes, zero depth, no clearance, no CYCLE/OFF"},
       {"data-comment", "a Creo $$-> data comment that cannot be read"},
       {"feed-unit", "a FEDRAT without a unit word after one per revolution (kept) or in inverse time (per minute)"},

@@ -1095,6 +1095,25 @@ TEST(CamSystems, ACoolantWithItsOwnOffCodeIsStoppedByIt) {
   EXPECT_EQ(codes, "M06 M03 M88 M89 M88 M89 M83 M84 M08 M09 M83 M84 M05 ");
 }
 
+// A record of no motion with nothing after its slash says nothing: FEDRAT/ stopped the post where
+// COOLNT/ and PPRINT/ were read past. It is ignored with a warning; the program is the same.
+TEST(CamSystems, RecordsWithNothingAfterTheSlashAreIgnoredWithAWarning) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,10,5\nFEDRAT/MMPM,200\nGOTO/10,10,-2\n";
+  const std::string tail = "GOTO/60,10,-2\nFINI\n";
+  const Compiled plain = compile_text(head + tail, machine("fanuc-mill"));
+  ASSERT_TRUE(plain.ok) << plain.diags;
+  for (const char* record : {"FEDRAT", "SPINDL", "DELAY", "AUXFUN", "PREFUN", "TLDATA", "CUTTER", "UNITS"}) {
+    Compiled c = compile_text(head + record + "/\n" + tail, machine("fanuc-mill"), {.certify = true});
+    ASSERT_TRUE(c.ok) << record << c.diags;
+    EXPECT_EQ(messages(c.diags), std::string("part.cls:8:1: warning: ") + record +
+                                     " with nothing after it says nothing; ignored [-Wempty-record]\n");
+    EXPECT_EQ(c.output, plain.output) << record;
+  }
+  // A record that moves or chooses the tool still needs its words.
+  Compiled tool = compile_text(head + "LOADTL/\n" + tail, machine("fanuc-mill"));
+  EXPECT_FALSE(tool.ok);
+}
+
 // A feed above the machine's max_feed was written as max_feed without a word.
 TEST(CamSystems, AFeedAboveTheMachinesLimitIsClampedWithAWarning) {
   Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,99999\nGOTO/0,0,-1\n"
