@@ -76,6 +76,7 @@ class Comparison : public ProgramSink {
   const TipSegment* peek(size_t i);
 
   void consume(size_t n);
+  void spindle_ok(const TipSegment& s);
 
   // A CL point within the tolerance of where the tool is already needs no block of its own
   // (a move shorter than the output resolution is rightly dropped).
@@ -361,6 +362,8 @@ class Comparison : public ProgramSink {
   kin::RotaryIndexing indexing_;
   ir::Feed cl_feed_;          // the CL's feed in force
   SourceLoc cl_feed_loc_;
+  bool cl_spindle_ = false;   // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
+  bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();

@@ -295,7 +295,9 @@ class Interp {
     for (double mc : ms) {
       int code = int(std::round(mc));
       switch (code) {
-        case 0: case 1: res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
+        // M00 stops the spindle and the coolant; M01 too with the operator's switch on, which is
+        // how it is read: a cut after it with no M03 would be made with the spindle stopped.
+        case 0: case 1: spindle_on_ = false; res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
         case 2: case 30: res_.ended = true; break;
         case 3: case 4: spindle_on_ = true; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
         case 5: spindle_on_ = false; res_.events.push_back({Event::Kind::Spindle, line, 0}); break;
@@ -1057,6 +1059,7 @@ class Interp {
   // the speed at the segment's middle diameter, within the G50 clamp.
   void spindle_info(Segment& s) const {
     s.per_rev = per_rev_;
+    s.spindle = spindle_on_;
     s.rpm = spindle_on_ ? spindle_ : 0;
     if (css_ && spindle_on_) {
       double r = std::abs((s.start.x() + s.end.x()) / 2);

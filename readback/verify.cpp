@@ -55,6 +55,8 @@ void Comparison::operation(const ir::Operation& op) {
             tool_reported_ = false;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
+          } else if constexpr (std::is_same_v<T, ir::Spindle>) {
+            cl_spindle_ = x.dir != ir::SpindleDir::Off;
           } else if constexpr (std::is_same_v<T, ir::Move>) {
             Vec3 p = model(x.point), a = model_dir(x.axis);
             if (x.kind == ir::MoveKind::From) {
@@ -138,12 +140,28 @@ const TipSegment* Comparison::peek(size_t i) {
 void Comparison::consume(size_t n) {
   for (size_t i = 0; i < n && !win_.empty(); ++i) {
     check_limits(win_.front());
+    spindle_ok(win_.front());
     if (finite(win_.front().end)) {
       at_ = win_.front().end;
       have_at_ = true;
     }
     win_.pop_front();
   }
+}
+
+// A cut made with the spindle stopped where the CL has it turning (after SPINDL, before
+// SPINDL/OFF): the tool is fed into the part without turning. Said once until it turns again.
+void Comparison::spindle_ok(const TipSegment& s) {
+  const bool cut = s.raw.kind != gcode::Segment::Kind::Rapid && finite(s.start) && (s.end - s.start).norm() > tol_;
+  if (!cut || !cl_spindle_ || s.raw.spindle) {
+    if (s.raw.spindle) spindle_said_ = false;
+    return;
+  }
+  if (spindle_said_) return;
+  spindle_said_ = true;
+  fail(loc_, s.raw.line, "the program cuts here with the spindle stopped (no M03/M04 since an M05, M00, M01 or tool "
+                         "change), where the CL has it turning",
+       0);
 }
 
 bool Comparison::already_there(const Vec3& p) {

@@ -153,6 +153,18 @@ TEST_F(VerifyPlate, RapidThroughACutFails) {
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:15:1: error: this CL feed move is made at rapid traverse (G00)"));
 }
 
+// A cut with the spindle stopped where the CL has it turning: an M00 (or M01, M05) with no M03
+// after it. A raw AUXFUN/0 left the next hole drilled with the spindle stopped, certified.
+TEST_F(VerifyPlate, ACutWithTheSpindleStoppedFails) {
+  Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", "M00\nN100 Y20.\n"));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:12:1: error: the program cuts here with the spindle stopped (no "
+                                              "M03/M04 since an M05, M00, M01 or tool change), where the CL has it "
+                                              "turning [G-code line 17]"));
+  Checked restarted = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", "M00\nS3000 M03\nN100 Y20.\n"));
+  EXPECT_TRUE(restarted.report.ok) << restarted.diags;
+}
+
 // A canned cycle's return up the tool axis may make the CL's feed up from the last hole; its
 // other rapids may not: here a cycle with no depth (Z = R) makes the CL's fed move across to
 // X20 with its positioning rapid. It passed before.
