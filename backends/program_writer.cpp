@@ -294,11 +294,18 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
               need_length_offset_ = true;
           }
           motion_ = Motion::None;
-          // The rotaries stay where they were unless the block names them: restating them
+          // The rotaries stay where they were where the block can move no axis: restating them
           // unclamped the rotary brakes in the middle of a cut (Haas: M11 M13, then the feed).
+          // Any axis word (B-10., B#101), a return to a reference point (G27-G30: Haas's bare
+          // G28 homes every axis), a move in machine coordinates (G53) or a macro call (G65,
+          // G66) may have moved them: then they are written again.
+          bool moves_axes = !axis_words(text).empty();
+          for (double g : code_numbers(text, 'G'))
+            moves_axes |= (g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 ||
+                          std::abs(g - 66) < 1e-6 || std::abs(g - 66.1) < 1e-6;
           std::string rotaries_kept;
-          for (const RotaryAxis& r : m_.kinematics.rotaries)
-            if (code_numbers(text, r.name[0]).empty()) rotaries_kept += r.name[0];
+          if (!moves_axes)
+            for (const RotaryAxis& r : m_.kinematics.rotaries) rotaries_kept += r.name[0];
           e_.forget_all_but(rotaries_kept);
           feed_written_ = false;
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
