@@ -4,7 +4,7 @@
 // an arc too short to survive rounding (its rounded ends would meet, which a control reads as
 // a full circle) becomes a straight move; an arc over half a turn whose centre, once its ends
 // are rounded, would put the arc off the CL arc by more than the tolerance is split in two; an
-// R-format arc whose rounded R and ends put its centre off (near half or a full turn) is split
+// R-format arc whose rounded R and ends put its path off (near half or a full turn) is split
 // into the fewest equal pieces that are not.
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and provides)
@@ -57,42 +57,58 @@ double rounded_centre_deviation(const ir::Arc& a, const Machine& m, double to_ou
   return choose_arc_center(in, m.format(p.cu), m.format(p.cv), m.arcs.center == ArcCenter::Incremental).deviation;
 }
 
-// The same for an R-format arc: the control puts the centre on the chord's bisector at the
-// distance the rounded R gives. Near half a turn that distance is small and each increment of
-// R moves it by R/distance increments (179.5 degrees of R10 came out 0.044 off), and near a
-// full turn the short chord's direction turns with each increment at its ends. Infinite when
-// the rounded R cannot span the rounded chord (a control alarm).
+// The same for an R-format arc: how far the CL arc lies from the circle the control cuts. The
+// backend writes R from the rounded start to the centre it chooses (choose_arc_center), rounded
+// to format.R; the control puts the centre on the bisector of the rounded chord at the distance
+// that R gives. Near half a turn that distance is small and each increment of R moves it by
+// R/distance increments (179.5 degrees of R10 came out 0.044 off); near a full turn the short
+// chord turns with its rounded ends. Measured on the path (at a quarter, half and three
+// quarters), not at the centre: on a short arc the centre moves far and the path hardly at all.
+// Infinite when the written R cannot span the rounded chord (a control alarm).
 double r_format_deviation(const ir::Arc& a, const Machine& m, double to_out) {
   int u = 0, v = 1, n = 2;
-  if (std::abs(a.axis.y()) > 1 - 1e-9) u = 2, v = 0, n = 1;
-  else if (std::abs(a.axis.x()) > 1 - 1e-9) u = 1, v = 2, n = 0;
+  char cu_letter = 'I', cv_letter = 'J';
+  if (std::abs(a.axis.y()) > 1 - 1e-9) u = 2, v = 0, n = 1, cu_letter = 'K', cv_letter = 'I';
+  else if (std::abs(a.axis.x()) > 1 - 1e-9) u = 1, v = 2, n = 0, cu_letter = 'J', cv_letter = 'K';
   const char letters[] = {'X', 'Y', 'Z'};
   const ir::Vec3 s = a.start * to_out, e = a.end * to_out, c = a.center * to_out;
+  const ir::Vec3 mid = arcgeo::point_at(a, 0.5) * to_out;
   const bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.dot(ir::Vec3::Unit(n)) > 0);
   const double su = rounded(s[u], m.format(letters[u])), sv = rounded(s[v], m.format(letters[v]));
   const double eu = rounded(e[u], m.format(letters[u])), ev = rounded(e[v], m.format(letters[v]));
-  const double r = std::hypot(c[u] - s[u], c[v] - s[v]);
-  const double written_r = rounded(r, m.format('R'));
+  const ArcCenterInput in{su, sv, eu, ev, c[u], c[v], mid[u], mid[v], ccw, false};
+  const ArcCenterChoice chosen = choose_arc_center(in, m.format(cu_letter), m.format(cv_letter), false);
+  const double written_r = rounded(std::hypot(chosen.cu - su, chosen.cv - sv), m.format('R'));
   const double du = eu - su, dv = ev - sv, chord = std::hypot(du, dv);
   if (chord < 1e-12 || written_r < chord / 2) return INFINITY;
   const double h = std::sqrt(written_r * written_r - chord * chord / 4);
   const double side = ccw == (a.sweep <= 180) ? 1 : -1;  // the centre left of the chord (CCW, up to half a turn)
-  const double cu = (su + eu) / 2 - side * h * dv / chord, cv = (sv + ev) / 2 + side * h * du / chord;
-  return std::hypot(cu - c[u], cv - c[v]) + std::abs(written_r - r);
+  const double ccu = (su + eu) / 2 - side * h * dv / chord, ccv = (sv + ev) / 2 + side * h * du / chord;
+  double worst = 0;
+  for (double t : {0.25, 0.5, 0.75}) {
+    const ir::Vec3 q = arcgeo::point_at(a, t) * to_out;
+    worst = std::max(worst, std::abs(std::hypot(q[u] - ccu, q[v] - ccv) - written_r));
+  }
+  return worst;
 }
 
-// The fewest equal pieces of an R-format arc whose centres the control puts within `tol`.
-int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, double tol) {
-  for (; n < 64; ++n) {
+// The fewest equal pieces (from `n`) of an R-format arc whose paths the control keeps within
+// `tol`, none with a chord under ten output increments; `n` itself where none does (verify then
+// judges the arc as written).
+int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, double tol, double increment) {
+  const double r = arcgeo::radial(a, a.start).norm() * to_out;
+  for (int k = n; k < 64; ++k) {
+    const double piece_chord = 2 * r * std::sin(std::min(a.sweep / k, 180.0) * 3.14159265358979323846 / 360);
+    if (k > n && piece_chord < 10 * increment) break;
     double worst = 0;
-    for (int i = 0; i < n && worst <= tol; ++i) {
+    for (int i = 0; i < k && worst <= tol; ++i) {
       ir::Arc piece = a;
-      piece.start = arcgeo::point_at(a, double(i) / n);
-      piece.end = arcgeo::point_at(a, double(i + 1) / n);
-      piece.sweep = a.sweep / n;
+      piece.start = arcgeo::point_at(a, double(i) / k);
+      piece.end = arcgeo::point_at(a, double(i + 1) / k);
+      piece.sweep = a.sweep / k;
       worst = std::max(worst, r_format_deviation(piece, m, to_out));
     }
-    if (worst <= tol) break;
+    if (worst <= tol) return k;
   }
   return n;
 }
@@ -143,7 +159,7 @@ class ArcLegalise : public Pass {
       if (n <= 1 && !closed && a->sweep > 180 &&
           rounded_centre_deviation(*a, ctx.machine, 1 / to_prog) > s.tolerance)
         n = 2;  // each half's chord is nearly a diameter: its centre is well placed
-      if (r_format && !closed) n = r_format_pieces(*a, std::max(n, 1), ctx.machine, 1 / to_prog, s.tolerance);
+      if (r_format) n = r_format_pieces(*a, std::max(n, closed ? 2 : 1), ctx.machine, 1 / to_prog, s.tolerance, res / to_prog);
       if (n <= 1) return false;
       arcedit::split(*a, n, in.loc, out);
       return true;
@@ -164,9 +180,10 @@ const PassInfo& arc_legalise_pass() {
                     "whose rounded ends would meet (chord under two increments and sweep under 180 degrees: a "
                     "straight move; a circle smaller than one increment: nothing); an arc over 180 degrees whose "
                     "centre, chosen for its rounded ends, would leave its midpoint more than arcs.tolerance off "
-                    "is split in two; an R-format arc whose centre, found from its rounded ends and R, would be "
-                    "more than arcs.tolerance off (near a half or a full turn) is split into the fewest equal "
-                    "pieces that hold",
+                    "is split in two; an R-format arc or circle whose path, with the centre the control finds "
+                    "from its rounded ends and written R, would be more than arcs.tolerance off (near a half or "
+                    "a full turn) is split into the fewest equal pieces that hold, none under ten increments of "
+                    "chord (else left whole for verify to judge)",
       .settings = "arcs.planes, arcs.min_radius, arcs.max_radius, arcs.max_sweep, arcs.center, arcs.tolerance, "
                   "format.X, format.Y, format.Z, format.I, format.J, format.K",
       .needs = ir::ArcsDecided | ir::ArcsOneTurn,

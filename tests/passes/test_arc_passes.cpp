@@ -468,4 +468,15 @@ TEST(ArcLegalise, AnRFormatArcNearHalfATurnIsSplitWhereItsCentreWouldNotHold) {
   Compiled quarter = compile_text(head + "GOTO/0,10,0\n", rm, {.certify = true});
   ASSERT_TRUE(quarter.ok) << quarter.diags;
   EXPECT_THAT(quarter.output, HasSubstr(" G03 X0. Y10. R10.\n"));
+  // Held on the path, not at the centre: a short arc's centre moves far with its rounded ends
+  // while its path hardly moves (a first version split 0.5 degrees of R5 into pieces under an
+  // increment, refused, and 3 degrees of R10 into 64 blocks).
+  Compiled short_arc = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/5,0,0\nINDIRV/0,1,0\n"
+                                    "CIRCLE/0,0,0,0,0,1,5\nGOTO/4.999810,0.043633,0\n", rm, {.certify = true});
+  ASSERT_TRUE(short_arc.ok) << short_arc.diags;
+  EXPECT_THAT(short_arc.output, HasSubstr(" G03 Y0.044 R5.\nN70 M05\n"));
+  // A full circle off the grid: its halves' centres did not hold (0.1 mm off, refused).
+  Compiled circle = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/10.0007,0.0003,0\nINDIRV/0,1,0\n"
+                                 "CIRCLE/0.0003,0.0003,0,0,0,1,10.0004\nGOTO/10.0007,0.0003,0\n", rm, {.certify = true});
+  EXPECT_TRUE(circle.ok) << circle.diags;
 }
