@@ -160,7 +160,11 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             cut_since_stop_ = true;
           }
         } else if constexpr (std::is_same_v<T, ir::Coolant>) {
-          coolant_restore_ = false;  // the CL says what it wants
+          // The CL says what it wants. A stop may have left the coolant on (an M01 with the
+          // operator's switch off): the next one is written as from the one the CL left on, so
+          // through-spindle coolant gets its own off code (M89) before flood, not nothing.
+          if (coolant_restore_ && coolant_ == ir::CoolantKind::Off) coolant_ = coolant_after_;
+          coolant_restore_ = false;
         } else if constexpr (std::is_same_v<T, ir::Spindle>) {
           spindle_restore_ = false;  // the CL says what it wants
           if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();

@@ -545,6 +545,9 @@ ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
   if (const auto* tc = std::get_if<ir::ToolChange>(&op)) {
     cut_since_tool_change_ = false;
     same_tool_again_ = tc->tool == last_tool_loaded_;  // NX loads the tool at every operation
+    // Through-spindle coolant is the tool's (its coolant holes): another tool's bare COOLNT/ON
+    // is the default coolant, not the last one's THRU.
+    if (!same_tool_again_) last_coolant_.reset();
     last_tool_loaded_ = tc->tool;
     if (pending_arc_) [[unlikely]] {
       // A tool change between a CIRCLE and the GOTO that ends it: the arc would start where

@@ -1100,6 +1100,13 @@ TEST(CamSystems, ACoolantWithItsOwnOffCodeIsStoppedByIt) {
   for (size_t at = c.output.find(" M"); at != std::string::npos; at = c.output.find(" M", at + 1))
     if (c.output.compare(at, 3, " M8") == 0 || c.output.compare(at, 3, " M0") == 0) codes += c.output.substr(at + 1, 3) + " ";
   EXPECT_EQ(codes, "M06 M03 M88 M89 M88 M89 M83 M84 M08 M09 M83 M84 M05 ");
+  // After an M01 (the operator's switch may be off, and the coolant still on) the next coolant
+  // is written as from the one the CL left on: M89 before flood, not nothing.
+  Compiled stop = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nCOOLNT/THRU\nRAPID\nGOTO/10,10,5\n"
+                               "FEDRAT/MMPM,200\nGOTO/10,10,-2\nOPSTOP\nCOOLNT/FLOOD\nGOTO/60,10,-2\nFINI\n",
+                               machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(stop.ok) << stop.diags;
+  EXPECT_THAT(stop.output, HasSubstr("\nN60 M01\nN65 M89\nN70 M08\n"));
 }
 
 // A record of no motion with nothing after its slash says nothing: FEDRAT/ stopped the post where

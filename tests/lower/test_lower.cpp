@@ -275,6 +275,10 @@ TEST(Lower, CoolantCutcomDelayStops) {
 TEST(Lower, ABareCoolantOnResumesTheLastKind) {
   EXPECT_THAT(instrs("COOLNT/THRU\nCOOLNT/OFF\nCOOLNT/ON\nCOOLNT/MIST,ON\nCOOLNT/ON\n"),
               ElementsAre("coolant thru", "coolant off", "coolant thru", "coolant mist", "coolant mist"));
+  // Another tool's bare ON is the default coolant: through-spindle coolant is the tool's.
+  EXPECT_THAT(instrs("LOADTL/1\nCOOLNT/THRU\nCOOLNT/OFF\nLOADTL/1\nCOOLNT/ON\nLOADTL/2\nCOOLNT/ON\n"),
+              ElementsAre("tool-change T1", "coolant thru", "coolant off", "tool-change T1", "coolant thru",
+                          "tool-change T2", "coolant on"));
 }
 
 TEST(Lower, TextRecords) {
