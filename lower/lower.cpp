@@ -281,6 +281,15 @@ void Lowerer::record(const Record& r) {
         return;
       }
       if (iequals(r.major, "BOX")) return;  // the stock (SolidWorks CAM, CAMWorks): nothing to cut
+      // NX's optional skip: the blocks between OPSKIP/ON and OFF are to carry the control's
+      // block delete ('/'). clpc writes none: they run whatever the operator's switch says.
+      if (iequals(r.major, "OPSKIP")) {
+        d_.warning(r.loc, "OPSKIP: clpc writes no block delete ('/'): the blocks between OPSKIP/ON and OPSKIP/OFF run "
+                          "whatever the operator's block-delete switch says (passed through as a comment)",
+                   "not-supported");
+        passthrough(r);
+        return;
+      }
       // DWELL/t: the dwell some APT generators write for ISO's DELAY/t (seconds, or REV).
       if (iequals(r.major, "DWELL")) {
         lower_delay(r);

@@ -352,6 +352,12 @@ TEST(Lower, UnknownRecordWarnsAndPassesThrough) {
   EXPECT_EQ(l.diags[0].loc, (SourceLoc{2, 1}));
   EXPECT_EQ(l.diags[0].message, "unknown record 'FOO' (passed through as a comment)");
   EXPECT_THAT(l.ir, HasSubstr("passthrough \"FOO/1,BAR\""));
+  // NX's optional skip says what it costs: the blocks run whatever the block-delete switch says.
+  Lowered skip = lower_text("GOTO/0,0,0\nOPSKIP/ON\n");
+  ASSERT_EQ(skip.diags.size(), 1u);
+  EXPECT_EQ(skip.diags[0].message, "OPSKIP: clpc writes no block delete ('/'): the blocks between OPSKIP/ON and "
+                                   "OPSKIP/OFF run whatever the operator's block-delete switch says (passed through "
+                                   "as a comment)");
 }
 
 TEST(Lower, ChunksLongOperations) {
