@@ -51,6 +51,7 @@ class ProgramWriter : public Backend {
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);
   virtual void retract_for_stop(SourceLoc loc) {}
+  virtual void after_raw_motion() {}  // a raw block that may have moved the axes was written
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 

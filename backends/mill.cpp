@@ -121,6 +121,18 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     d_.error(loc, "internal: a move without rotary positions on a five-axis machine (is 'kinematics' in the pipeline?)");
     return;
   }
+  if (reposition_rotaries_ && mv.has_rotary) {
+    // Where the raw block left the tool: no retract of the post's own (the next move, from the
+    // retract height, would be a long diagonal feed into the part).
+    reposition_rotaries_ = false;
+    unclamp(loc);
+    e_.begin(loc);
+    absolute_code();
+    motion_code(Motion::Rapid);
+    rotary_words(mv.rotary, false);
+    e_.end();
+    clamp(loc);
+  }
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
   // Every coordinate rounded once: for "has anything changed" and for the words.

@@ -50,6 +50,11 @@ class MillBackend : public ProgramWriter {
   bool tcp_on_ = false;
   bool tcp_in_force() const override { return tcp_on_; }
   bool at_safe_height_ = true;  // nothing moved since the last safe retract
+  // Rotaries clamped in a position (3+2) when a raw block that may move the axes came: the next
+  // move positions them again as the post does (retract, unclamp, rotaries alone, clamp).
+  // Restated with the move they were unclamped and never clamped again.
+  bool reposition_rotaries_ = false;
+  void after_raw_motion() override { reposition_rotaries_ = clamped_; }
   void retract_for_stop(SourceLoc loc) override {
     if (!at_safe_height_ && tool_ >= 0) retract(loc);
   }

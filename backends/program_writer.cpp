@@ -311,6 +311,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           if (!moves_axes)
             for (const RotaryAxis& r : m_.kinematics.rotaries) rotaries_kept += r.name[0];
           e_.forget_all_but(rotaries_kept);
+          if (moves_axes) after_raw_motion();
           feed_written_ = false;
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
           e_.comment("CL: " + std::string(op.str(x.text)));
@@ -742,6 +743,11 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
     if (is(g, 40) && comp_on_)
       return "cancels the cutter compensation (G40) that a CUTCOM turned on: CUTCOM/OFF gives it";
     if (is(g, 20) || is(g, 21)) return "changes the program's units (" + code + "), which the post writes for the machine";
+    // A return with no axis named homes every axis on a Haas (a Fanuc alarms): the CL's next
+    // move, a cut, would be fed from there, with the rotaries turning.
+    if ((is(g, 28) || is(g, 30)) && axis_words(text).empty())
+      return "returns to a reference point (" + code + ") with no axis named, which homes every axis on some "
+             "controls: the CL's next move would start there; name the axes it returns (G91 " + code + " Z0.)";
     if (is(g, 10) || is(g, 52) || (!lathe && (is(g, 92) || is(g, 16) || is(g, 51) || is(g, 51.1) || is(g, 68) ||
                                               is(g, 68.2) || is(g, 68.3) || is(g, 68.4))))
       return "changes the coordinate system or its offsets (" + code + "), so the program's positions would mean "

@@ -432,9 +432,12 @@ class Interp {
       return;
     }
     if (g28) {
-      // Home through the intermediate point: the axes named end up at the reference point.
+      // Home through the intermediate point: the axes named end up at the reference point. With
+      // none named a Haas homes every axis (a Fanuc alarms): where the tool is, is not known.
       for (int i = 0; i < 3; ++i)
-        if (has("XYZ"[i]) || (lathe && has("UVW"[i]))) pos_[i] = kNaN;
+        if (has("XYZ"[i]) || (lathe && has("UVW"[i])) || !any_axis) pos_[i] = kNaN;
+      if (!any_axis) problem(line, "G28 with no axis named: every axis returns home on some controls, an alarm on "
+                                   "others; name the axes (G91 G28 Z0.)");
       return;
     }
     if (!any_axis) {

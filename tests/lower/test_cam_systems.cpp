@@ -999,13 +999,21 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   Compiled brake = compile_text(haas + "AUXFUN/50\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(brake.ok) << brake.diags;
   EXPECT_THAT(brake.output, HasSubstr("\nM50\nN60 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
-  // A block that may move them (an axis word, even B-10.; G28, which on the Haas homes every
-  // axis): they are written again.
-  for (const char* moving : {"INSERT/G00 B-10.", "INSERT/G28"}) {
+  // A block that may move them (an axis word, even B-10.; G53): they are positioned again as the
+  // post positions them, unclamped, alone, and clamped (restated with the cut, they were left
+  // unclamped). A G28 with no axis named, which homes every axis on the Haas, is refused.
+  for (const char* moving : {"INSERT/G00 B-10.", "INSERT/G53 G00 Z0."}) {
     Compiled again = compile_text(haas + moving + "\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
     ASSERT_TRUE(again.ok) << again.diags;
-    EXPECT_THAT(again.output, HasSubstr(" G01 X2.3622 Y1.5748 Z-0.0787 B0. C0. F7.87\n")) << moving;
+    EXPECT_THAT(again.output, HasSubstr(" M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 G01 X2.3622 Y1.5748 "
+                                        "Z-0.0787 F7.87\n")) << moving;
   }
+  Compiled home = compile_text(haas + "INSERT/G28\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
+  EXPECT_FALSE(home.ok);
+  EXPECT_THAT(home.diags, HasSubstr("part.cls:9:1: error: the block 'G28' (INSERT, PREFUN or AUXFUN) returns to a "
+                                    "reference point (G28) with no axis named, which homes every axis on some "
+                                    "controls: the CL's next move would start there; name the axes it returns (G91 "
+                                    "G28 Z0.)"));
   Compiled clamp_raw = compile_text(haas + "INSERT/M10\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
   EXPECT_FALSE(clamp_raw.ok);
   EXPECT_THAT(clamp_raw.diags, HasSubstr("part.cls:9:1: error: the block 'M10' (INSERT, PREFUN or AUXFUN) clamps or "
