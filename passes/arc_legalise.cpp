@@ -84,17 +84,31 @@ double r_format_deviation(const ir::Arc& a, const Machine& m, double to_out) {
   const double h = std::sqrt(written_r * written_r - chord * chord / 4);
   const double side = ccw == (a.sweep <= 180) ? 1 : -1;  // the centre left of the chord (CCW, up to half a turn)
   const double ccu = (su + eu) / 2 - side * h * dv / chord, ccv = (sv + ev) / 2 + side * h * du / chord;
+  // A helix climbs with the angle about the control's centre: a point's height is where that
+  // angle puts it between the rounded ends' heights, so a centre off turns into a height off too.
+  const double pi = 3.14159265358979323846;
+  auto turn = [&](double from, double to) {  // the angle from `from` to `to`, in the arc's sense, 0..2 pi
+    double d = ccw ? to - from : from - to;
+    while (d < 0) d += 2 * pi;
+    while (d >= 2 * pi) d -= 2 * pi;
+    return d;
+  };
+  const double a0 = std::atan2(sv - ccv, su - ccu), a1 = std::atan2(ev - ccv, eu - ccu);
+  double whole = turn(a0, a1);
+  if (whole < 1e-12) whole = 2 * pi;
+  const double sn = rounded(s[n], m.format(letters[n])), en = rounded(e[n], m.format(letters[n]));
   double worst = 0;
   for (double t : {0.25, 0.5, 0.75}) {
     const ir::Vec3 q = arcgeo::point_at(a, t) * to_out;
-    worst = std::max(worst, std::abs(std::hypot(q[u] - ccu, q[v] - ccv) - written_r));
+    const double radial = std::hypot(q[u] - ccu, q[v] - ccv) - written_r;
+    const double height = q[n] - (sn + (en - sn) * turn(a0, std::atan2(q[v] - ccv, q[u] - ccu)) / whole);
+    worst = std::max(worst, std::hypot(radial, height));
   }
   return worst;
 }
 
 // The fewest equal pieces (from `n`) of an R-format arc whose paths the control keeps within
-// `tol`, none with a chord under ten output increments; `n` itself where none does (verify then
-// judges the arc as written).
+// `tol`, none with a chord under ten output increments; 0 where none does.
 int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, double tol, double increment) {
   const double r = arcgeo::radial(a, a.start).norm() * to_out;
   for (int k = n; k < 64; ++k) {
@@ -110,7 +124,7 @@ int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, do
     }
     if (worst <= tol) return k;
   }
-  return n;
+  return 0;
 }
 
 class ArcLegalise : public Pass {
@@ -159,7 +173,23 @@ class ArcLegalise : public Pass {
       if (n <= 1 && !closed && a->sweep > 180 &&
           rounded_centre_deviation(*a, ctx.machine, 1 / to_prog) > s.tolerance)
         n = 2;  // each half's chord is nearly a diameter: its centre is well placed
-      if (r_format) n = r_format_pieces(*a, std::max(n, closed ? 2 : 1), ctx.machine, 1 / to_prog, s.tolerance, res / to_prog);
+      if (r_format) {
+        const int first = std::max(n, closed ? 2 : 1);
+        n = r_format_pieces(*a, first, ctx.machine, 1 / to_prog, s.tolerance, res / to_prog);
+        if (n == 0 && 2 * r <= s.tolerance * to_prog && (a->end - a->start).norm() > 0) {
+          // No piece holds, and the whole arc lies within the tolerance of its end (a circle of
+          // a few increments, whose rounded ends meet): a straight move.
+          ir::Move m;
+          m.point = a->end;
+          m.axis = a->tool_axis;
+          m.kind = ir::MoveKind::Feed;
+          m.has_rotary = a->has_rotary;
+          m.rotary = a->rotary;
+          out.push_back(ir::Instr{in.loc, m});
+          return true;
+        }
+        if (n == 0) n = first;  // left as it is: verify judges it
+      }
       if (n <= 1) return false;
       arcedit::split(*a, n, in.loc, out);
       return true;

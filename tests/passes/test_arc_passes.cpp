@@ -479,4 +479,10 @@ TEST(ArcLegalise, AnRFormatArcNearHalfATurnIsSplitWhereItsCentreWouldNotHold) {
   Compiled circle = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/10.0007,0.0003,0\nINDIRV/0,1,0\n"
                                  "CIRCLE/0.0003,0.0003,0,0,0,1,10.0004\nGOTO/10.0007,0.0003,0\n", rm, {.certify = true});
   EXPECT_TRUE(circle.ok) << circle.diags;
+  // A helix: the centre off turns the heights too (its angles about the centre move), which the
+  // plane alone did not count: 0.0064 off against 0.006, refused.
+  Compiled helix = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/300\nGOTO/278.910809,-13.238466,-3.568\n"
+                                "INDIRV/0,1,0\nCIRCLE/278.5,-12.552,-3.568,0,0,1,0.8\nGOTO/278.858769,-13.267042,-7.452\n",
+                                rm, {.certify = true});
+  EXPECT_TRUE(helix.ok) << helix.diags;
 }
