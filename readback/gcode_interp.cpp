@@ -300,7 +300,10 @@ class Interp {
         case 0: case 1: spindle_on_ = false; res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
         case 2: case 30: res_.ended = true; break;
         case 3: case 4: spindle_on_ = true; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
-        case 5: spindle_on_ = false; res_.events.push_back({Event::Kind::Spindle, line, 0}); break;
+        case 5: case 19:  // M19 orients the spindle: it stops turning
+          spindle_on_ = false;
+          res_.events.push_back({Event::Kind::Spindle, line, 0});
+          break;
         case 6:
           if (!has('T') && pending_tool_ <= 0) problem(line, "M06 without a tool");
           tool_ = has('T') ? int(std::round(a['T'])) : pending_tool_;

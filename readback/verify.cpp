@@ -159,7 +159,7 @@ void Comparison::spindle_ok(const TipSegment& s) {
   }
   if (spindle_said_) return;
   spindle_said_ = true;
-  fail(loc_, s.raw.line, "the program cuts here with the spindle stopped (no M03/M04 since an M05, M00, M01 or tool "
+  fail(loc_, s.raw.line, "the program cuts here with the spindle stopped (no M03/M04 since an M05, M19, M00, M01 or tool "
                          "change), where the CL has it turning",
        0);
 }

@@ -159,8 +159,10 @@ TEST_F(VerifyPlate, ACutWithTheSpindleStoppedFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", "M00\nN100 Y20.\n"));
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:12:1: error: the program cuts here with the spindle stopped (no "
-                                              "M03/M04 since an M05, M00, M01 or tool change), where the CL has it "
+                                              "M03/M04 since an M05, M19, M00, M01 or tool change), where the CL has it "
                                               "turning [G-code line 17]"));
+  Checked oriented = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", "M19\nN100 Y20.\n"));
+  EXPECT_FALSE(oriented.report.ok);  // M19 orients, and so stops, the spindle
   Checked restarted = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", "M00\nS3000 M03\nN100 Y20.\n"));
   EXPECT_TRUE(restarted.report.ok) << restarted.diags;
 }
