@@ -861,7 +861,9 @@ class Interp {
   void macro_call(const Words& a, int line) {
     const OffsetSettings& o = m_.offsets;
     if (!a.count('P') || std::lround(a['P']) != o.macro) {
-      problem(line, "G65 calls a macro the reader does not know (it knows the offset macro, P" + std::to_string(o.macro) + ")");
+      problem(line, "G65 calls a macro the reader does not know (it knows the offset macro, P" + std::to_string(o.macro) +
+                        "), so the program cannot be checked against the CL (written by an INSERT? compile with "
+                        "--no-verify to take it unchecked)");
       return;
     }
     for (char c : {'A', 'B', 'C', 'X', 'Y', 'Z'}) {
