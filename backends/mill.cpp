@@ -125,12 +125,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     // Where the raw block left the tool: no retract of the post's own (the next move, from the
     // retract height, would be a long diagonal feed into the part).
     reposition_rotaries_ = false;
-    unclamp(loc);
-    e_.begin(loc);
-    absolute_code();
-    motion_code(Motion::Rapid);
-    rotary_words(mv.rotary, false);
-    e_.end();
+    turn_rotaries(mv.rotary, false, loc);
     clamp(loc);
   }
   const ir::Vec3 o = mv.point * k_;
@@ -284,14 +279,19 @@ void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc l
     // Turning the table for the next orientation with the tool down at the part is how
     // fixtures get hit: retract first (a rotation within a path, clamp = false, has its own).
     if (r.clamp && !at_safe_height_ && tool_ >= 0) retract(loc);
-    unclamp(loc);
-    e_.begin(loc);
-    absolute_code();
-    motion_code(Motion::Rapid);
-    rotary_words(r.rotary, true);
-    e_.end();
+    turn_rotaries(r.rotary, true, loc);
   }
   if (r.clamp) clamp(loc);
+}
+
+// The rotaries unclamped and turned in a rapid of their own (`modal`: only the words that change).
+void MillBackend::turn_rotaries(const std::array<double, 2>& angles, bool modal, SourceLoc loc) {
+  unclamp(loc);
+  e_.begin(loc);
+  absolute_code();
+  motion_code(Motion::Rapid);
+  rotary_words(angles, modal);
+  e_.end();
 }
 
 void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {

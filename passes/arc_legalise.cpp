@@ -127,6 +127,17 @@ int r_format_pieces(const ir::Arc& a, int n, const Machine& m, double to_out, do
   return 0;
 }
 
+// A feed move to the arc's end, in its place: where the arc is within the tolerance of it.
+ir::Instr straight_to_end(const ir::Arc& a, SourceLoc loc) {
+  ir::Move m;
+  m.point = a.end;
+  m.axis = a.tool_axis;
+  m.kind = ir::MoveKind::Feed;
+  m.has_rotary = a.has_rotary;
+  m.rotary = a.rotary;
+  return ir::Instr{loc, m};
+}
+
 class ArcLegalise : public Pass {
  public:
   void run(ir::Operation& op, PassContext& ctx) override {
@@ -142,23 +153,12 @@ class ArcLegalise : public Pass {
       double chord = (arcgeo::radial(*a, a->end) - arcgeo::radial(*a, a->start)).norm();
       // Too short to write as an arc: a straight move (or nothing) is within tolerance.
       if (!closed && chord < 2 * res && a->sweep < 180) {
-        ir::Move m;
-        m.point = a->end;
-        m.axis = a->tool_axis;
-        m.kind = ir::MoveKind::Feed;
-        m.has_rotary = a->has_rotary;
-        m.rotary = a->rotary;
-        out.push_back(ir::Instr{in.loc, m});
+        out.push_back(straight_to_end(*a, in.loc));
         return true;
       }
       if (closed && r < res) {  // a circle smaller than the resolution: nothing to cut
         if ((a->end - a->start).norm() > 0) {
-          ir::Move m;
-          m.point = a->end;
-          m.axis = a->tool_axis;
-          m.has_rotary = a->has_rotary;
-          m.rotary = a->rotary;
-          out.push_back(ir::Instr{in.loc, m});
+          out.push_back(straight_to_end(*a, in.loc));
         }
         return true;
       }
@@ -179,13 +179,7 @@ class ArcLegalise : public Pass {
         if (n == 0 && 2 * r <= s.tolerance * to_prog && (a->end - a->start).norm() > 0) {
           // No piece holds, and the whole arc lies within the tolerance of its end (a circle of
           // a few increments, whose rounded ends meet): a straight move.
-          ir::Move m;
-          m.point = a->end;
-          m.axis = a->tool_axis;
-          m.kind = ir::MoveKind::Feed;
-          m.has_rotary = a->has_rotary;
-          m.rotary = a->rotary;
-          out.push_back(ir::Instr{in.loc, m});
+          out.push_back(straight_to_end(*a, in.loc));
           return true;
         }
         if (n == 0) n = first;  // left as it is: verify judges it
