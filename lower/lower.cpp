@@ -255,8 +255,12 @@ void Lowerer::record(const Record& r) {
       motion_not_read(r, motion_hint(r.major));
       return;
     case MajorId::Mode:
-      // MODE/MILL, MODE/TURN (Fusion, Creo mill-turn): which kind of machine, as MACHIN says.
-      if (r.params.size() == 1 && (r.params[0].is("MILL") || r.params[0].is("TURN") || r.params[0].is("LATHE"))) return;
+      if (incremental_points(r)) return;
+      // MODE/MILL, MODE/TURN (Fusion, Creo mill-turn): which kind of machine, as MACHIN says;
+      // MODE/ABSOL: the absolute points clpc reads.
+      if (r.params.size() == 1 && (r.params[0].is("MILL") || r.params[0].is("TURN") || r.params[0].is("LATHE") ||
+                                   r.params[0].is("ABSOL")))
+        return;
       unknown(r, "not supported by clpc's machines", true);
       return;
     case MajorId::Head:
@@ -267,6 +271,8 @@ void Lowerer::record(const Record& r) {
       if (blank_joined_record(r)) return;
       if (motion_word(r.major)) {
         if (iequals(r.major, "TRANS") && no_shift(r)) return;  // TRANS/0,0,0 shifts nothing, as ORIGIN/0,0,0
+        // REFSYS/NOMORE ends a reference system, and every REFSYS that starts one is refused.
+        if (iequals(r.major, "REFSYS") && r.params.size() == 1 && r.params[0].is("NOMORE")) return;
         motion_not_read(r, motion_hint(r.major));
         return;
       }
@@ -290,6 +296,8 @@ void Lowerer::record(const Record& r) {
         passthrough(r);
         return;
       }
+      if (incremental_points(r)) return;
+      if (iequals(r.major, "ABSOL")) return;  // ABSOL, ABSOL/ON: the absolute points clpc reads
       // DWELL/t: the dwell some APT generators write for ISO's DELAY/t (seconds, or REV).
       if (iequals(r.major, "DWELL")) {
         lower_delay(r);
@@ -397,6 +405,36 @@ void Lowerer::not_read(const Record& r, std::string_view why, std::string_view c
   passthrough(r);
 }
 
+// Incremental CL data: MODE/INCR (and INCREM, INCREMENTAL, RELATIVE, ABSOL,OFF), COORD/INCR,
+// or a record named INCR (INCREM, INCREMENTAL) or ABSOL/OFF. Every point after it is a step
+// from the one before, and clpc reads points as absolute: passed through as a comment, each
+// point would be cut at the step's value (10 mm from the origin, not from the last point).
+// Refused where it stands (SET/MODE,INCR is refused by the frame records). True when refused.
+bool Lowerer::incremental_points(const Record& r) {
+  auto incremental = [](const Param& p) {
+    return p.is("INCR") || p.is("INCREM") || p.is("INCREMENTAL") || p.is("RELATIVE");
+  };
+  auto absol_off = [&] {
+    for (size_t i = 0; i + 1 < r.params.size(); ++i)
+      if (r.params[i].is("ABSOL") && r.params[i + 1].is("OFF")) return true;
+    return false;
+  };
+  bool refused = false;
+  if (r.id == MajorId::Mode || iequals(r.major, "COORD")) {
+    refused = absol_off() || std::any_of(r.params.begin(), r.params.end(), incremental);
+  } else if (iequals(r.major, "INCR") || iequals(r.major, "INCREM") || iequals(r.major, "INCREMENTAL")) {
+    refused = !(r.params.size() == 1 && r.params[0].is("OFF"));
+  } else if (iequals(r.major, "ABSOL")) {
+    refused = r.params.size() == 1 && r.params[0].is("OFF");
+  }
+  std::string said = head_and_major(r);
+  for (size_t i = 0; i < r.params.size(); ++i) said += (i ? "," : "/") + std::string(r.params[i].name());
+  if (refused)
+    d_.error(r.loc, "'" + said + "' makes the points that follow incremental (each a step from the one "
+                    "before), and clpc reads CL points as absolute: have the CAM system write absolute points");
+  return refused;
+}
+
 // A record that moves the tool (or the machine) in a way clpc does not read: never dropped, never
 // guessed (docs/cl-input.md, "Records that carry motion").
 void Lowerer::motion_not_read(const Record& r, std::string_view why) {
@@ -421,6 +459,7 @@ constexpr MotionWord kMotionWords[] = {
     {"POCKET", "APT pocketing needs the part model; have the CAM system write the pocket as GOTO and CIRCLE records"},
     {"ARCSLP", "it changes how CIRCLE records are cut; have the CAM system write plain CIRCLE records"},
     {"ROTHED", "a rotary head positioned by record; have the CAM system write the tool axis on the GOTOs (MULTAX)"},
+    {"ROTHEAD", "a rotary head positioned by record; have the CAM system write the tool axis on the GOTOs (MULTAX)"},
     {"MOVE", "a move clpc has no rule for; have the CAM system write GOTO points"},
     // APT post-processor words (ISO 4343, the G-Post and IMS vocabularies) that move the
     // machine or shift what follows: passed through as a comment they would change the cut.
@@ -429,6 +468,8 @@ constexpr MotionWord kMotionWords[] = {
     {"GOCLER", "a move to the clearance plane the post would make; have the CAM system write the retract as GOTO points"},
     {"FIXTURE", "it selects a work offset (a fixture) that clpc does not read: the cuts after it would land in the "
                 "register in force; give the frame's register with SET (SET/55) and its frame (CAMERA, MSYS)"},
+    {"REFSYS", "a reference system: it moves and turns the coordinates that follow; have the CAM system output the "
+               "points in the part's frame (MSYS) or give the frame with SET and CAMERA"},
     {"TRANS", "it shifts the coordinates that follow; set the part's origin in the CAM system or with the work offset (SET, CAMERA)"},
     {"PIVOTZ", "it moves the point the coordinates name along the tool; have the CAM system output the tool tip"},
 };

@@ -106,6 +106,7 @@ class Lowerer : public RecordSink {
   void lower_stop(const Record& r);
   void lower_origin(const Record& r);
   static bool no_shift(const Record& r);
+  bool incremental_points(const Record& r);
   void lower_insert(const Record& r);
   void lower_units(const Record& r);
 

@@ -360,6 +360,28 @@ TEST(Lower, UnknownRecordWarnsAndPassesThrough) {
                                    "as a comment)");
 }
 
+// Incremental CL data, however it is said, is refused where it stands: MODE/INCR was passed
+// through as a comment and each step cut as an absolute point (certified). The absolute mode
+// is what clpc reads: nothing to do. (helper-31's probe.)
+TEST(Lower, IncrementalCLDataIsRefusedWhereverItIsSaid) {
+  for (const char* rec : {"MODE/INCR", "MODE/INCREM", "MODE/INCREMENTAL", "MODE/RELATIVE", "MODE/ABSOL,OFF",
+                          "MODE/MILL,INCR", "COORD/INCR", "INCR", "INCR/ON", "INCREMENTAL", "ABSOL/OFF"})
+    EXPECT_EQ(err(std::string("GOTO/0,0,0\n") + rec + "\nGOTO/10,0,0\n"),
+              "2:1: '" + std::string(rec) +
+                  "' makes the points that follow incremental (each a step from the one before), and clpc reads CL "
+                  "points as absolute: have the CAM system write absolute points")
+        << rec;
+  for (const char* rec : {"MODE/ABSOL", "ABSOL", "ABSOL/ON", "INCR/OFF", "MODE/MILL", "REFSYS/NOMORE"}) {
+    Lowered l = lower_text(std::string("GOTO/0,0,0\n") + rec + "\nGOTO/10,0,0\n");
+    EXPECT_EQ(first_error(l.diags), "") << rec;
+  }
+  // A reference system or a rotary head set by record moves every later point: refused.
+  EXPECT_THAT(err("GOTO/0,0,0\nREFSYS/1,0,0,10,0,1,0,0,0,0,1,0\nGOTO/10,0,0\n"),
+              ::testing::StartsWith("2:1: 'REFSYS' moves the tool and clpc does not read it: a reference system"));
+  EXPECT_THAT(err("GOTO/0,0,0\nROTHEAD/30,BAXIS\nGOTO/10,0,0\n"),
+              ::testing::StartsWith("2:1: 'ROTHEAD' moves the tool and clpc does not read it: a rotary head"));
+}
+
 TEST(Lower, ChunksLongOperations) {
   std::string cl = "TOOL PATH/LONG,TOOL,T\n";
   for (int i = 0; i < 1000; ++i) cl += "GOTO/" + std::to_string(i) + ",0,0\n";
