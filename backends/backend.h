@@ -136,6 +136,7 @@ class ProgramWriter : public Backend {
   bool feed_mode_known_ = false;
   double feed_ = 0;  // program units
   bool feed_known_ = false;
+  bool no_feed_said_ = false;  // "no feed rate" was said: once per program
   SourceLoc feed_loc_;      // the FEDRAT the feed came from
   // The CL record whose move the last inverse-time F (FEDRAT/INVERS) was written for, and the
   // last one refused: a record's move split into blocks must not give each block its time.

@@ -1,7 +1,7 @@
 // What every backend shares: the program frame, header, spindle, coolant, dwell, stops,
 // comments and feeds.
 #include "backends/backend.h"
-#include "backends/block_check.h"
+#include "machine/block_check.h"
 
 #include <algorithm>
 #include <numbers>
@@ -300,13 +300,8 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           motion_ = Motion::None;
           // The rotaries stay where they were where the block can move no axis: restating them
           // unclamped the rotary brakes in the middle of a cut (Haas: M11 M13, then the feed).
-          // Any axis word (B-10., B#101), a return to a reference point (G27-G30: Haas's bare
-          // G28 homes every axis), a move in machine coordinates (G53) or a macro call (G65,
-          // G66) may have moved them: then they are written again.
-          bool moves_axes = !axis_words(text).empty();
-          for (double g : code_numbers(text, 'G'))
-            moves_axes |= (g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 ||
-                          std::abs(g - 66) < 1e-6 || std::abs(g - 66.1) < 1e-6;
+          // A block that may move axes may have moved them: then they are written again.
+          const bool moves_axes = may_move_axes(text);
           std::string rotaries_kept;
           if (!moves_axes)
             for (const RotaryAxis& r : m_.kinematics.rotaries) rotaries_kept += r.name[0];
@@ -544,9 +539,10 @@ void ProgramWriter::feed_mode_code(ir::FeedMode mode) {
 
 bool ProgramWriter::feed_word(SourceLoc loc) {
   if (!feed_known_) {
-    d_.error(loc, "cutting move with no feed rate: no FEDRAT before it");
-    feed_known_ = true;  // once
-    feed_ = 0;
+    // Once: the program is refused already, and a feed of 0 made up here drew a second error
+    // at every later move, with advice (more decimals) that had nothing to do with it.
+    if (!no_feed_said_) d_.error(loc, "cutting move with no feed rate: no FEDRAT before it");
+    no_feed_said_ = true;
     return false;
   }
   if (feed_mode_ == ir::FeedMode::InverseTime) {

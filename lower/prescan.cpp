@@ -336,7 +336,10 @@ class TableBuilder : public RecordSink {
 };
 
 // The CAM system, from signatures its files carry near their start (docs/cl-input.md, "CAM
-// systems"). The first 64 KiB are enough: every signature is a header or an early record.
+// systems"). The first 64 KiB are enough: every signature is a header or an early record. A
+// signature is a record only that system writes: a shop's "$$-> ROUGH" comment made a file
+// Creo's (whose arcs join later points on the circle: a chord became a half circle, certified),
+// and a CYCLE/INIT, which any ISO 4343 post writes, made one SolidWorks CAM's (ROTABL radians).
 void recognise_cam_system(const SourceFile& src, ir::ProgramInfo& info) {
   std::string head(64 * 1024, '\0');
   long n = src.read_at(0, head.data(), head.size());
@@ -349,11 +352,12 @@ void recognise_cam_system(const SourceFile& src, ir::ProgramInfo& info) {
   // In order: the first system with a signature anywhere in the head wins.
   static constexpr Sig kSigs[] = {
       {"$$*CATIA0", true, ir::CamSystem::Catia},          {"CATIA APT VERSION", false, ir::CamSystem::Catia},
-      {"Pro/CLfile", false, ir::CamSystem::Creo},         {"$$->", true, ir::CamSystem::Creo},
+      {"Pro/CLfile", false, ir::CamSystem::Creo},         {"$$-> MFGNO", true, ir::CamSystem::Creo},
+      {"$$-> FEATNO", true, ir::CamSystem::Creo},         {"$$-> CSYS", true, ir::CamSystem::Creo},
       {"TOOL PATH/", true, ir::CamSystem::Nx},            {"APTCL-SPEC,MAKINO-FF", false, ir::CamSystem::Nx},
       {"MOVARC/", true, ir::CamSystem::Fusion},           {"MODE/MILL", true, ir::CamSystem::Fusion},
       {"MODE/TURN", true, ir::CamSystem::Fusion},         {"OPFEATSTART", true, ir::CamSystem::SolidWorks},
-      {"CYCLE/INIT", true, ir::CamSystem::SolidWorks},    {"MACHIN/PWORKS", true, ir::CamSystem::Ncl},
+      {"MACHIN/PWORKS", true, ir::CamSystem::Ncl},
   };
   for (const Sig& sig : kSigs) {
     std::string_view t = sig.text;

@@ -14,8 +14,8 @@
 // own rates again: there only rapids with the tool along the program's Z are split.
 //
 // A rapid is split only where the position before it is known (a move or an arc before it;
-// a load of the tool already in the spindle, or a frame or work offset, is no motion: NX
-// writes them at every operation), the tool axis does not change along it (a rapid that turns a
+// a load of the tool already in the spindle, a frame or work offset, or a raw block that can
+// move no axis is no motion: NX writes the first ones at every operation), the tool axis does not change along it (a rapid that turns a
 // rotary is left as the CL gives it), and cutter compensation is off and not switched by it
 // (a block more would change the compensated path, or start or cancel it on a Z move). The first move after a tool change is the backend's (X Y,
 // then Z with the length offset).
@@ -25,6 +25,7 @@
 #include <cmath>
 #include <optional>
 
+#include "machine/block_check.h"
 #include "passes/passes.h"
 
 namespace clpc {
@@ -78,6 +79,11 @@ class RapidSplit : public Pass {
       } else if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) {
         comp_ = c->side != ir::CompSide::Off;
         comp_switch_ = true;  // the next move carries G41, G42 or G40
+      } else if (const auto* ins = std::get_if<ir::Insert>(&in.op)) {
+        // A raw block (INSERT, PREFUN, AUXFUN) that can move no axis (M08, G08 P1, a message)
+        // leaves the tool where it stood: the rapid after it was written whole, down and across
+        // at once. One that may move axes (G28, G53, an axis word, a macro) leaves it unknown.
+        if (may_move_axes(op.str(ins->text))) known_ = false;
       } else if (!keeps_position(in.op)) {
         known_ = false;
       }

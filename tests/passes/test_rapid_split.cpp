@@ -116,6 +116,21 @@ TEST(RapidSplit, FromOneOperationToTheNextWithTheSameToolAndFrame) {
   EXPECT_THAT(c.output, HasSubstr("G00 X0. Y0.\nN170 G43 H02 Z5.\n"));
 }
 
+// A raw block that can move no axis (a G08, an M08, a message) leaves the tool where it stood:
+// the rapid after it is split like any other (it went down and across in one G00, certified).
+// One that may move axes (G28 with an axis, G53, an axis word) leaves the position unknown.
+TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
+  const std::string start = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,50\n"
+                            "GOTO/0,0,-1\nRAPID\nGOTO/20,10,5\n";
+  for (const char* raw : {"INSERT/G08 P1", "AUXFUN/8", "INSERT/(HELLO)", "PREFUN/61"}) {
+    Compiled c = compile_text(start + raw + "\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"), {.certify = true});
+    ASSERT_TRUE(c.ok) << raw << c.diags;
+    EXPECT_THAT(c.output, HasSubstr("\nN100 G00 X40. Y40. Z5.\nN110 Z-3.\n")) << raw;
+  }
+  Compiled moved = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"));
+  EXPECT_THAT(moved.output, HasSubstr("G53 Z0.\nN100 G00 X40. Y40. Z-3.\n"));
+}
+
 // G40 is written on the first straight move after CUTCOM/OFF, not on an arc: a rapid after
 // such an arc carries it and is not split.
 TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {

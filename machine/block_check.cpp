@@ -1,6 +1,7 @@
-#include "backends/block_check.h"
+#include "machine/block_check.h"
 
 #include <cctype>
+#include <cmath>
 #include <charconv>
 
 #include "support/decimal.h"
@@ -154,6 +155,15 @@ std::vector<double> code_numbers(std::string_view t, char letter) {
     i = v - 1;
   }
   return out;
+}
+
+bool may_move_axes(std::string_view block) {
+  if (!axis_words(block).empty()) return true;
+  for (double g : code_numbers(block, 'G'))
+    if ((g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 || std::abs(g - 66) < 1e-6 ||
+        std::abs(g - 66.1) < 1e-6)
+      return true;
+  return false;
 }
 
 }  // namespace clpc

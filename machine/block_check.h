@@ -1,5 +1,6 @@
 // Whether a line of text is a block a G-code control reads (INSERT records): what may reach
-// the program raw, and what must become a comment (docs/cl-input.md, "INSERT").
+// the program raw, and what must become a comment (docs/cl-input.md, "INSERT"); and what such
+// a block may do to the axes (the backends and the passes that keep a position both ask).
 #pragma once
 
 #include <string>
@@ -21,5 +22,10 @@ std::string axis_words(std::string_view block);
 // The numbers of the address words with `letter` (G or M) in a control block, outside comments,
 // in the order met (G68.2 -> 68.2).
 std::vector<double> code_numbers(std::string_view block, char letter);
+
+// Whether a control block may move the machine's axes: any axis word (B-10., B#101), a return
+// to a reference point (G27-G30: Haas's bare G28 homes every axis), a move in machine
+// coordinates (G53) or a macro call (G65, G66, G66.1), which may do anything.
+bool may_move_axes(std::string_view block);
 
 }  // namespace clpc
