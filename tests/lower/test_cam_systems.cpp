@@ -1180,3 +1180,41 @@ TEST(CamSystems, AFirstCutAfterFromStartsAtTheFrom) {
   ASSERT_TRUE(rapid.ok) << rapid.diags;
   EXPECT_THAT(rapid.output, HasSubstr("N40 S1000 M03\nN50 G54 G00 X30. Y0.\nN60 G43 H01 Z100.\nN70 Z5.\nN80 G94 G01 Z0. F100.\n"));
 }
+
+// A CAM system is known by a record only it writes. A shop's "$$-> ROUGH CONTOUR" comment made
+// a file Creo's, whose arcs take later points on the circle: a chord after a quarter arc became
+// a half circle (certified). A CYCLE/INIT, which any ISO 4343 post writes, made a file SolidWorks
+// CAM's, whose ROTABL is in radians: ROTABL/90 turned the part 90 radians (certified). (helper-32)
+TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
+  const std::string arc = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/60,50,5\nFEDRAT/500,MMPM\n"
+                          "GOTO/60,50,-2\nCIRCLE/50,50,-2,0,0,1,10\nGOTO/50,60,-2\nGOTO/40,50,-2\nFINI\n";
+  Compiled shop = compile_text("$$-> ROUGH CONTOUR\n" + arc, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(shop.ok) << shop.diags;
+  EXPECT_THAT(shop.output, HasSubstr("G03 X50. Y60. I-10. J0.\nN90 G01 X40. Y50.\n"));
+  // Creo's own data comment: the point on the circle goes on round the arc (docs/arcs.md).
+  Compiled creo = compile_text("$$-> MFGNO / PART\n" + arc, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(creo.ok) << creo.diags;
+  EXPECT_THAT(creo.output, HasSubstr("G03 X40. I-10. J0.\n"));
+
+  const std::string rot = "UNITS/MM\nLOADTL/2\nCUTTER/6.8\nSPINDL/RPM,2000,CLW\nROTABL/90,CAXIS\nRAPID\nGOTO/20,0,25\n"
+                          "CYCLE/INIT\nCYCLE/DRILL,FEDTO,12,MMPM,200,RAPTO,2\nGOTO/20,0,0\nCYCLE/OFF\nFINI\n";
+  Compiled iso = compile_text(rot, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(iso.ok) << iso.diags;
+  EXPECT_THAT(iso.output, HasSubstr(" G81 X0. Y0.7874 "));  // (20,0) turned 90 degrees
+  // In a SolidWorks CAM file the angle is radians; more than a turn of them is refused.
+  Compiled sw = compile_text("OPFEATSTART/Drill1\n" + rot, machine("haas-umc750"));
+  EXPECT_FALSE(sw.ok);
+  EXPECT_THAT(sw.diags, HasSubstr("part.cls:6:8: error: ROTABL: SolidWorks CAM / CAMWorks files give the angle in "
+                                  "radians (the file was taken for one from line 1: OPFEATSTART), and 90 radians is "
+                                  "more than a whole turn: is the angle in degrees?"));
+}
+
+// A cut with no feed is refused once, at its move: the made-up feed of 0 drew a second error at
+// every later move, whose advice (more decimals) had nothing to do with it. (helper-31)
+TEST(CamSystems, ACutWithNoFeedIsRefusedOnce) {
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\nGOTO/10,0,0\nGOTO/20,0,0\n"
+                            "GOTO/30,0,0\nFINI\n",
+                            machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_EQ(messages(c.diags), "part.cls:6:1: error: cutting move with no feed rate: no FEDRAT before it\n");
+}
