@@ -1,5 +1,6 @@
 #include "machine/block_check.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <charconv>
@@ -163,6 +164,12 @@ bool may_move_axes(std::string_view block) {
     if ((g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 || std::abs(g - 66) < 1e-6 ||
         std::abs(g - 66.1) < 1e-6)
       return true;
+  // An M code moves axes where the builder made it so (a pallet change, M60 on a Fanuc, M50 on
+  // a Haas; a macro called by M code): only the codes every control gives the same meaning,
+  // none of which moves an axis, are known not to.
+  static constexpr int kStill[] = {0, 1, 3, 4, 5, 7, 8, 9, 19, 29, 48, 49};
+  for (double m : code_numbers(block, 'M'))
+    if (m != std::floor(m) || std::find(std::begin(kStill), std::end(kStill), int(m)) == std::end(kStill)) return true;
   return false;
 }
 

@@ -25,7 +25,8 @@ std::vector<double> code_numbers(std::string_view block, char letter);
 
 // Whether a control block may move the machine's axes: any axis word (B-10., B#101), a return
 // to a reference point (G27-G30: Haas's bare G28 homes every axis), a move in machine
-// coordinates (G53) or a macro call (G65, G66, G66.1), which may do anything.
+// coordinates (G53), a macro call (G65, G66, G66.1), which may do anything, or an M code other
+// than the stops, spindle, coolant, orient, rigid tap and override codes (M60 changes pallets).
 bool may_move_axes(std::string_view block);
 
 }  // namespace clpc

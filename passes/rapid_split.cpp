@@ -77,8 +77,11 @@ class RapidSplit : public Pass {
         // left whole: 100 mm across and 50 down in one non-linear G00, Z at the bottom first.)
         // Where the backend retracts first (a 3+2 frame), it then positions X Y before Z.
       } else if (const auto* c = std::get_if<ir::CutterComp>(&in.op)) {
+        // The next move carries G41, G42 or G40; a CUTCOM/OFF with compensation off switches
+        // nothing (its G40 cancels nothing on either piece): the rapid after it went down and
+        // across at once.
+        comp_switch_ = c->side != ir::CompSide::Off || comp_;
         comp_ = c->side != ir::CompSide::Off;
-        comp_switch_ = true;  // the next move carries G41, G42 or G40
       } else if (const auto* ins = std::get_if<ir::Insert>(&in.op)) {
         // A raw block (INSERT, PREFUN, AUXFUN) that can move no axis (M08, G08 P1, a message)
         // leaves the tool where it stood: the rapid after it was written whole, down and across

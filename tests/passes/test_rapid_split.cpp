@@ -127,8 +127,14 @@ TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
     ASSERT_TRUE(c.ok) << raw << c.diags;
     EXPECT_THAT(c.output, HasSubstr("\nN100 G00 X40. Y40. Z5.\nN110 Z-3.\n")) << raw;
   }
-  Compiled moved = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"));
-  EXPECT_THAT(moved.output, HasSubstr("G53 Z0.\nN100 G00 X40. Y40. Z-3.\n"));
+  for (const char* raw : {"INSERT/G53 Z0.", "INSERT/M60", "AUXFUN/60"}) {  // M60: a pallet change
+    Compiled moved = compile_text(start + raw + "\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"));
+    EXPECT_THAT(moved.output, HasSubstr("\nN100 G00 X40. Y40. Z-3.\n")) << raw;
+  }
+  // CUTCOM/OFF with compensation off switches nothing: the rapid after it is split too.
+  Compiled off = compile_text(start + "CUTCOM/OFF\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(off.ok) << off.diags;
+  EXPECT_THAT(off.output, HasSubstr("\nN100 G40 X40. Y40.\nN110 Z-3.\n"));
 }
 
 // G40 is written on the first straight move after CUTCOM/OFF, not on an arc: a rapid after
