@@ -1,6 +1,7 @@
 #include "lower/prescan.h"
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 
 #include "grammar/parse.h"
@@ -346,29 +347,33 @@ void recognise_cam_system(const SourceFile& src, ir::ProgramInfo& info) {
   head.resize(n > 0 ? size_t(n) : 0);
   struct Sig {
     const char* text;
-    bool line_start;
+    const char* line;  // what the line starts with (after blanks): nullptr, the text itself
     ir::CamSystem cam;
   };
-  // In order: the first system with a signature anywhere in the head wins.
   static constexpr Sig kSigs[] = {
-      {"$$*CATIA0", true, ir::CamSystem::Catia},          {"CATIA APT VERSION", false, ir::CamSystem::Catia},
-      {"Pro/CLfile", false, ir::CamSystem::Creo},         {"$$-> MFGNO", true, ir::CamSystem::Creo},
-      {"$$-> FEATNO", true, ir::CamSystem::Creo},         {"$$-> CSYS", true, ir::CamSystem::Creo},
-      {"TOOL PATH/", true, ir::CamSystem::Nx},            {"APTCL-SPEC,MAKINO-FF", false, ir::CamSystem::Nx},
-      {"MOVARC/", true, ir::CamSystem::Fusion},           {"MODE/MILL", true, ir::CamSystem::Fusion},
-      {"MODE/TURN", true, ir::CamSystem::Fusion},         {"OPFEATSTART", true, ir::CamSystem::SolidWorks},
-      {"MACHIN/PWORKS", true, ir::CamSystem::Ncl},
+      {"$$*CATIA0", nullptr, ir::CamSystem::Catia},       {"CATIA APT VERSION", "$$", ir::CamSystem::Catia},
+      {"Pro/CLfile", "$$", ir::CamSystem::Creo},          {"$$-> MFGNO", nullptr, ir::CamSystem::Creo},
+      {"$$-> FEATNO", nullptr, ir::CamSystem::Creo},      {"$$-> CSYS", nullptr, ir::CamSystem::Creo},
+      {"TOOL PATH/", nullptr, ir::CamSystem::Nx},         {"APTCL-SPEC,MAKINO-FF", "PPRINT", ir::CamSystem::Nx},
+      {"MOVARC/", nullptr, ir::CamSystem::Fusion},        {"MODE/MILL", nullptr, ir::CamSystem::Fusion},
+      {"MODE/TURN", nullptr, ir::CamSystem::Fusion},      {"OPFEATSTART", nullptr, ir::CamSystem::SolidWorks},
+      {"MACHIN/PWORKS", nullptr, ir::CamSystem::Ncl},
   };
+  // The signature met first in the file wins: a header comes first, and a later comment naming
+  // another system ("PPRINT SEE CATIA APT VERSION NOTES" in an NX file) turned every arc.
+  size_t best = std::string::npos;
   for (const Sig& sig : kSigs) {
     std::string_view t = sig.text;
-    for (size_t at = head.find(t); at != std::string::npos; at = head.find(t, at + 1)) {
+    for (size_t at = head.find(t); at != std::string::npos && at < best; at = head.find(t, at + 1)) {
       size_t ls = head.rfind('\n', at);
       ls = ls == std::string::npos ? 0 : ls + 1;
-      if (sig.line_start && head.find_first_not_of(" \t", ls) != at) continue;
+      const size_t first = head.find_first_not_of(" \t", ls);
+      if (!sig.line ? first != at : head.compare(first, std::strlen(sig.line), sig.line) != 0) continue;
+      best = at;
       info.cam = sig.cam;
       info.cam_evidence = "line " + std::to_string(1 + std::count(head.begin(), head.begin() + std::ptrdiff_t(at), '\n')) +
                           ": " + std::string(t);
-      return;
+      break;
     }
   }
 }
