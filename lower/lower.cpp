@@ -239,7 +239,11 @@ void Lowerer::record(const Record& r) {
       return;
 
     // Header facts read by the pre-scan, and records with no meaning for the output.
-    case MajorId::Partno: case MajorId::Machin: case MajorId::Multax: case MajorId::Remark:
+    case MajorId::Multax:
+      // MULTAX, MULTAX/ON: tool axes on the GOTOs (read wherever there are six values); OFF: none.
+      multax_off_ = r.params.size() == 1 && r.params[0].is("OFF");
+      return;
+    case MajorId::Partno: case MajorId::Machin: case MajorId::Remark:
     case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:
     case MajorId::Clrsrf: case MajorId::Toolno: case MajorId::Autops:
     case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler:
@@ -272,7 +276,9 @@ void Lowerer::record(const Record& r) {
       if (motion_word(r.major)) {
         if (iequals(r.major, "TRANS") && no_shift(r)) return;  // TRANS/0,0,0 shifts nothing, as ORIGIN/0,0,0
         // REFSYS/NOMORE ends a reference system, and every REFSYS that starts one is refused.
-        if (iequals(r.major, "REFSYS") && r.params.size() == 1 && r.params[0].is("NOMORE")) return;
+        if (iequals(r.major, "REFSYS") && !r.params.empty() &&
+            std::all_of(r.params.begin(), r.params.end(), [](const Param& p) { return p.is("NOMORE") || p.is("OFF"); }))
+          return;
         motion_not_read(r, motion_hint(r.major));
         return;
       }
@@ -411,8 +417,11 @@ void Lowerer::not_read(const Record& r, std::string_view why, std::string_view c
 // point would be cut at the step's value (10 mm from the origin, not from the last point).
 // Refused where it stands (SET/MODE,INCR is refused by the frame records). True when refused.
 bool Lowerer::incremental_points(const Record& r) {
-  auto incremental = [](const Param& p) {
-    return p.is("INCR") || p.is("INCREM") || p.is("INCREMENTAL") || p.is("RELATIVE");
+  // INCR,OFF and INCR,NOMORE switch it off: the absolute points clpc reads.
+  auto incremental = [&](size_t i) {
+    const Param& p = r.params[i];
+    const bool off = i + 1 < r.params.size() && (r.params[i + 1].is("OFF") || r.params[i + 1].is("NOMORE"));
+    return !off && (p.is("INCR") || p.is("INCREM") || p.is("INCREMENTAL") || p.is("RELATIVE"));
   };
   auto absol_off = [&] {
     for (size_t i = 0; i + 1 < r.params.size(); ++i)
@@ -421,9 +430,10 @@ bool Lowerer::incremental_points(const Record& r) {
   };
   bool refused = false;
   if (r.id == MajorId::Mode || iequals(r.major, "COORD")) {
-    refused = absol_off() || std::any_of(r.params.begin(), r.params.end(), incremental);
+    refused = absol_off();
+    for (size_t i = 0; i < r.params.size(); ++i) refused |= incremental(i);
   } else if (iequals(r.major, "INCR") || iequals(r.major, "INCREM") || iequals(r.major, "INCREMENTAL")) {
-    refused = !(r.params.size() == 1 && r.params[0].is("OFF"));
+    refused = !(r.params.size() == 1 && (r.params[0].is("OFF") || r.params[0].is("NOMORE")));
   } else if (iequals(r.major, "ABSOL")) {
     refused = r.params.size() == 1 && r.params[0].is("OFF");
   }
@@ -581,6 +591,12 @@ void Lowerer::make_room() {
 }
 
 ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {
+  // A line of text between the points of a Creo arc (a PPRINT, a record passed through) is
+  // written before the arc, which stays open: it ended the arc, and the points after it were
+  // cut as chords up to 0.76 mm inside a 10 mm circle (certified).
+  if (arc_open_ && (std::holds_alternative<ir::Comment>(op) || std::holds_alternative<ir::Passthrough>(op)) &&
+      !op_.body.empty() && std::holds_alternative<ir::Arc>(op_.body.back().op))
+    return *op_.body.insert(op_.body.end() - 1, ir::Instr{loc, std::move(op)});
   arc_open_ = false;
   if (retract_pending_) [[unlikely]]
     check_retract(loc, op);

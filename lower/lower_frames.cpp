@@ -109,13 +109,15 @@ void Lowerer::lower_rotabl(const Record& r) {
     else if (p.is("CCLW")) ri.dir = ir::ArcDir::Ccw;
     else if (p.is_number() && !angle) {
       constexpr double kPi = 3.14159265358979323846;
-      // Radians beyond a whole turn are no angle a CAM system writes: the file is another
-      // system's, in degrees, and the two readings turn the part differently. Refused.
-      if (info_.cam == ir::CamSystem::SolidWorks && std::abs(p.number) > 2 * kPi + 1e-9) {
+      // Radians beyond a whole turn (6.2832, rounded, is one) are no angle a CAM system writes:
+      // the file is another system's, in degrees, and the two readings turn the part
+      // differently. Refused.
+      if (info_.cam == ir::CamSystem::SolidWorks && std::abs(p.number) > 2 * kPi + 1e-3) {
         d_.error(p.loc, "ROTABL: SolidWorks CAM / CAMWorks files give the angle in radians (the file was taken for "
                         "one from " + info_.cam_evidence + "), and " + std::string(p.name()) +
                         " radians is more than a whole turn: is the angle in degrees? The two readings turn the part "
-                        "differently; have the CAM system write the tool axis on the GOTOs (MULTAX)");
+                        "differently; have the CAM system write the tool axis on the GOTOs (MULTAX), or remove "
+                        "OPFEATSTART if the file is not SolidWorks CAM's");
         return;
       }
       ri.angle = p.number * (info_.cam == ir::CamSystem::SolidWorks ? 180 / kPi : 1.0);

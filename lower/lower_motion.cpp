@@ -246,6 +246,14 @@ bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
 }
 
 void Lowerer::lower_goto(const Record& r) {
+  // Under MULTAX/OFF APT writes three values a point: six are two points. A CAM system that
+  // means a point and its tool axis has left MULTAX/OFF in force; the readings differ (a point
+  // dropped, or a tool axis cut as a point near the origin): refused, not read at a guess.
+  if (multax_off_ && r.params.size() == 6) {
+    d_.error(r.params[3].loc, "GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs "
+                              "MULTAX/ON; have the CAM system write MULTAX/ON before points with a tool axis");
+    return;
+  }
   ir::Vec3 p, a;
   bool has_axis = false;
   if (!read_point(r, d_, p, a, has_axis)) return;

@@ -996,9 +996,13 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   // were unclamped (M11 M13) in the middle of the cut. The post's own brake codes are refused.
   const std::string haas = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,10,5\nFEDRAT/MMPM,200\n"
                            "GOTO/10,10,-2\nGOTO/60,10,-2\n";
-  Compiled brake = compile_text(haas + "AUXFUN/50\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
+  Compiled brake = compile_text(haas + "AUXFUN/8\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(brake.ok) << brake.diags;
-  EXPECT_THAT(brake.output, HasSubstr("\nM50\nN60 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
+  EXPECT_THAT(brake.output, HasSubstr("\nM8\nN60 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
+  // M50 is the Haas's pallet change: it may move them (helper-33).
+  Compiled pallet = compile_text(haas + "AUXFUN/50\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(pallet.ok) << pallet.diags;
+  EXPECT_THAT(pallet.output, HasSubstr("\nM50\nN60 M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 G01 X2.3622"));
   // A block that may move them (an axis word, even B-10.; G53): they are positioned again as the
   // post positions them, unclamped, alone, and clamped (restated with the cut, they were left
   // unclamped). A G28 with no axis named, which homes every axis on the Haas, is refused.
@@ -1202,6 +1206,20 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
   ASSERT_TRUE(iso.ok) << iso.diags;
   EXPECT_THAT(iso.output, HasSubstr(" G81 X0. Y0.7874 "));  // (20,0) turned 90 degrees
   // In a SolidWorks CAM file the angle is radians; more than a turn of them is refused.
+  // A whole turn written to four decimals is a turn.
+  std::string turn = rot;
+  turn.replace(turn.find("ROTABL/90"), 9, "ROTABL/6.2832");
+  Compiled whole = compile_text("OPFEATSTART/Drill1\n" + turn, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(whole.ok) << whole.diags;
+  EXPECT_THAT(whole.output, HasSubstr(" G81 X0.7874 Y0. "));
+  // A comment naming another system after NX's header does not make the file that system's
+  // (read as CATIA's, an NX arc turned the other way round its centre).
+  Compiled nx = compile_text("TOOL PATH/CONTOUR,TOOL,EM10\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\n"
+                             "PPRINT SEE CATIA APT VERSION NOTES\n$$ Pro/CLfile\nGOTO/90,70,-1\n"
+                             "CIRCLE/80,70,-1,0,0,1,10.0,0.06,0.5,10.0,0.0\nGOTO/80,80,-1\nEND-OF-PATH\n",
+                             machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(nx.ok) << nx.diags;
+  EXPECT_THAT(nx.output, HasSubstr("G02 X80. Y80. I-10. J0.\n"));
   Compiled sw = compile_text("OPFEATSTART/Drill1\n" + rot, machine("haas-umc750"));
   EXPECT_FALSE(sw.ok);
   EXPECT_THAT(sw.diags, HasSubstr("part.cls:6:8: error: ROTABL: SolidWorks CAM / CAMWorks files give the angle in "
@@ -1217,4 +1235,20 @@ TEST(CamSystems, ACutWithNoFeedIsRefusedOnce) {
                             machine("fanuc-mill"));
   EXPECT_FALSE(c.ok);
   EXPECT_EQ(messages(c.diags), "part.cls:6:1: error: cutting move with no feed rate: no FEDRAT before it\n");
+}
+
+// A line of text between the points of a Creo arc is written before the arc, which goes on:
+// it ended the arc, and the points after it were cut as chords up to 0.76 mm inside the 10 mm
+// circle (certified). (helper-34)
+TEST(CamSystems, TextBetweenTheCreoArcsPointsDoesNotEndTheArc) {
+  const std::string pts = "GOTO / 80, 80, -1\nGOTO / 72.9289321881, 77.0710678119, -1\nGOTO / 70, 70, -1\n";
+  for (const char* text : {"PPRINT hello\n", "FOOBAR/1\n", "$$ note\n"}) {
+    Compiled c = compile_text("$$*          Pro/CLfile  Version 19.0 - 9738\nUNITS / MM\nLOADTL / 4\n"
+                              "SPINDL / RPM, 3000, CLW\nRAPID\nGOTO / 90, 70, 2\nFEDRAT / 300, MMPM\nGOTO / 90, 70, -1\n"
+                              "CIRCLE / 80, 70, -1, 0, 0, 1, 10\nGOTO / 87.0710678119, 77.0710678119, -1\n" +
+                                  std::string(text) + pts + "GOTO / 60, 70, -1\n",
+                              machine("fanuc-mill"), {.certify = true});
+    ASSERT_TRUE(c.ok) << text << c.diags;
+    EXPECT_THAT(c.output, HasSubstr("G03 X70. I-10. J0.\nN90 G01 X60.\n")) << text;
+  }
 }

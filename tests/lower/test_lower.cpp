@@ -38,8 +38,19 @@ TEST(Lower, GotoThreeAndSixValuesToolAxisPersists) {
 // values that are two points, as under MULTAX/OFF) and is refused, not made one at a guess.
 TEST(Lower, ToolAxisIsNormalised) {
   EXPECT_THAT(instrs("GOTO/1,2,3,0,0,1.004\n"), ElementsAre("feed (1, 2, 3) axis (0, 0, 1)"));
-  EXPECT_EQ(err("MULTAX/OFF\nGOTO/10,0,5,20,0,5\n"),
-            "2:13: GOTO: the tool axis (i,j,k) is not a unit vector (its length is 20.6155): these are not a tool axis's values");
+  EXPECT_EQ(err("GOTO/10,0,5,20,0,5\n"),
+            "1:13: GOTO: the tool axis (i,j,k) is not a unit vector (its length is 20.6155): these are not a tool axis's values");
+}
+
+// Under MULTAX/OFF six values are two points to APT, a point and its axis to a CAM system that
+// left MULTAX/OFF in force: the second point (0,0,1) was dropped, certified. Refused; MULTAX/ON
+// or a bare MULTAX (CATIA) gives the axis again. (helper-32)
+TEST(Lower, SixValuesUnderMultaxOffAreRefused) {
+  EXPECT_EQ(err("MULTAX/OFF\nGOTO/10,0,-2,0,0,1\n"),
+            "2:14: GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs MULTAX/ON; have the "
+            "CAM system write MULTAX/ON before points with a tool axis");
+  EXPECT_THAT(instrs("MULTAX/OFF\nGOTO/1,2,3\nMULTAX/ON\nGOTO/10,0,-2,0,0,1\nMULTAX/OFF\nMULTAX\nGOTO/4,5,6,0,0,1\n"),
+              ElementsAre("feed (1, 2, 3)", "feed (10, 0, -2) axis (0, 0, 1)", "feed (4, 5, 6) axis (0, 0, 1)"));
 }
 
 TEST(Lower, RapidIsOneShot) {
@@ -371,7 +382,8 @@ TEST(Lower, IncrementalCLDataIsRefusedWhereverItIsSaid) {
                   "' makes the points that follow incremental (each a step from the one before), and clpc reads CL "
                   "points as absolute: have the CAM system write absolute points")
         << rec;
-  for (const char* rec : {"MODE/ABSOL", "ABSOL", "ABSOL/ON", "INCR/OFF", "MODE/MILL", "REFSYS/NOMORE"}) {
+  for (const char* rec : {"MODE/ABSOL", "ABSOL", "ABSOL/ON", "INCR/OFF", "MODE/MILL", "REFSYS/NOMORE", "MODE/INCR,OFF",
+                          "COORD/INCR,NOMORE", "REFSYS/OFF"}) {
     Lowered l = lower_text(std::string("GOTO/0,0,0\n") + rec + "\nGOTO/10,0,0\n");
     EXPECT_EQ(first_error(l.diags), "") << rec;
   }
