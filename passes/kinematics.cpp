@@ -122,7 +122,15 @@ class Kinematics : public Pass {
         // The tool goes up for a change, or for the tool in the spindle loaded with another
         // register; loaded again as it is (CATIA's LOADTL at every operation), it stays.
         const int offset = tc->length_offset > 0 ? tc->length_offset : tc->tool;
-        if (tc->tool != tool_ || offset != tool_offset_) tool_up_ = true;
+        if (tc->tool == tool_ && offset == tool_offset_) {
+          // The tool in the spindle loaded again as it is (NX's LOAD/TOOL at every operation,
+          // or between two points of a cut): the backend writes nothing, the tool stays at the
+          // last CL point and the modes stay on. Switching them off and forgetting the point
+          // wrote G49 and G234 in the cut and turned B and C together where C turns alone first.
+          out.push_back(std::move(in));
+          continue;
+        }
+        tool_up_ = true;
         tool_ = tc->tool;
         tool_offset_ = offset;
         const ir::ToolInfo* t = ctx.info.tool(tc->tool);

@@ -254,6 +254,22 @@ TEST(KinematicsPass, ARapidLeavingTheVerticalTurnsTheFreeAxisAtRapid) {
   EXPECT_THAT(c.output, HasSubstr("G94 G01 Z0. F19.69\n"));
 }
 
+// The tool in the spindle loaded again between two points of a five-axis cut changes nothing:
+// it switched TCPC off and on in the cut (G49, G234) and forgot the point, so C turned with B
+// in the cut instead of alone at the vertical first. (helper-34)
+TEST(KinematicsPass, TheSameToolLoadedAgainInACutChangesNothing) {
+  const std::string head =
+      "TOOL PATH/VAR_AXIS,TOOL,BALL10\nTLDATA/MILL,10,5,75,0,0\nLOAD/TOOL,1,ADJUST,1\nSPINDL/RPM,6000,CLW\nRAPID\n"
+      "GOTO/20,10,10,0,0,1\nFEDRAT/MMPM,500\nGOTO/20,10,0,0,0,1\n";
+  const std::string tail = "GOTO/25,10,0,0,0.1736482,0.9848078\nGOTO/30,10,0,0,0.3420201,0.9396926\nEND-OF-PATH\n";
+  Compiled plain = compile_text(head + tail, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(plain.ok) << plain.diags;
+  Compiled again = compile_text(head + "LOAD/TOOL,1,ADJUST,1\n" + tail, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(again.ok) << again.diags;
+  EXPECT_EQ(again.output, plain.output);
+  EXPECT_THAT(again.output, HasSubstr("\nN50 C90.\nN55 X0.9843 B10.\n"));
+}
+
 // From a side face (B90) to a simultaneous operation on the top, same tool: the rapid into it
 // turned B while the tip ran straight across from the side face's end, through the part's
 // corner. The tool now goes up first, as before a 3+2 operation; after a tool change it is up.
