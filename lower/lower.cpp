@@ -265,6 +265,7 @@ void Lowerer::record(const Record& r) {
       if (r.params.size() == 1 && (r.params[0].is("MILL") || r.params[0].is("TURN") || r.params[0].is("LATHE") ||
                                    r.params[0].is("ABSOL")))
         return;
+      if (r.params.size() == 2 && r.params[0].is("ABSOL") && r.params[1].is("ON")) return;
       unknown(r, "not supported by clpc's machines", true);
       return;
     case MajorId::Head:
@@ -436,6 +437,7 @@ bool Lowerer::incremental_points(const Record& r) {
     refused = !(r.params.size() == 1 && (r.params[0].is("OFF") || r.params[0].is("NOMORE")));
   } else if (iequals(r.major, "ABSOL")) {
     refused = r.params.size() == 1 && r.params[0].is("OFF");
+    for (size_t i = 0; i < r.params.size(); ++i) refused |= incremental(i);  // ABSOL/INCR
   }
   std::string said = head_and_major(r);
   for (size_t i = 0; i < r.params.size(); ++i) said += (i ? "," : "/") + std::string(r.params[i].name());

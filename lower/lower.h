@@ -153,7 +153,8 @@ class Lowerer : public RecordSink {
 
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
-  bool multax_off_ = false;  // MULTAX/OFF in force: a GOTO's six values would be two points
+  bool multax_off_ = false;
+  char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it  // MULTAX/OFF in force: a GOTO's six values would be two points
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)
   // A FROM after a rapid, elsewhere than the rapid left the tool: the next move must be a

@@ -400,11 +400,19 @@ void Lowerer::lower_cutcom(const Record& r) {
     if (reg != 0) c.reg = reg;
     side = true;
   }
+  if (!side && !on && c.plane != 0 && c.reg == 0) {
+    // CUTCOM/XYPLAN alone: the plane of the compensation turned on later (APT); it turns
+    // nothing on. It was refused; forgotten, a later CUTCOM/LEFT would take the plane square
+    // to the tool.
+    comp_plane_ = c.plane;
+    return;
+  }
   if (!side) {
     d_.error(r.loc, on ? "CUTCOM/ON with no earlier CUTCOM/LEFT or RIGHT: which side is not known"
                        : "CUTCOM: expected LEFT, RIGHT or OFF");
     return;
   }
+  if (c.plane == 0 && c.side != ir::CompSide::Off) c.plane = comp_plane_;
   if (c.plane != 0) {
     // The plane square to the tool is the one compensation works in, whatever the CL calls it
     // (a 3+2 side face is the CL's ZX plane): only another plane is kept, for the backend.

@@ -376,14 +376,14 @@ TEST(Lower, UnknownRecordWarnsAndPassesThrough) {
 // is what clpc reads: nothing to do. (helper-31's probe.)
 TEST(Lower, IncrementalCLDataIsRefusedWhereverItIsSaid) {
   for (const char* rec : {"MODE/INCR", "MODE/INCREM", "MODE/INCREMENTAL", "MODE/RELATIVE", "MODE/ABSOL,OFF",
-                          "MODE/MILL,INCR", "COORD/INCR", "INCR", "INCR/ON", "INCREMENTAL", "ABSOL/OFF"})
+                          "MODE/MILL,INCR", "COORD/INCR", "INCR", "INCR/ON", "INCREMENTAL", "ABSOL/OFF", "ABSOL/INCR"})
     EXPECT_EQ(err(std::string("GOTO/0,0,0\n") + rec + "\nGOTO/10,0,0\n"),
               "2:1: '" + std::string(rec) +
                   "' makes the points that follow incremental (each a step from the one before), and clpc reads CL "
                   "points as absolute: have the CAM system write absolute points")
         << rec;
   for (const char* rec : {"MODE/ABSOL", "ABSOL", "ABSOL/ON", "INCR/OFF", "MODE/MILL", "REFSYS/NOMORE", "MODE/INCR,OFF",
-                          "COORD/INCR,NOMORE", "REFSYS/OFF"}) {
+                          "COORD/INCR,NOMORE", "REFSYS/OFF", "MODE/ABSOL,ON"}) {
     Lowered l = lower_text(std::string("GOTO/0,0,0\n") + rec + "\nGOTO/10,0,0\n");
     EXPECT_EQ(first_error(l.diags), "") << rec;
   }
