@@ -34,6 +34,16 @@ void Lowerer::record(const Record& r) {
     return;
   }
   if (finished_) {
+    // Motion after FINI (a second program in the file, or a FINI inside an operation) would be
+    // lost: it was ignored with a warning and the program certified without its cuts. Refused
+    // at the first such record; anything else after FINI is ignored.
+    if (moves_the_tool(r)) {
+      if (!refused_after_fini_)
+        d_.error(r.loc, "'" + head_and_major(r) + "' after FINI: FINI ends the program, and the motion after it "
+                        "would be lost; remove the FINI before it, or post each program from a file of its own");
+      refused_after_fini_ = true;
+      return;
+    }
     if (!warned_after_fini_)
       d_.warning(r.loc, "records after FINI are ignored", "after-fini");
     warned_after_fini_ = true;
@@ -359,6 +369,21 @@ std::string head_and_major(const Record& r) {
 
 // Records that only name or describe (text, header facts, tolerances): nothing in them moves
 // the tool or changes how it cuts.
+// A record that moves the tool or changes which tool cuts: motion, arcs, holes, a tool change,
+// a subroutine call or a repeat, a rotary turned by record, or a name that reads as motion.
+bool moves_the_tool(const Record& r) {
+  switch (r.id) {
+    case MajorId::Goto: case MajorId::From: case MajorId::Gohome: case MajorId::Godlta: case MajorId::Circle:
+    case MajorId::Movarc: case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Cycle:
+    case MajorId::Calsub: case MajorId::Thread: case MajorId::Copy: case MajorId::Index: case MajorId::Rotabl:
+    case MajorId::Rotate: case MajorId::Rothed: case MajorId::Gofwd: case MajorId::Golft: case MajorId::Gorgt:
+    case MajorId::Goback: case MajorId::Goup: case MajorId::Godown: case MajorId::Psis: case MajorId::Indirp:
+      return true;
+    case MajorId::Unknown: return motion_word(r.major);
+    default: return false;
+  }
+}
+
 bool carries_nothing_to_cut(MajorId id) {
   switch (id) {
     case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: case MajorId::Partno: case MajorId::Remark:
@@ -468,6 +493,10 @@ constexpr MotionWord kMotionWords[] = {
     {"DNTCUT", "the motion after it is not to be cut; have the CAM system leave that motion out"},
     {"CUT", "it ends a DNTCUT block; have the CAM system leave the uncut motion out"},
     {"LOOP", "a repeat of the records that follow; have the CAM system write them out in full"},
+    {"LOOPST", "it starts an APT loop (LOOPST ... JUMPTO ... LOOPND); have the CAM system write the records out in full"},
+    {"LOOPND", "it ends an APT loop (LOOPST ... JUMPTO ... LOOPND); have the CAM system write the records out in full"},
+    {"JUMPTO", "a jump to a label: the records between would run again or not at all; have the CAM system write the "
+               "records out in full"},
     {"POCKET", "APT pocketing needs the part model; have the CAM system write the pocket as GOTO and CIRCLE records"},
     {"ARCSLP", "it changes how CIRCLE records are cut; have the CAM system write plain CIRCLE records"},
     {"ROTHED", "a rotary head positioned by record; have the CAM system write the tool axis on the GOTOs (MULTAX)"},

@@ -20,6 +20,7 @@ namespace clpc {
 bool is_contour_motion(MajorId id);
 // PPRINT, PARTNO, INTOL, ...: records that neither move the tool nor change how it cuts (lower/lower.cpp).
 bool carries_nothing_to_cut(MajorId id);
+bool moves_the_tool(const Record& r);
 std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
 bool motion_word(std::string_view major);
@@ -154,6 +155,8 @@ class Lowerer : public RecordSink {
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
   bool multax_off_ = false;
+  bool refused_after_fini_ = false;
+  size_t replayed_records_ = 0;  // records CALSUB replayed, for kMaxReplayedRecords
   char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it  // MULTAX/OFF in force: a GOTO's six values would be two points
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)

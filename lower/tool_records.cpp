@@ -81,6 +81,13 @@ ToolRecord read_tool_record(const Record& r, Diagnostics* d) {
       for (size_t j = 0; j < numbers && k + 1 < r.params.size() && r.params[k + 1].is_number(); ++j) ++k;
       continue;
     }
+    // LOADTL/2,NEXT: the tool to get ready (a preselection) or the one to load now; loaded now,
+    // the cuts the CL gives the tool in the spindle were made with it (certified).
+    if (!t.preselect && (p.is("NEXT") || p.is("PRESEL") || p.is("PRESELECT"))) {
+      fail(p.loc, std::string(p.text) + ": the tool to get ready or the one to load now? Which is meant is not known; "
+                  "have the CAM system write SELECT/TOOL," + std::to_string(t.number) + " for a tool to get ready");
+      continue;
+    }
     if (p.is_word() && !p.is("OSETNO") && !p.is("ADJUST") && d)
       d->warning(p.loc, std::string(r.major) + ": the word '" + std::string(p.text) + "' is not read (the tool is loaded " +
                             "with its number and offset register only)",

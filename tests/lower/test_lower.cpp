@@ -470,6 +470,40 @@ TEST(LowerErrors, Subroutines) {
   EXPECT_EQ(err("DEFSUB/1\nDEFSUB/2\nENDSUB\n"), "2:1: DEFSUB inside DEFSUB/1: subroutine definitions cannot nest");
   EXPECT_EQ(err("DEFSUB/1\nGOTO/1,2,3\n"), "1:1: DEFSUB/1 has no ENDSUB");
   EXPECT_EQ(err("DEFSUB/1\nCALSUB/1\nENDSUB\nCALSUB/1\n"), "2:1: CALSUB/1: subroutine calls nest deeper than 16 (recursion?)");
+  // A repeat count was dropped: the body ran once. (helper-36)
+  EXPECT_EQ(err("DEFSUB/1\nGOTO/1,2,3\nENDSUB\nCALSUB/1,3\n"),
+            "4:10: CALSUB/1: the words after the subroutine number (a repeat count?) are not read; write one CALSUB/1 "
+            "for each call");
+  // Calls inside calls multiply (11 levels of 20 calls: 2e14 moves, until the disk was full).
+  std::string bomb = "DEFSUB/0\nGOTO/1,2,3\nENDSUB\n";
+  for (int k = 1; k <= 6; ++k) {
+    bomb += "DEFSUB/" + std::to_string(k) + "\n";
+    for (int c = 0; c < 20; ++c) bomb += "CALSUB/" + std::to_string(k - 1) + "\n";
+    bomb += "ENDSUB\n";
+  }
+  EXPECT_THAT(err(bomb + "CALSUB/6\n"), ::testing::EndsWith(": subroutine calls replay more than 4194304 records "
+                                                            "(calls inside calls multiply); clpc stops replaying them"));
+}
+
+// Motion after FINI was ignored with a warning, and the program certified without its cuts (a
+// second program in the file, a FINI inside an operation). Refused at its first record; other
+// records after FINI are ignored with a warning. APT's jumps are refused as LOOP is. (helper-36)
+TEST(LowerErrors, MotionAfterFiniAndJumpsAreRefused) {
+  EXPECT_EQ(err("GOTO/0,0,0\nFINI\nPPRINT next\nGOTO/1,0,0\nGOTO/2,0,0\n"),
+            "4:1: 'GOTO' after FINI: FINI ends the program, and the motion after it would be lost; remove the FINI "
+            "before it, or post each program from a file of its own");
+  Lowered quiet = lower_text("GOTO/0,0,0\nFINI\nPPRINT next\nCOOLNT/OFF\n");
+  EXPECT_EQ(first_error(quiet.diags), "");
+  EXPECT_EQ(count(quiet.diags, Severity::Warning), 1u);
+  for (const char* rec : {"LOOPST", "JUMPTO/L1", "LOOPND"})
+    EXPECT_THAT(err(std::string("GOTO/0,0,0\n") + rec + "\n"),
+                ::testing::StartsWith("2:1: '" + std::string(rec).substr(0, std::string(rec).find('/')) +
+                                      "' moves the tool and clpc does not read it"))
+        << rec;
+  // LOADTL/2,NEXT: a tool to get ready, or to load now? Loaded now, T1's cuts were made with T2.
+  EXPECT_EQ(err("LOADTL/1\nGOTO/0,0,0\nLOADTL/2,NEXT\nGOTO/1,0,0\n"),
+            "3:10: LOADTL: NEXT: the tool to get ready or the one to load now? Which is meant is not known; have the "
+            "CAM system write SELECT/TOOL,2 for a tool to get ready");
 }
 
 TEST(LowerErrors, UnitsChange) {
