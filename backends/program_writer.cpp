@@ -4,6 +4,7 @@
 #include "machine/block_check.h"
 
 #include <algorithm>
+#include <cctype>
 #include <numbers>
 
 #include "machine/format.h"
@@ -779,6 +780,14 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
     return "changes the tool length register (H), which the post selects from LOADTL: every Z after it would be off";
   if (!macro_call && !code_numbers(text, 'D').empty() && comp_on_)
     return "changes the cutter compensation register (D) while a CUTCOM is on: every point after it would be off";
+  // An O word (or ':') at the start of a block begins another program when the file is loaded:
+  // the program would end there.
+  std::string_view head = text;
+  while (!head.empty() && (head.front() == ' ' || head.front() == '\t')) head.remove_prefix(1);
+  if (!head.empty() && (head.front() == 'O' || head.front() == ':') && head.size() > 1 &&
+      std::isdigit(static_cast<unsigned char>(head[1])))
+    return "starts another program (" + std::string(head.substr(0, head.find(' '))) +
+           "): loaded into the control, the program would end before it; the post writes the program number";
   for (double mc : code_numbers(text, 'M')) {
     const int n = int(std::lround(mc));
     if (n == 2 || n == 30)

@@ -1252,3 +1252,15 @@ TEST(CamSystems, TextBetweenTheCreoArcsPointsDoesNotEndTheArc) {
     EXPECT_THAT(c.output, HasSubstr("G03 X70. I-10. J0.\nN90 G01 X60.\n")) << text;
   }
 }
+
+// An O word at the start of an inserted block begins another program when the file is loaded:
+// the program ended there (exit 0, certified). Refused at the INSERT. (helper-36)
+TEST(CamSystems, AnInsertedProgramNumberIsRefused) {
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\n"
+                            "INSERT/O1234\nGOTO/10,0,0\n",
+                            machine("fanuc-mill"));
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:7:1: error: the block 'O1234' (INSERT, PREFUN or AUXFUN) starts another "
+                                 "program (O1234): loaded into the control, the program would end before it; the post "
+                                 "writes the program number"));
+}
