@@ -248,6 +248,9 @@ class Comparison : public ProgramSink {
   // The tool the CL loaded cuts, with its own length offset (a wrong H puts the tip where
   // another tool's length says). Reported once per tool change.
   void tool_ok(const TipSegment& s);
+  // Whether the machine's programs select a length offset register (a mill's G43 H, a lathe's
+  // T word): then one must be in force where the CL's points are reached.
+  bool offsets_written() const { return m_.is_lathe() || !m_.codes.length_offset.empty(); }
 
   // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
   // it) is the cut made at rapid traverse; a rapid the post adds (a retract, a positioning

@@ -327,10 +327,13 @@ void Comparison::tool_ok(const TipSegment& s) {
   if (s.raw.tool != want_tool_) {
     fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl(), 0);
     tool_reported_ = true;
-  } else if (s.raw.length_register > 0 && s.raw.length_register != want_h_) {
+  } else if ((s.raw.length_register > 0 || offsets_written()) && s.raw.length_register != want_h_) {
+    // Register 0 (G43 H00, a lathe's T0100) is no offset at all: the tip off by the tool's
+    // length. It was taken for "none said" and passed.
     fail(loc_, s.raw.line,
-         "the tool length offset in force is register " + std::to_string(s.raw.length_register) + ", tool " +
-             std::to_string(want_tool_) + "'s is " + std::to_string(want_h_) + cl(),
+         (s.raw.length_register == 0 ? std::string("no tool length offset is in force (register 0)")
+                                     : "the tool length offset in force is register " + std::to_string(s.raw.length_register)) +
+             ", tool " + std::to_string(want_tool_) + "'s is " + std::to_string(want_h_) + cl(),
          0);
     tool_reported_ = true;
   }

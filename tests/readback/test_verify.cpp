@@ -141,6 +141,15 @@ TEST_F(VerifyPlate, PointShiftedBy0_01mmFails) {
   EXPECT_EQ(c.report.max_loc.line, 15u);
 }
 
+// Register 0 is no length offset at all (G43 H00; a lathe's T0100): the tip is off by the
+// tool's length. It was taken for "no register said" and passed. (helper-35)
+TEST_F(VerifyPlate, NoLengthOffsetFails) {
+  Checked c = verify(cl, m, edit(program_for(cl, m), "G43 H01", "G43 H00"));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:5:1: error: no tool length offset is in force (register 0), "
+                                              "tool 1's is 1 (the CL loads tool 1 at line 2)"));
+}
+
 TEST_F(VerifyPlate, DroppedBlockFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", ""));
   EXPECT_FALSE(c.report.ok);
