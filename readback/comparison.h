@@ -365,7 +365,8 @@ class Comparison : public ProgramSink {
   kin::RotaryIndexing indexing_;
   ir::Feed cl_feed_;          // the CL's feed in force
   SourceLoc cl_feed_loc_;
-  bool cl_spindle_ = false;   // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
+  bool cl_spindle_ = false;
+  int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known   // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z

@@ -299,7 +299,7 @@ class Interp {
         // how it is read: a cut after it with no M03 would be made with the spindle stopped.
         case 0: case 1: spindle_on_ = false; res_.events.push_back({Event::Kind::Stop, line, double(code)}); break;
         case 2: case 30: res_.ended = true; break;
-        case 3: case 4: spindle_on_ = true; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
+        case 3: case 4: spindle_on_ = true; spindle_code_ = code; res_.events.push_back({Event::Kind::Spindle, line, code == 3 ? 1.0 : -1.0}); break;
         case 5: case 19:  // M19 orients the spindle: it stops turning
           spindle_on_ = false;
           res_.events.push_back({Event::Kind::Spindle, line, 0});
@@ -1068,6 +1068,7 @@ class Interp {
   void spindle_info(Segment& s) const {
     s.per_rev = per_rev_;
     s.spindle = spindle_on_;
+    s.spindle_code = spindle_on_ ? spindle_code_ : 0;
     s.rpm = spindle_on_ ? spindle_ : 0;
     if (css_ && spindle_on_) {
       double r = std::abs((s.start.x() + s.end.x()) / 2);
@@ -1123,6 +1124,7 @@ class Interp {
   double spindle_ = 0;
   double max_rpm_ = 0;  // G50 S (lathe)
   bool spindle_on_ = false;
+  int spindle_code_ = 0;  // M03 or M04, the last that started the spindle
 };
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "machine/block_check.h"
 #include "readback/comparison.h"
 
 namespace clpc {
@@ -57,6 +58,10 @@ void Comparison::operation(const ir::Operation& op) {
             frame_ = x.frame;
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
+            // The M code the machine starts this direction with (M03 clockwise on the built-ins).
+            const std::vector<double> m =
+                code_numbers(x.dir == ir::SpindleDir::Ccw ? m_.codes.spindle_ccw.text : m_.codes.spindle_cw.text, 'M');
+            cl_spindle_code_ = m.empty() ? 0 : int(std::lround(m.front()));
           } else if constexpr (std::is_same_v<T, ir::Move>) {
             Vec3 p = model(x.point), a = model_dir(x.axis);
             if (x.kind == ir::MoveKind::From) {
@@ -153,6 +158,17 @@ void Comparison::consume(size_t n) {
 // SPINDL/OFF): the tool is fed into the part without turning. Said once until it turns again.
 void Comparison::spindle_ok(const TipSegment& s) {
   const bool cut = s.raw.kind != gcode::Segment::Kind::Rapid && finite(s.start) && (s.end - s.start).norm() > tol_;
+  // Turning the other way (M04 where the CL says CLW): the cutter rubs, or a tap strips its
+  // thread. Said once until the direction is right again.
+  if (cut && cl_spindle_ && s.raw.spindle && cl_spindle_code_ != 0 && s.raw.spindle_code != 0 &&
+      s.raw.spindle_code != cl_spindle_code_) {
+    if (!spindle_said_)
+      fail(loc_, s.raw.line, "the program cuts here with the spindle turning M0" + std::to_string(s.raw.spindle_code) +
+                                 ", where the CL turns it the way the machine's M0" + std::to_string(cl_spindle_code_) + " does",
+           0);
+    spindle_said_ = true;
+    return;
+  }
   if (!cut || !cl_spindle_ || s.raw.spindle) {
     if (s.raw.spindle) spindle_said_ = false;
     return;

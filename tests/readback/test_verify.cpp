@@ -150,6 +150,15 @@ TEST_F(VerifyPlate, NoLengthOffsetFails) {
                                               "tool 1's is 1 (the CL loads tool 1 at line 2)"));
 }
 
+// The spindle turning the other way (M04 where the CL says CLW, and the machine writes M03 for
+// it): the cutter rubs. It passed: only turning or not was checked. (helper-35)
+TEST_F(VerifyPlate, ACutWithTheSpindleTurningTheOtherWayFails) {
+  Checked c = verify(cl, m, edit(program_for(cl, m), "S3000 M03", "S3000 M04"));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:9:1: error: the program cuts here with the spindle turning M04, "
+                                              "where the CL turns it the way the machine's M03 does"));
+}
+
 TEST_F(VerifyPlate, DroppedBlockFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", ""));
   EXPECT_FALSE(c.report.ok);
