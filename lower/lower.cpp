@@ -369,21 +369,6 @@ std::string head_and_major(const Record& r) {
 
 // Records that only name or describe (text, header facts, tolerances): nothing in them moves
 // the tool or changes how it cuts.
-// A record that moves the tool or changes which tool cuts: motion, arcs, holes, a tool change,
-// a subroutine call or a repeat, a rotary turned by record, or a name that reads as motion.
-bool moves_the_tool(const Record& r) {
-  switch (r.id) {
-    case MajorId::Goto: case MajorId::From: case MajorId::Gohome: case MajorId::Godlta: case MajorId::Circle:
-    case MajorId::Movarc: case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret: case MajorId::Cycle:
-    case MajorId::Calsub: case MajorId::Thread: case MajorId::Copy: case MajorId::Index: case MajorId::Rotabl:
-    case MajorId::Rotate: case MajorId::Rothed: case MajorId::Gofwd: case MajorId::Golft: case MajorId::Gorgt:
-    case MajorId::Goback: case MajorId::Goup: case MajorId::Godown: case MajorId::Psis: case MajorId::Indirp:
-      return true;
-    case MajorId::Unknown: return motion_word(r.major);
-    default: return false;
-  }
-}
-
 bool carries_nothing_to_cut(MajorId id) {
   switch (id) {
     case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: case MajorId::Partno: case MajorId::Remark:
@@ -542,6 +527,20 @@ bool motion_word_exact(std::string_view major) {
 // of a line of typed text, "Move clamps clear", are judged by the exact names only.)
 bool motion_word(std::string_view major) { return motion_word_exact(major) || reads_as_motion(major); }
 
+// A record that moves the tool itself: a move, an arc, a subroutine call or a repeat, or a name
+// that reads as motion. (A CYCLE/OFF or a tool unload moves nothing: after FINI a warning.)
+bool moves_the_tool(const Record& r) {
+  switch (r.id) {
+    case MajorId::Goto: case MajorId::From: case MajorId::Gohome: case MajorId::Godlta: case MajorId::Circle:
+    case MajorId::Movarc: case MajorId::Calsub: case MajorId::Copy: case MajorId::Index: case MajorId::Gofwd:
+    case MajorId::Golft: case MajorId::Gorgt: case MajorId::Goback: case MajorId::Goup: case MajorId::Godown:
+    case MajorId::Indirp:
+      return true;
+    case MajorId::Unknown: return reads_as_motion(r.major);
+    default: return false;
+  }
+}
+
 std::string_view motion_hint(std::string_view major) {
   for (const MotionWord& w : kMotionWords)
     if (iequals(major, w.word)) return w.hint;
@@ -618,7 +617,11 @@ void Lowerer::make_room() {
     rough_open_ = false;
     op_.body.push_back(ir::Instr{op_.body.back().loc, ir::RoughMark{false}});
   }
-  if (op_.body.size() >= opt_.chunk_size && !rough_open_) flush_chunk();
+  // Nor does an open Creo arc: a line of text between its points goes before it, and flushed
+  // away it closed the arc (the points after it cut as chords), at chunk boundaries that the
+  // compile (1024) and the certificate's reference (256) do not share. Held to twice the chunk.
+  if (op_.body.size() >= opt_.chunk_size && !rough_open_ && !(arc_open_ && op_.body.size() < 2 * opt_.chunk_size))
+    flush_chunk();
 }
 
 ir::Instr& Lowerer::push(SourceLoc loc, ir::Op op) {

@@ -154,10 +154,10 @@ class Lowerer : public RecordSink {
 
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
-  bool multax_off_ = false;
-  bool refused_after_fini_ = false;
+  bool multax_off_ = false;  // MULTAX/OFF in force: a GOTO's six values would be two points
+  bool refused_after_fini_ = false;  // motion after FINI was said: once
   size_t replayed_records_ = 0;  // records CALSUB replayed, for kMaxReplayedRecords
-  char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it  // MULTAX/OFF in force: a GOTO's six values would be two points
+  char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)
   // A FROM after a rapid, elsewhere than the rapid left the tool: the next move must be a

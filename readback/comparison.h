@@ -248,9 +248,10 @@ class Comparison : public ProgramSink {
   // The tool the CL loaded cuts, with its own length offset (a wrong H puts the tip where
   // another tool's length says). Reported once per tool change.
   void tool_ok(const TipSegment& s);
-  // Whether the machine's programs select a length offset register (a mill's G43 H, a lathe's
-  // T word): then one must be in force where the CL's points are reached.
-  bool offsets_written() const { return m_.is_lathe() || !m_.codes.length_offset.empty(); }
+  // Whether the machine's programs select a length offset register (a mill's G43 H{offset}, a
+  // lathe's T word): then one must be in force where the CL's points are reached.
+  // (A G43 with no H, or a D: the register comes from elsewhere, and none is read.)
+  bool offsets_written() const { return m_.is_lathe() || m_.codes.length_offset.uses(Var::Offset); }
 
   // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
   // it) is the cut made at rapid traverse; a rapid the post adds (a retract, a positioning
@@ -365,8 +366,9 @@ class Comparison : public ProgramSink {
   kin::RotaryIndexing indexing_;
   ir::Feed cl_feed_;          // the CL's feed in force
   SourceLoc cl_feed_loc_;
-  bool cl_spindle_ = false;
-  int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known   // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
+  bool cl_spindle_ = false;  // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
+  int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
+  bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z

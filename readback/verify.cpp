@@ -162,13 +162,14 @@ void Comparison::spindle_ok(const TipSegment& s) {
   // thread. Said once until the direction is right again.
   if (cut && cl_spindle_ && s.raw.spindle && cl_spindle_code_ != 0 && s.raw.spindle_code != 0 &&
       s.raw.spindle_code != cl_spindle_code_) {
-    if (!spindle_said_)
+    if (!direction_said_)
       fail(loc_, s.raw.line, "the program cuts here with the spindle turning M0" + std::to_string(s.raw.spindle_code) +
                                  ", where the CL turns it the way the machine's M0" + std::to_string(cl_spindle_code_) + " does",
            0);
-    spindle_said_ = true;
+    direction_said_ = true;
     return;
   }
+  if (s.raw.spindle && s.raw.spindle_code == cl_spindle_code_) direction_said_ = false;
   if (!cut || !cl_spindle_ || s.raw.spindle) {
     if (s.raw.spindle) spindle_said_ = false;
     return;
@@ -585,6 +586,24 @@ void Comparison::hole(const Vec3& point, const Vec3& tool_axis) {
     deviate((s.end - bottom).norm(), loc_, s.raw.line);
     if (s.raw.kind == gcode::Segment::Kind::Rapid)
       fail(loc_, s.raw.line, "the hole's bottom is reached at rapid traverse", 0);
+    // A rapid down the hole's axis stops at the CL's R plane (CLEAR, RAPTO), or where the cycle
+    // has fed to already (a peck cycle's rapid back into the hole): an R below the CL's rapids
+    // into what the CL feeds through (R-9. on a hole whose top is Z0 passed).
+    const double r_plane = spec.clearance * k_;
+    double floor = r_plane;  // the lowest height along the axis a rapid may reach
+    for (size_t i = 0; i < *j; ++i) {
+      const TipSegment& d = win_[i];
+      if (!finite(d.start) || !finite(d.end) || on_axis(d.start) > tol_ || on_axis(d.end) > tol_) continue;
+      const double end_height = (d.end - top).dot(axis);
+      if (d.raw.kind != gcode::Segment::Kind::Rapid) {
+        floor = std::min(floor, end_height);
+      } else if ((d.start - d.end).dot(axis) > tol_ && end_height < floor - tol_) {
+        fail(loc_, d.raw.line, "the cycle rapids down to " + fixed_text(end_height, 4) + " above the hole's top, below the "
+                               "CL's R plane (" + fixed_text(r_plane, 4) + " above it): a rapid into what the CL feeds through",
+             0);
+        break;
+      }
+    }
     if (!axis_ok(s, axis)) fail(loc_, s.raw.line, "the hole is drilled with the tool off its axis", 0);
     if (spec.kind == ir::CycleKind::Tap) {
       tap_ok(s, spec);

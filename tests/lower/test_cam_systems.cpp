@@ -1251,6 +1251,19 @@ TEST(CamSystems, TextBetweenTheCreoArcsPointsDoesNotEndTheArc) {
     ASSERT_TRUE(c.ok) << text << c.diags;
     EXPECT_THAT(c.output, HasSubstr("G03 X70. I-10. J0.\nN90 G01 X60.\n")) << text;
   }
+  // Also where the text fills the chunk (the compile's 1024 instructions, the certificate's 256):
+  // flushed away, the arc closed there, refused in one reading and cut as chords in both in the
+  // other (certified). (helper-37)
+  for (int moves : {248, 249, 250, 1016, 1017, 1018}) {
+    std::string cl = "$$*          Pro/CLfile  Version 19.0 - 9738\nUNITS / MM\nLOADTL / 4\nSPINDL / RPM, 3000, CLW\n"
+                     "RAPID\nGOTO / 90, 70, 2\nFEDRAT / 300, MMPM\n";
+    for (int i = 0; i < moves; ++i) cl += i % 2 ? "GOTO / 90, 70, 2\n" : "GOTO / 90, 71, 2\n";
+    cl += "GOTO / 90, 70, -1\nCIRCLE / 80, 70, -1, 0, 0, 1, 10\nGOTO / 87.0710678119, 77.0710678119, -1\nPPRINT hello\n" +
+          pts + "GOTO / 60, 70, -1\n";
+    Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+    ASSERT_TRUE(c.ok) << moves << c.diags;
+    EXPECT_THAT(c.output, HasSubstr(" G03 X70. I-10. J0.\n")) << moves;
+  }
 }
 
 // An O word at the start of an inserted block begins another program when the file is loaded:

@@ -148,6 +148,10 @@ TEST_F(VerifyPlate, NoLengthOffsetFails) {
   EXPECT_FALSE(c.report.ok);
   EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:5:1: error: no tool length offset is in force (register 0), "
                                               "tool 1's is 1 (the CL loads tool 1 at line 2)"));
+  // A machine whose G43 names no register (the control takes it from the tool): none is read.
+  Machine plain = machine("g43-alone", "[g43-alone]\ninherits = \"fanuc-mill\"\n[g43-alone.codes]\nlength_offset = \"G43\"\n");
+  Checked alone = verify(cl, plain);
+  EXPECT_TRUE(alone.report.ok) << alone.diags;
 }
 
 // The spindle turning the other way (M04 where the CL says CLW, and the machine writes M03 for
@@ -199,6 +203,26 @@ TEST(Verify, ACyclesRapidAcrossIsNoStandInForAClFeed) {
   Compiled across = verify_text(cl, machine("fanuc-mill"), head + "N80 X20. Y0. Z5. R5.\nN90 G80\n" + tail);
   EXPECT_FALSE(across.ok);
   EXPECT_THAT(across.diags, HasSubstr("part.cl:10:1: error: this CL feed move is made at rapid traverse (G00) [G-code line 10]"));
+}
+
+// A cycle's R plane below the CL's (RAPTO 3 above the hole's top) rapids into what the CL feeds
+// through: R-9. on a hole whose top is Z0 passed. A higher R only costs time; a peck cycle's
+// rapids back into the hole start at R and are not counted. (helper-35)
+TEST(Verify, ACycleWhoseRPlaneIsBelowTheClsFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100,MMPM\nRAPID\nGOTO/0,0,20\n"
+                         "CYCLE/DEEP,FEDTO,10,INCR,2,RAPTO,3,MMPM,100\nGOTO/10,0,0\nCYCLE/OFF\nRAPID\nGOTO/10,0,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("G83 X10. Y0. Z-10. R3. Q2. F100.\n"));
+  for (const char* r : {"R-9.", "R0.", "R2.99"}) {
+    Compiled low = verify_text(cl, machine("fanuc-mill"), edit(c.output, "R3.", r));
+    EXPECT_FALSE(low.ok) << r;
+    EXPECT_THAT(low.diags, HasSubstr("part.cl:8:1: error: the cycle rapids down to ")) << r;
+    EXPECT_THAT(low.diags, HasSubstr(" above the hole's top, below the CL's R plane (3.0000 above it): a rapid into what "
+                                     "the CL feeds through")) << r;
+  }
+  Compiled high = verify_text(cl, machine("fanuc-mill"), edit(c.output, "R3.", "R5."));
+  EXPECT_TRUE(high.ok) << high.diags;
 }
 
 // An arc of more than a turn (Fusion's MOVARC angle) passes its end at each turn: the arc's end
