@@ -168,15 +168,11 @@ TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
                                   "mill's cutter compensation is taken in the plane square to the tool, so the offset "
                                   "would be taken in another plane than the CL asks"));
   // A plane named alone is the plane of the compensation turned on after it (it was refused).
-  Compiled alone = compile_text(
-      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/ZXPLAN\n"
-      "CUTCOM/RIGHT,2\nGOTO/10,0,-1\n",
-      machine("fanuc-mill"));
+  const std::string to_5 = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\n";
+  Compiled alone = compile_text(to_5 + "CUTCOM/ZXPLAN\nCUTCOM/RIGHT,2\nGOTO/10,0,-1\n", machine("fanuc-mill"));
   EXPECT_THAT(alone.diags, HasSubstr("part.cls:8:1: error: CUTCOM in the ZX plane, which is not square to the tool axis"));
-  Compiled plane_xy = compile_text(
-      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/XYPLAN\n"
-      "CUTCOM/RIGHT,2\nGOTO/10,0,-1\nGOTO/20,0,-1\nCUTCOM/OFF\nGOTO/20,0,5\n",
-      machine("fanuc-mill"), {.certify = true});
+  Compiled plane_xy = compile_text(to_5 + "CUTCOM/XYPLAN\nCUTCOM/RIGHT,2\nGOTO/10,0,-1\nGOTO/20,0,-1\nCUTCOM/OFF\nGOTO/20,0,5\n",
+                                   machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(plane_xy.ok) << plane_xy.diags;
   EXPECT_THAT(plane_xy.output, HasSubstr("G42 D2 "));
   // A 3+2 side face is the CL's ZX plane: square to the tool, posted.
