@@ -8,6 +8,13 @@
 namespace clpc {
 
 void Lowerer::lower_tool_change(const Record& r) {
+  // A preselection moves nothing: one whose tool number cannot be read is said and skipped
+  // (it stopped the post); the tool change still loads the tool.
+  if (r.id == MajorId::Select && read_tool_record(r, nullptr).number < 0) {
+    d_.warning(r.loc, "SELECT/TOOL with no tool number clpc can read: no preselection is written (the tool change "
+                      "still loads the tool)", "not-supported");
+    return;
+  }
   ToolRecord t = read_tool_record(r, &d_);
   if (t.number < 0) return;
   ensure_operation(r.loc);

@@ -502,6 +502,15 @@ TEST(LowerErrors, MotionAfterFiniAndJumpsAreRefused) {
                 ::testing::StartsWith("2:1: '" + std::string(rec).substr(0, std::string(rec).find('/')) +
                                       "' moves the tool and clpc does not read it"))
         << rec;
+  // A preselection moves nothing: one clpc cannot read is said, not refused.
+  for (const char* rec : {"SELECT/TOOL", "SELECT/TOOL,abc", "SELECT/TOOL,99999999999"}) {
+    Lowered l = lower_text(std::string("LOADTL/1\nGOTO/0,0,0\n") + rec + "\nGOTO/1,0,0\n");
+    EXPECT_EQ(first_error(l.diags), "") << rec;
+    EXPECT_TRUE(std::any_of(l.diags.begin(), l.diags.end(), [](const Diagnostic& d) {
+      return d.message == "SELECT/TOOL with no tool number clpc can read: no preselection is written (the tool change "
+                          "still loads the tool)";
+    })) << rec;
+  }
   // LOADTL/2,NEXT: a tool to get ready, or to load now? Loaded now, T1's cuts were made with T2.
   EXPECT_EQ(err("LOADTL/1\nGOTO/0,0,0\nLOADTL/2,NEXT\nGOTO/1,0,0\n"),
             "3:10: LOADTL: NEXT: the tool to get ready or the one to load now? Which is meant is not known; have the "
