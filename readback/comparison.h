@@ -82,7 +82,7 @@ class Comparison : public ProgramSink {
   // (a move shorter than the output resolution is rightly dropped).
   // Blocks that follow and end within the tolerance of the point too (the CL dithering about
   // it by less than the tolerance, each step written) are this point's: taken with it.
-  bool already_there(const Vec3& p);
+  bool already_there(const Vec3& p, const Vec3* axis = nullptr);
 
   void take_reader_problems();
 
@@ -361,6 +361,7 @@ class Comparison : public ProgramSink {
   Vec3 prev_ = Vec3::Zero();  // the last CL point
   bool have_prev_ = false;
   Vec3 at_ = Vec3::Zero();    // where the program has taken the tool (the last segment passed)
+  Vec3 at_axis_ = Vec3::Zero();  // the tool axis there
   bool have_at_ = false;
   ir::Frame frame_;
   kin::RotaryIndexing indexing_;

@@ -148,6 +148,7 @@ void Comparison::consume(size_t n) {
     spindle_ok(win_.front());
     if (finite(win_.front().end)) {
       at_ = win_.front().end;
+      at_axis_ = win_.front().axis;
       have_at_ = true;
     }
     win_.pop_front();
@@ -181,8 +182,14 @@ void Comparison::spindle_ok(const TipSegment& s) {
        0);
 }
 
-bool Comparison::already_there(const Vec3& p) {
+bool Comparison::already_there(const Vec3& p, const Vec3* axis) {
   if (!have_at_ || (at_ - p).norm() > tol_) return false;
+  // The tip is there, but not the tool axis (a turn of the rotaries on the spot still to come):
+  // the point is reached by the block that turns them. Taken as reached, a tilt moved into the
+  // next cut passed, the axis 15 degrees off at the CL point.
+  if (axis && five_axis_ && at_axis_.norm() > 0 &&
+      kin::angle_between(at_axis_.normalized(), axis->normalized()) > axis_tol_)
+    return false;
   deviate((at_ - p).norm(), loc_, 0);
   while (const TipSegment* s = peek(0)) {
     if (!finite(s->end) || (s->end - p).norm() > tol_ || s->rotates) break;
@@ -409,7 +416,7 @@ void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
   const LineDistance on_path{from, p, have_from};
   double nearest;
   size_t at;
-  if (already_there(p)) {
+  if (already_there(p, &axis)) {
   } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) {
     if (!rapid) no_rapid_cut(*j, on_path);
     reached(*j, p, axis, rapid, passed_);

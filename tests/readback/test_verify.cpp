@@ -225,6 +225,21 @@ TEST(Verify, ACycleWhoseRPlaneIsBelowTheClsFails) {
   EXPECT_TRUE(high.ok) << high.diags;
 }
 
+// A CL point where the tip already is but the tool axis is not (a tilt on the spot): the block
+// that turns the rotaries reaches it. Taken as reached by the tip alone, a tilt moved into the
+// next cut passed, the axis 15 degrees off at the point. (helper-35)
+TEST(Verify, ATiltOnTheSpotIsReachedWithItsAxis) {
+  const std::string cl = "UNITS/MM\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/0,0,5,0,0,1\n"
+                         "FEDRAT/MMPM,500\nGOTO/0,0,-1,0,0,1\nGOTO/20,0,-1,0,0,1\nGOTO/20,0,-1,0.2588190,0,0.9659258\n"
+                         "GOTO/30,0,-1,0.2588190,0,0.9659258\nFINI\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("X0.7874\nN55 B15.\nN60 X1.1811\n"));
+  Compiled merged = verify_text(cl, machine("haas-umc750"), edit(c.output, "N55 B15.\nN60 X1.1811\n", "N60 X1.1811 B15.\n"));
+  EXPECT_FALSE(merged.ok);
+  EXPECT_THAT(merged.diags, HasSubstr("part.cl:10:1: error: CL point (0.7874, 0.0000, -0.0394) is never reached"));
+}
+
 // An arc of more than a turn (Fusion's MOVARC angle) passes its end at each turn: the arc's end
 // is the one reached after the whole sweep. Its compile was refused at the first pass (540
 // degrees: "the CL arc is not followed"); a program that stops a turn short still fails.
