@@ -56,6 +56,7 @@ void MillBackend::retract(SourceLoc loc) {
 void MillBackend::moved() {
   position_known_ = true;
   at_safe_height_ = false;
+  after_raw_move_ = false;
 }
 
 std::pair<const CodeTemplate*, TemplateVars> MillBackend::offset_select(int index) const {
@@ -146,9 +147,21 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (rotates) unclamp(loc);
   if (!rapid && tool_ >= 0) warn_spindle_stopped(loc, "cutting move");
 
-  if (rapid && (need_length_offset_ || (at_safe_height_ && tool_ >= 0))) {
-    // From the safe height: position in X Y (and the rotaries) with the work offset, then
-    // bring Z down (with the length offset after a tool change).
+  if (rapid && after_raw_move_ && tool_ >= 0 && !need_length_offset_ && mv.point.z() > pos_.z()) {
+    // Up from the last CL point: along Z first, then across at that height (the rule of
+    // rapid-split, from the last point the CL knows; the raw block may have left the tool low).
+    e_.begin(loc);
+    absolute_code();
+    work_offset_code();
+    motion_code(Motion::Rapid);
+    e_.word('Z', o.z());
+    e_.end();
+    after_raw_move_ = false;
+  }
+  if (rapid && (need_length_offset_ || ((at_safe_height_ || after_raw_move_) && tool_ >= 0))) {
+    // From the safe height (or where a raw block left the tool): position in X Y (and the
+    // rotaries) with the work offset, then bring Z down (with the length offset after a tool
+    // change).
     e_.begin(loc);
     absolute_code();
     work_offset_code();

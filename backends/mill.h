@@ -55,7 +55,14 @@ class MillBackend : public ProgramWriter {
   // move positions them again as the post does (retract, unclamp, rotaries alone, clamp).
   // Restated with the move they were unclamped and never clamped again.
   bool reposition_rotaries_ = false;
-  void after_raw_motion() override { reposition_rotaries_ = clamped_; }
+  // A raw block that may move axes (G53 Z0., G28, a macro) leaves the tool where the CL does not
+  // know: the next rapid positions X Y first and then comes down along Z, as after a retract.
+  // Written whole it went down and across at once from machine home into the part.
+  bool after_raw_move_ = false;
+  void after_raw_motion() override {
+    reposition_rotaries_ = clamped_;
+    after_raw_move_ = true;
+  }
   void retract_for_stop(SourceLoc loc) override {
     if (!at_safe_height_ && tool_ >= 0) retract(loc);
   }

@@ -118,7 +118,10 @@ TEST(RapidSplit, FromOneOperationToTheNextWithTheSameToolAndFrame) {
 
 // A raw block that can move no axis (a G08, an M08, a message) leaves the tool where it stood:
 // the rapid after it is split like any other (it went down and across in one G00, certified).
-// One that may move axes (G28 with an axis, G53, an axis word) leaves the position unknown.
+// One that may move axes (G28 with an axis, G53, an axis word, a pallet change) leaves the
+// position unknown: the backend writes the next rapid by the CL's direction from its last point,
+// down as across and then down (from G53 Z0. it came down and across at once into the part), up
+// as Z first and then across, on any control (Haas's rapids are linear).
 TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
   const std::string start = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,50\n"
                             "GOTO/0,0,-1\nRAPID\nGOTO/20,10,5\n";
@@ -129,8 +132,12 @@ TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
   }
   for (const char* raw : {"INSERT/G53 Z0.", "INSERT/M60", "AUXFUN/60"}) {  // M60: a pallet change
     Compiled moved = compile_text(start + raw + "\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"));
-    EXPECT_THAT(moved.output, HasSubstr("\nN100 G00 X40. Y40. Z-3.\n")) << raw;
+    EXPECT_THAT(moved.output, HasSubstr("\nN100 G00 X40. Y40.\nN110 Z-3.\n")) << raw;
+    Compiled up = compile_text(start + raw + "\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
+    EXPECT_THAT(up.output, HasSubstr("\nN100 G00 Z30.\nN110 X40. Y40.\n")) << raw;
   }
+  Compiled haas = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,-3\n", machine("haas-umc750"));
+  EXPECT_THAT(haas.output, HasSubstr("G53 Z0.\nN65 M11 M13\nN70 G00 B0. C0.\nN75 M10 M12\nN80 X1.5748 Y1.5748\nN85 Z-0.1181\n"));
   // CUTCOM/OFF with compensation off switches nothing: the rapid after it is split too.
   Compiled off = compile_text(start + "CUTCOM/OFF\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(off.ok) << off.diags;
