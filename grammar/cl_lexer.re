@@ -75,6 +75,65 @@ unsigned char* splice_lines(unsigned char* p, unsigned char* e, Mark&& mark) {
   return w;
 }
 
+// The record the text [q, e) starts as, if it starts as one of its own, else Unknown: after
+// blanks and an optional statement label ("L1) "), a major word (NX's TOOL PATH counts as one)
+// and '/', words and commas before one (TLON,GOFWD/), or in capitals one of the words that
+// stand alone and change the program (RAPID, STOP, OPSTOP, GOHOME, END-OF-PATH) alone on the
+// line or before a '$$' comment ("Thread" or "END" ending a sentence is text). The text
+// records (PPRINT, PARTNO, REMARK, TPRINT, INSERT) count as none: joined to text, they stay text.
+MajorId record_at(const unsigned char* q, const unsigned char* e, const unsigned char** word = nullptr) {
+  auto blanks = [&](const unsigned char* p) {
+    while (p < e && (*p == ' ' || *p == '\t')) ++p;
+    return p;
+  };
+  auto alpha = [](unsigned char c) { return std::isalpha(c) != 0; };
+  q = blanks(q);
+  {  // a statement label
+    const unsigned char* l = q;
+    while (l < e && l - q < 6 && std::isalnum(*l)) ++l;
+    if (l > q && alpha(*q) && l < e && *l == ')') q = blanks(l + 1);
+  }
+  const unsigned char* w = q;
+  // A word may hold hyphens (END-OF-PATH); NX's TOOL PATH is two words.
+  while (w < e && (alpha(*w) || (*w == '-' && w > q && w + 1 < e && alpha(w[1])))) ++w;
+  if (w == q) return MajorId::Unknown;
+  bool tool_path = false;
+  if (w - q == 4 && iequals(std::string_view(reinterpret_cast<const char*>(q), 4), "TOOL")) {
+    const unsigned char* p = blanks(w);
+    if (p > w && e - p >= 4 && iequals(std::string_view(reinterpret_cast<const char*>(p), 4), "PATH") &&
+        (e - p == 4 || !alpha(p[4]))) {
+      w = p + 4;
+      tool_path = true;
+    }
+  }
+  const unsigned char* after = blanks(w);
+  const unsigned char *name = q, *name_end = w;
+  const std::string_view alone(reinterpret_cast<const char*>(q), size_t(w - q));
+  const bool alone_record =
+      alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME" || alone == "END-OF-PATH";
+  const bool alone_on_line = after == e || *after == '\r' || (e - after >= 2 && after[0] == '$' && after[1] == '$');
+  bool record = (alone_on_line && alone_record) || (after < e && *after == '/');
+  if (!record && after < e && *after == ',') {
+    // Words and commas up to a '/': the word before the '/' is the record's.
+    const unsigned char* sl = after;
+    while (sl < e && (alpha(*sl) || *sl == ',' || *sl == ' ' || *sl == '\t')) ++sl;
+    if (sl < e && *sl == '/') {
+      name_end = sl;
+      while (name_end > after && (name_end[-1] == ' ' || name_end[-1] == '\t')) --name_end;
+      name = name_end;
+      while (name > after && alpha(name[-1])) --name;
+      record = name < name_end;
+    }
+  }
+  if (!record) return MajorId::Unknown;
+  const MajorId id = tool_path && name == q ? MajorId::ToolPath
+                                            : major_id(std::string_view(reinterpret_cast<const char*>(name), size_t(name_end - name)));
+  if (id == MajorId::Pprint || id == MajorId::Partno || id == MajorId::Remark || id == MajorId::Tprint || id == MajorId::Insert)
+    return MajorId::Unknown;
+  if (word) *word = q;
+  return id;
+}
+
 }  // namespace
 
 /*!re2c
@@ -171,9 +230,11 @@ int Lexer::fill() {
     }
     unsigned char* from = const_cast<unsigned char*>(lim_);
     if (upto > from) {
+      const size_t first_splice = splices_.size();
       unsigned char* w = splice_lines(from, upto, [&](unsigned char* at, size_t removed) {
         splices_.push_back({base_ + uint64_t(at - b), uint32_t(removed)});
       });
+      find_hidden_records(from, w, first_splice);
       if (w != upto) {
         std::memmove(w, upto, size_t(raw_end_ - upto));
         raw_end_ -= upto - w;
@@ -213,6 +274,65 @@ void Lexer::pass_splices(uint64_t before) {
     splices_.clear();
     splice_head_ = 0;
   }
+}
+
+// In the text just spliced, [b, e): a record joined to the line before by a continuation
+// (`FEDRAT/250,$` then `GOTO/...`: the GOTO read as FEDRAT's words and lost), or one after a
+// carriage return alone (`$$ note\rGOTO/...`: in the comment). Both are refused where the
+// hidden record starts: which line it belongs to is not the file's to say.
+void Lexer::find_hidden_records(unsigned char* b, unsigned char* e, size_t first_splice) {
+  auto line_end = [&](const unsigned char* p) {
+    auto* nl = static_cast<const unsigned char*>(std::memchr(p, '\n', size_t(e - p)));
+    return nl ? nl : e;
+  };
+  unsigned char* buf = buf_.get();
+  for (size_t i = first_splice; i < splices_.size(); ++i) {
+    const unsigned char* q = buf + (splices_[i].at - base_);
+    if (q > e) break;
+    // The joined text runs on to the line end, through any later joins (GO$ / TO/1,2,3).
+    const unsigned char* word = q;
+    if (MajorId id = record_at(q, line_end(q), &word); id != MajorId::Unknown)
+      hidden_.push_back({splices_[i].at + uint64_t(word - q), id, false});
+  }
+  for (const unsigned char* p = b; p < e;) {
+    auto* cr = static_cast<const unsigned char*>(std::memchr(p, '\r', size_t(e - p)));
+    if (!cr) break;
+    p = cr + 1;
+    if (p >= e || *p == '\n' || *p == '\r') continue;
+    const unsigned char* word = p;
+    if (MajorId id = record_at(p, line_end(p), &word); id != MajorId::Unknown) {
+      Hidden h{abs(word), id, true};
+      // In file order with the joins found above.
+      auto at = std::upper_bound(hidden_.begin() + std::ptrdiff_t(hidden_head_), hidden_.end(), h.at,
+                                 [](uint64_t a, const Hidden& x) { return a < x.at; });
+      hidden_.insert(at, h);
+    }
+  }
+}
+
+// At a record's start: the error for a record hidden in its line, if there is one.
+std::optional<Lexer::Symbol> Lexer::hidden_record_error() {
+  const unsigned char* nl = static_cast<const unsigned char*>(std::memchr(cur_, '\n', size_t(lim_ - cur_)));
+  const uint64_t from = abs(cur_), to = nl ? abs(nl) : abs(lim_);
+  while (hidden_head_ < hidden_.size() && hidden_[hidden_head_].at < from) ++hidden_head_;
+  if (hidden_head_ == hidden_.size()) {
+    hidden_.clear();
+    hidden_head_ = 0;
+    return std::nullopt;
+  }
+  const Hidden h = hidden_[hidden_head_];
+  if (h.at > to) return std::nullopt;
+  ++hidden_head_;
+  record_start_ = loc_of(cur_);
+  const std::string name(major_spelling(h.id));
+  const unsigned char* p = buf_.get() + (h.at - base_);
+  if (h.after_cr)
+    return error_token(loc_of(p), "a carriage return alone (no line feed after it) stands before this " + name +
+                                      " record: a line end to some editors and transfer programs, a blank to others, so "
+                                      "whether it is a record of its own or part of the text before is not known: end "
+                                      "the line with a line feed");
+  return error_token(loc_of(p), "a '$' at the end of the line before joins this " + name +
+                                    " record to that line, where it would be lost in its text or words: end that line without '$'");
 }
 
 void Lexer::newline(const unsigned char* after) {
@@ -327,6 +447,7 @@ bool Lexer::simple_record(Simple& s) {
   if (!nl || size_t(nl - p) > kMaxToken) return false;
   // A line that continuations joined (Creo writes every five-axis GOTO over two): its numbers'
   // columns are found through the splices, as the grammar's are.
+  if (hidden_head_ < hidden_.size() && hidden_[hidden_head_].at <= abs(nl)) return false;
   const bool spliced = splice_head_ < splices_.size() && splices_[splice_head_].at <= abs(nl);
   static constexpr struct {
     const char* word;
@@ -421,9 +542,9 @@ Lexer::Symbol Lexer::error_token(SourceLoc loc, const std::string& msg) {
 // skipped with a warning, not an error. (A known major word written wrong is an error.)
 Lexer::Symbol Lexer::not_a_record() {
   if (diags_ && !data_comment_) {
-    if (const char* motion = motion_word_in_line())
-      diags_->error(record_start_, std::string("not a CL record, yet the line holds ") + motion +
-                                       "/ further on: skipped, its motion would be lost (an APT statement label is "
+    if (const std::string motion = motion_word_in_line(); !motion.empty())
+      diags_->error(record_start_, "not a CL record, yet the line holds " + motion +
+                                       " further on: skipped, its motion would be lost (an APT statement label is "
                                        "written 'NAME)' before the record)");
     else
       diags_->warning(record_start_, "not a CL record (a word that is no major word, then neither '/' nor the line "
@@ -435,8 +556,11 @@ Lexer::Symbol Lexer::not_a_record() {
 }
 
 // The first motion record name followed by '/' in the rest of the line (what the buffer holds
-// of it), or null. A line skipped as no record must not hide a move.
-const char* Lexer::motion_word_in_line() const {
+// of it: "GOTO/"), or the line's last word where it is, in capitals, one of the records that
+// stand alone and move the tool or change how it moves ("RAPID", "GOHOME", "STOP", "OPSTOP"),
+// or "". A line skipped as no record must not hide a move ("Date 12-Jan RAPID": the rapid after
+// it was fed).
+std::string Lexer::motion_word_in_line() const {
   static const char* const kMotion[] = {"GOTO", "GODLTA", "FROM", "GOHOME", "CIRCLE", "MOVARC", "GOFWD", "GOLFT",
                                         "GORGT", "GOBACK", "GOUP", "GODOWN", "CYCLE", "RAPID", "FEDRAT"};
   const unsigned char* e = cur_;
@@ -448,10 +572,18 @@ const char* Lexer::motion_word_in_line() const {
       size_t after = at + std::strlen(w);
       while (after < line.size() && (line[after] == ' ' || line[after] == '\t')) ++after;
       const bool word_start = at == 0 || !(std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_');
-      if (word_start && after < line.size() && line[after] == '/') return w;
+      if (word_start && after < line.size() && line[after] == '/') return std::string(w) + "/";
     }
   }
-  return nullptr;
+  std::string_view text(reinterpret_cast<const char*>(tok_), size_t(e - tok_));
+  if (size_t c = text.find("$$"); c != std::string_view::npos) text = text.substr(0, c);
+  while (!text.empty() && is_ws(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  size_t b = text.size();
+  while (b > 0 && !is_ws(static_cast<unsigned char>(text[b - 1])) && text[b - 1] != ',') --b;
+  const std::string_view last = text.substr(b);
+  for (const char* w : {"RAPID", "GOHOME", "STOP", "OPSTOP"})
+    if (b > 0 && last == w) return w;
+  return "";
 }
 
 Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned char* e) {
@@ -477,66 +609,7 @@ Lexer::Symbol Lexer::free_text_major(MajorId id, size_t keyword_len) {
   if (b < e && *b == '/') ++b;
   while (b < e && (*b == ' ' || *b == '\t')) ++b;
   while (e > b && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r')) --e;
-  // A '$' at the end of free text joins the next line to it (CATIA continues PPRINT at column
-  // 72). A joined line that is a record of its own (GOTO/..., FEDRAT/...) would be lost in the
-  // text: refused where it stands.
-  for (size_t i = splice_head_; i < splices_.size(); ++i) {
-    const uint64_t at = splices_[i].at;
-    if (at <= abs(b)) continue;
-    if (at >= abs(e)) break;
-    const unsigned char* q = b + (at - abs(b));
-    while (q < e && (*q == ' ' || *q == '\t')) ++q;
-    const unsigned char* w = q;
-    // A word may hold hyphens (END-OF-PATH); NX's TOOL PATH is two words.
-    while (w < e && (std::isalpha(*w) || (*w == '-' && w > q && w + 1 < e && std::isalpha(w[1])))) ++w;
-    bool tool_path = false;
-    if (w - q == 4 && iequals(std::string_view(reinterpret_cast<const char*>(q), 4), "TOOL")) {
-      const unsigned char* p = w;
-      while (p < e && (*p == ' ' || *p == '\t')) ++p;
-      if (p > w && e - p >= 4 && iequals(std::string_view(reinterpret_cast<const char*>(p), 4), "PATH") &&
-          (e - p == 4 || !std::isalpha(p[4]))) {
-        w = p + 4;
-        tool_path = true;
-      }
-    }
-    // The joined line ends at the next '$' join or at the text's end.
-    const unsigned char* line_end = e;
-    if (i + 1 < splices_.size() && splices_[i + 1].at < abs(e)) line_end = b + (splices_[i + 1].at - abs(b));
-    const unsigned char* slash = w;
-    while (slash < line_end && (*slash == ' ' || *slash == '\t')) ++slash;
-    if (w == q) continue;
-    // A record: the word and '/' (GOTO/...), a head before it (TLON,GOFWD/...), or the word
-    // alone on its line (RAPID, STOP, OPSTOP, GOHOME).
-    const unsigned char *name = q, *name_end = w;
-    // A word alone is a record only if it is one of those that stand alone and change the
-    // program, in capitals ("Thread" or "END" ending a sentence is text).
-    const std::string_view alone(reinterpret_cast<const char*>(q), size_t(w - q));
-    const bool alone_record =
-        alone == "RAPID" || alone == "STOP" || alone == "OPSTOP" || alone == "GOHOME" || alone == "END-OF-PATH";
-    // Alone on its line, or before a '$$' comment (END-OF-PATH  $$ op end).
-    const bool alone_on_line = slash == line_end || (line_end - slash >= 2 && slash[0] == '$' && slash[1] == '$');
-    bool record = (alone_on_line && alone_record) || (slash < line_end && *slash == '/');
-    if (!record && *slash == ',') {
-      // Words and commas up to a '/': the word before the '/' is the record's.
-      const unsigned char* sl = slash;
-      while (sl < line_end && (std::isalpha(*sl) || *sl == ',' || *sl == ' ' || *sl == '\t')) ++sl;
-      if (sl < line_end && *sl == '/') {
-        name_end = sl;
-        while (name_end > slash && (name_end[-1] == ' ' || name_end[-1] == '\t')) --name_end;
-        name = name_end;
-        while (name > slash && std::isalpha(name[-1])) --name;
-        record = name < name_end;
-      }
-    }
-    if (!record) continue;
-    const MajorId joined = tool_path && name == q ? MajorId::ToolPath
-                                                  : major_id(std::string_view(reinterpret_cast<const char*>(name), size_t(name_end - name)));
-    if (joined == MajorId::Unknown || joined == MajorId::Pprint || joined == MajorId::Partno || joined == MajorId::Remark ||
-        joined == MajorId::Tprint || joined == MajorId::Insert)
-      continue;
-    return error_token(loc_of(q), "a '$' at the end of the line before joins this " + std::string(major_spelling(joined)) +
-                                      " record to its text, where it would be lost: end the text without '$'");
-  }
+  // A record joined to the text by a '$' is refused at the record's start (find_hidden_records).
   check_text(b, e, "text");
   Symbol m = major(id, tok_, tok_ + keyword_len);
   pending_.emplace(Parser::make_TEXT(keep(b, e), loc_of(b)));
@@ -620,6 +693,8 @@ Lexer::Symbol Lexer::lex_line_start() {
   for (;;) {
     tok_ = cur_;
     data_comment_ = data_mark;
+    if (hidden_head_ < hidden_.size() && !wanted_ && !data_mark)
+      if (auto e = hidden_record_error()) return *e;
     /*!re2c
       $ {
         at_end_ = true;

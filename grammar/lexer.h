@@ -77,7 +77,7 @@ class Lexer {
   Symbol major(MajorId id, const unsigned char* b, const unsigned char* e);
   Symbol free_text_major(MajorId id, size_t keyword_len);
   bool skip_record();               // to the end of the record; false at end of input
-  const char* motion_word_in_line() const;
+  std::string motion_word_in_line() const;
   uint32_t motion_skipped_ = 0;  // records that move the tool skipped as not wanted
   void check_text(const unsigned char* b, const unsigned char* e, const char* what);
   std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }
@@ -110,6 +110,19 @@ class Lexer {
   };
   std::vector<Splice> splices_;   // not yet passed by the lexer, in order
   size_t splice_head_ = 0;
+  // A record hidden inside another's line: joined to it by a '$' continuation, or standing
+  // after a carriage return alone (a line end to some editors and DNC programs, a blank to
+  // others). Found as the text is spliced, reported when the lexer reaches the record that
+  // holds it (`hidden_record_error`), in order.
+  struct Hidden {
+    uint64_t at;      // offset in the spliced text where the hidden record starts
+    MajorId id;
+    bool after_cr;    // after a lone CR, else after a continuation
+  };
+  std::vector<Hidden> hidden_;
+  size_t hidden_head_ = 0;
+  void find_hidden_records(unsigned char* b, unsigned char* e, size_t first_splice);
+  std::optional<Symbol> hidden_record_error();
   uint64_t removed_passed_ = 0;   // bytes removed by the splices passed: file offset - text offset
 
   uint32_t line_ = 1;

@@ -234,6 +234,17 @@ TEST(Lexer, TextThatIsNoRecordIsSkippedWithAWarning) {
   EXPECT_EQ(first_error(parse_text("GOTO/1,2,3\nlabel: GOTO/20,0,-1\n").diags),
             "2:1: not a CL record, yet the line holds GOTO/ further on: skipped, its motion would be lost (an APT "
             "statement label is written 'NAME)' before the record)");
+  // So must it hold no record that stands alone: the rapid after 'Date 12-Jan RAPID' was fed,
+  // the return home lost. A sentence with the word inside, or in lower case, is text.
+  const std::pair<const char*, const char*> hidden[] = {
+      {"Date 12-Jan RAPID", "RAPID"}, {"sfsdf, RAPID", "RAPID"}, {"Date 12-Jan GOHOME  $$ home", "GOHOME"}, {"note: STOP", "STOP"}};
+  for (const auto& [line, word] : hidden)
+    EXPECT_EQ(first_error(parse_text(std::string("GOTO/1,2,3\n") + line + "\nGOTO/1,2,5\n").diags),
+              std::string("2:1: not a CL record, yet the line holds ") + word +
+                  " further on: skipped, its motion would be lost (an APT statement label is written 'NAME)' before "
+                  "the record)")
+        << line;
+  EXPECT_EQ(first_error(parse_text("GOTO/1,2,3\nCheck RAPID overrides\nWait for stop\nGOTO/1,2,5\n").diags), "");
 }
 
 // APT statement labels: up to six letters and digits and ')' before the record (APT-360's

@@ -583,24 +583,32 @@ TEST(Lower, ARecordNameOfSeveralWordsThatMovesIsRefused) {
   EXPECT_EQ(first_error(l.diags), "");
 }
 
-// A '$' at the end of free text joins the next line to it (CATIA's PPRINT at column 72). A
-// joined line that is a record of its own is refused where it stands, not lost in the text.
-TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
-  for (const char* head : {"PPRINT COST IN $\n", "REMARK NOTE $\n", "INSERT/G04 $\n", "TPRINT/T1 $\n"}) {
-    EXPECT_EQ(err(std::string("GOTO/0,0,5\n") + head + "GOTO/10,0,5\nGOTO/10,10,5\n"),
-              "3:1: a '$' at the end of the line before joins this GOTO record to its text, where it would be lost: end "
-              "the text without '$'")
+// A '$' at the end of a line joins the next line to it (CATIA's PPRINT at column 72, Creo's
+// five-axis GOTO). A joined line that is a record of its own is refused where it stands, not
+// lost in the text or the words of the record before: after free text, after a record that
+// ignores words it does not know (PAINT, MACHIN, INTOL, CUTTER, an unknown record), after a
+// '$$->' data comment. The plunge was cut as a diagonal, the retract fed (certified).
+TEST(Lower, ALineContinuedIntoARecordIsRefused) {
+  const std::string joins = "a '$' at the end of the line before joins this ";
+  const std::string lost = " record to that line, where it would be lost in its text or words: end that line without '$'";
+  for (const char* head : {"PPRINT COST IN $\n", "REMARK NOTE $\n", "INSERT/G04 $\n", "TPRINT/T1 $\n", "PPRINT $\n",
+                           "PPRINT/$\n", "PARTNO $\n", "PAINT/COLOR,$\n", "PAINT/SPEED,10 $\n", "MACHIN/UNCX01,1,$\n",
+                           "INTOL/0.01,$\n", "CUTTER/10,$\n", "COOLNT/ON,$\n", "FOOBAR/$\n", "$$-> MFGNO / X $\n",
+                           "$$-> FOO / 1,$\n"}) {
+    EXPECT_EQ(err(std::string("GOTO/0,0,5\n") + head + "GOTO/10,0,5\nGOTO/10,10,5\n"), "3:1: " + joins + "GOTO" + lost)
         << head;
   }
   EXPECT_EQ(err("PPRINT/(=========$\n=====)\nGOTO/0,0,5\n"), "");  // text continued by text
-  // A record with a head, and a record that is its word alone: the arc was cut as a chord, the
-  // retract fed, the M00 lost (certified).
+  EXPECT_EQ(err("SPINDL/1000,$\nCLW\nFEDRAT/MMPM,$\n250\nGOTO/0,0,5\n"), "");  // words continued by words
+  EXPECT_EQ(err("GOTO/0,0,5\nPAINT/COLOR,$\nFEDRAT/250\nGOTO/0,0,50\n"), "3:1: " + joins + "FEDRAT" + lost);
+  // A record with a head, one with a statement label, one whose word a '$' splits, and a
+  // record that is its word alone: the arc was cut as a chord, the retract fed, the M00 lost.
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT COST IN $\nTLON,GOFWD/(CIRCLE/0,0,5,10),ON,(LINE/0,0,5,-1,1,5)\n"),
-            "3:1: a '$' at the end of the line before joins this GOFWD record to its text, where it would be lost: end "
-            "the text without '$'");
-  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT BUDGET $\n  RAPID  \nGOTO/0,0,50\n"), HasSubstr("3:3: a '$' at the end of the line "
-                                                                                     "before joins this RAPID record"));
-  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT MEASURE $\nSTOP\n"), HasSubstr("3:1: a '$' at the end of the line before joins this STOP"));
+            "3:1: " + joins + "GOFWD" + lost);
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT COST IN $\nL1) GOTO/1,2,3\n"), "3:5: " + joins + "GOTO" + lost);
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT LINE $\nGO$\nTO/1,2,3\n"), "3:1: " + joins + "GOTO" + lost);
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT BUDGET $\n  RAPID  \nGOTO/0,0,50\n"), "3:3: " + joins + "RAPID" + lost);
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT MEASURE $\nSTOP\n"), HasSubstr("3:1: " + joins + "STOP"));
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT ROUGH, FINISH $\nPASS, ROUGH/FINISH\nGOTO/0,0,50\n"), "");  // words, no record
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT FIRST $\nPASS\nGOTO/0,0,50\n"), "");
   // A word alone that names a record but ends a sentence: text (only RAPID, STOP, OPSTOP and
@@ -609,12 +617,26 @@ TEST(Lower, FreeTextContinuedIntoARecordIsRefused) {
   // NX's two-word TOOL PATH and hyphenated END-OF-PATH: the next operation's tool change was
   // lost, and it was cut with the last tool (certified).
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT NEXT, FINISH WITH $\nTOOL  PATH/FINISH,TOOL,OD_35_L\nGOTO/0,0,50\n"),
-            "3:1: a '$' at the end of the line before joins this TOOL PATH record to its text, where it would be lost: "
-            "end the text without '$'");
-  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH\n"), HasSubstr("3:1: a '$' at the end of the line before joins this END-OF-PATH"));
-  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH  $$ op end\n"),
-              HasSubstr("3:1: a '$' at the end of the line before joins this END-OF-PATH"));
+            "3:1: " + joins + "TOOL PATH" + lost);
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH\n"), HasSubstr("3:1: " + joins + "END-OF-PATH"));
+  EXPECT_THAT(err("GOTO/0,0,5\nPPRINT DONE $\nEND-OF-PATH  $$ op end\n"), HasSubstr("3:1: " + joins + "END-OF-PATH"));
   EXPECT_EQ(err("GOTO/0,0,5\nPPRINT SEE THE $\nTOOL PATHS, AND END-OF-PATH MARKS\nGOTO/0,0,50\n"), "");
+}
+
+// A carriage return alone in a file of line feeds is a line end to some editors and DNC
+// programs and a blank to others: a record after one is refused, not lost in the comment, text
+// or record before it (a pasted file; the plunge after '$$ note' was cut diagonally,
+// certified). Text after one that is no record stays text.
+TEST(Lower, ARecordAfterALoneCarriageReturnIsRefused) {
+  const std::string why = " record: a line end to some editors and transfer programs, a blank to others, so whether it is a "
+                          "record of its own or part of the text before is not known: end the line with a line feed";
+  for (const char* head : {"$$ comment\r", "PAINT/COLOR,31\r", "PPRINT hello\r", "COOLNT/ON\r", "GOTO/0,0,5\r"})
+    EXPECT_EQ(err(std::string("GOTO/0,0,5\n") + head + "GOTO/10,20,-2\nGOTO/10,10,5\n"),
+              std::string("2:") + std::to_string(std::strlen(head) + 1) +
+                  ": a carriage return alone (no line feed after it) stands before this GOTO" + why)
+        << head;
+  EXPECT_EQ(err("GOTO/0,0,5\r\nPPRINT hello\rworld\r\nGOTO/0,0,50\r\n"), "");
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT hello\r\r\nGOTO/0,0,50\n"), "");
 }
 
 // FROM says where the tool stands and moves nothing. After motion, a FROM elsewhere is a
