@@ -70,6 +70,10 @@ class ProgramWriter : public Backend {
   void write_smoothing(bool on);
   // In a straight move's block: G41/G42/G40 where a CUTCOM changed it.
   void comp_code();
+  // A G40 still waiting for a move across (a mill cancels on one) written in a block of its
+  // own, before what must not run with compensation on: a tool change, a hole, a turn of the
+  // rotaries, a raw block that may move axes.
+  void end_pending_comp();
   // False (an error naming the SPINDL) when `rpm` is above the machine's spindle limit.
   bool spindle_within_limit(double rpm, SourceLoc loc);
   bool tool_changer_for(const ir::ToolChange& t, SourceLoc loc);  // false: the machine cannot change to t

@@ -182,18 +182,22 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
 
   const bool modal = m_.modal.coordinates;
-  bool any = !modal || e_.differs('X', x) || e_.differs('Y', y) || e_.differs('Z', z) || rotates;
-  // A pending G41/G42 waits for a block that moves: started on one that does not, it would
-  // come on at the next block, perhaps an arc (which the arc refuses while it is pending).
-  const bool comp_start = comp_pending_set_ && comp_pending_.side != ir::CompSide::Off;
-  if (!any && !need_work_offset_ && !(comp_pending_set_ && !comp_start) && !need_length_offset_ && !incremental_) {
+  const bool in_plane = e_.differs('X', x) || e_.differs('Y', y);
+  bool any = !modal || in_plane || e_.differs('Z', z) || rotates;
+  // A pending G41/G42 or G40 waits for a block that moves in the plane: on a move along Z alone
+  // the control starts or cancels the offset during it, so the tool went sideways by the
+  // radius while it plunged beside the wall, or was pulled onto the contour as it came up. The
+  // plunge is made on the CL's point; the offset comes on (or off) with the lead-in (lead-out)
+  // across, or, before an arc, the arc refuses it.
+  if (!any && !need_work_offset_ && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
   }
   e_.begin(loc);
   absolute_code();
   work_offset_code();
-  comp_code();
+  // (A G40 that cancels nothing goes on the next move, as before.)
+  if (in_plane || (comp_pending_set_ && comp_pending_.side == ir::CompSide::Off && !comp_on_)) comp_code();
   if (need_length_offset_) {
     e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
     need_length_offset_ = false;

@@ -171,6 +171,11 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();
           else spindle_on_ = x;
         }
+        if constexpr (std::is_same_v<T, ir::ToolChange> || std::is_same_v<T, ir::Hole> ||
+                      std::is_same_v<T, ir::RotaryPosition> || std::is_same_v<T, ir::RotaryIndex> ||
+                      std::is_same_v<T, ir::MachineMode> || std::is_same_v<T, ir::Groove> ||
+                      std::is_same_v<T, ir::ThreadCycle>)
+          end_pending_comp();
         if constexpr (std::is_same_v<T, ir::Hole>) {
           write_hole(op, x, loc);
           return;
@@ -280,6 +285,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             d_.warning(loc, "INSERT '" + std::string(text) + "' holds axis words (" + axes +
                                 "): it is written as given, and what it moves is not checked against the CL "
                                 "(the certificate follows the CL's own moves)", "insert");
+          if (may_move_axes(text)) end_pending_comp();
           e_.line(text);
           note_plane_codes(text);
           // A program stop written raw stops the spindle and the coolant as STOP's does: both are
@@ -857,6 +863,16 @@ void ProgramWriter::comp_code() {
   comp_pending_set_ = false;
   comp_on_ = c.side != ir::CompSide::Off;
   comp_now_ = c;
+}
+
+void ProgramWriter::end_pending_comp() {
+  // (One that cancels nothing stays for the next move, as the CL's CUTCOM/OFF asks.)
+  if (!comp_pending_set_ || comp_pending_.side != ir::CompSide::Off || !comp_on_) return;
+  e_.begin({});
+  e_.code(m_.codes.comp_off);
+  e_.end();
+  comp_pending_set_ = false;
+  comp_on_ = false;
 }
 
 void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {

@@ -155,6 +155,27 @@ TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
   EXPECT_THAT(c.output, HasSubstr("G40 G00 X40. Z20.\n"));
 }
 
+// G41/G42 and G40 come on a move in the plane: on a plunge or a retract along Z alone the
+// control starts or cancels the offset during it, sideways by the radius beside the wall (the
+// plunge after CUTCOM/LEFT carried G41, the retract after CUTCOM/OFF G40, certified). The
+// plunge and retract are made on the CL's points, the offset comes on and off across.
+TEST(CutterComp, StartsAndEndsOnAMoveInThePlane) {
+  Compiled c = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/LEFT,1\n"
+      "GOTO/0,0,-1\nGOTO/10,0,-1\nGOTO/10,20,-1\nCUTCOM/OFF\nGOTO/10,20,5\nRAPID\nGOTO/30,30,5\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z5.\nN70 G94 G01 Z-1. F100.\nN80 G41 D1 X10.\nN90 Y20.\nN100 Z5.\n"
+                                  "N110 G40 G00 X30. Y30.\n"));
+  // With no move across after it, the G40 comes before the program's end.
+  Compiled end = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
+      "CUTCOM/LEFT,1\nGOTO/10,0,-1\nCUTCOM/OFF\nGOTO/10,0,5\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(end.ok) << end.diags;
+  EXPECT_THAT(end.output, HasSubstr("N80 G41 D1 X10.\nN90 Z5.\nN100 G40\nN110 M05\n"));
+}
+
 // Cutter compensation the control cannot make as the CL asks: refused, where it was written
 // on the line after the arc (the arc cut on the tool's centre), or in G17 for a ZX profile.
 TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
@@ -198,8 +219,8 @@ TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
   EXPECT_THAT(still.diags, HasSubstr("part.cls:10:1: error: cutter compensation (CUTCOM) starts on an arc"));
   // CUTCOM/LEFT again, with compensation on that side: nothing starts.
   Compiled again = compile_text(
-      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/10,0,5\nCUTCOM/LEFT\n"
-      "GOTO/10,0,-1\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nCUTCOM/LEFT\nCIRCLE/20,20,-1,0,0,1,10\n"
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/LEFT\n"
+      "GOTO/0,0,-1\nGOTO/10,0,-1\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nCUTCOM/LEFT\nCIRCLE/20,20,-1,0,0,1,10\n"
       "GOTO/30,20,-1\nGOTO/40,20,-1\nCUTCOM/OFF\nGOTO/50,30,-1\n",
       machine("fanuc-mill"), {.certify = true});
   EXPECT_TRUE(again.ok) << again.diags;
