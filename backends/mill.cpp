@@ -181,6 +181,19 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
 
+  if (!rapid && (need_length_offset_ || at_safe_height_) && tool_ >= 0 && (e_.differs('X', x) || e_.differs('Y', y))) {
+    // A cut from the safe height (a tool's first move, -Wapproach; or after a retract of the
+    // post's own): over the point at rapid first, then fed down along Z. Fed straight from up
+    // there it went diagonally down through whatever stands between.
+    e_.begin(loc);
+    absolute_code();
+    work_offset_code();
+    motion_code(Motion::Rapid);
+    e_.modal_word('X', x);
+    e_.modal_word('Y', y);
+    if (mv.has_rotary) rotary_words();
+    e_.end();
+  }
   const bool modal = m_.modal.coordinates;
   const bool in_plane = e_.differs('X', x) || e_.differs('Y', y);
   bool any = !modal || in_plane || e_.differs('Z', z) || rotates;

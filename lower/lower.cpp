@@ -718,8 +718,9 @@ void Lowerer::check_first_cut(SourceLoc loc, const ir::Op& op) {
   const auto* m = std::get_if<ir::Move>(&op);
   const bool cut = (m && m->kind == ir::MoveKind::Feed) || std::holds_alternative<ir::Arc>(op);
   if (!cut || tool_ < 0 || same_tool_again_) return;  // a load of the tool in the spindle moves nothing
-  d_.warning(loc, "the first move of T" + std::to_string(tool_) + " is a cut, with no FROM or rapid before it to say where it starts: it is fed straight from "
-                      "where the tool change (or the program's start) leaves the tool",
+  d_.warning(loc, "the first move of T" + std::to_string(tool_) + " is a cut, with no FROM or rapid before it to say where it starts: on a mill it is "
+                      "positioned over its end at rapid and fed down along Z from where the tool change (or the "
+                      "program's start) leaves the tool; a lathe feeds it straight from there",
              "approach");
 }
 

@@ -118,7 +118,7 @@ TEST(BadInput, ClassicMacLineEnds) {
   }
   const std::string program = read_file(cr_dir.path("part.nc"));
   EXPECT_EQ(program, read_file(lf_dir.path("part.nc")));
-  EXPECT_THAT(program, HasSubstr("(ROUGH, THEN FINISH)\nN50 G54 G43 H01 G94 G01 X0. Y0. Z5. F100.\nN60 X10.\nN70 Y10.\n"));
+  EXPECT_THAT(program, HasSubstr("(ROUGH, THEN FINISH)\nN50 G54 G00 X0. Y0.\nN60 G43 H01 G94 G01 Z5. F100.\nN70 X10.\nN80 Y10.\n"));
 
   std::string bad = kHead + "GOTO/0,0,5\nGOTO/1.2.3,0,5\nFINI\n";
   std::replace(bad.begin(), bad.end(), '\n', '\r');

@@ -395,11 +395,12 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
             "part.cls: warning: the file says its units are millimetres, but the feed at line 10 is in inches: if its "
             "numbers are inches, --input-units inch reads them so [-Wunits]\n"
             "part.cls:5:1: warning: the first move of T1 is a cut, with no FROM or rapid before it to say where it starts: "
-            "it is fed straight from where the tool change (or the program's start) leaves the tool [-Wapproach]\n"
+            "on a mill it is positioned over its end at rapid and fed down along Z from where the tool change (or the "
+            "program's start) leaves the tool; a lathe feeds it straight from there [-Wapproach]\n"
             "part.cls:8:1: warning: FEDRAT/0.3 has no unit word: per revolution, as the FEDRAT at line 6 set it (the feed "
             "mode stays until a FEDRAT names another) [-Wfeed-unit]\n");
-  EXPECT_THAT(c.output, HasSubstr(" G94 G01 X0. Y0. Z1. F200.\nN60 G95 X10. F0.2\nN70 X20. F0.3\nN80 G94 X30. F254.\n"
-                                  "N90 X40. F508.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N50 G54 G00 X0. Y0.\nN60 G43 H01 G94 G01 Z1. F200.\nN70 G95 X10. F0.2\nN80 X20. F0.3\n"
+                                  "N90 G94 X30. F254.\nN100 X40. F508.\n"));
   verifies(cl, machine("fanuc-mill"));
   // After inverse time: per minute in the file's units (mm), said; the UMC-750 writes inches.
   Compiled inverse = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/INVERS,10\n"
@@ -438,7 +439,7 @@ TEST(CamSystems, CompensationStillOnAtTheEndIsCancelledBeforeTheFinish) {
                                        "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\n") + off + "FINI\n";
     Compiled c = compile_text(cl, machine("fanuc-mill"));
     ASSERT_TRUE(c.ok) << c.diags;
-    EXPECT_THAT(c.output, HasSubstr("N60 G41 D1 Y0.\nN70 X20.\nN80 G40\nN90 M05\nN100 G91 G28 Z0.\n")) << off;
+    EXPECT_THAT(c.output, HasSubstr("N70 G41 D1 Y0.\nN80 X20.\nN90 G40\nN100 M05\nN110 G91 G28 Z0.\n")) << off;
     verifies(cl, machine("fanuc-mill"));
   }
 }
@@ -1164,7 +1165,11 @@ TEST(CamSystems, AFirstCutAfterFromStartsAtTheFrom) {
   EXPECT_THAT(line.output, HasSubstr("N40 S1000 M03\nN50 G54 G00 X20. Y0.\nN60 G43 H01 Z10.\nN70 G94 G01 X30. Z0. F100.\n"));
   EXPECT_EQ(messages(line.diags),
             "part.cls:11:1: warning: the first move of T2 is a cut, with no FROM or rapid before it to say where it "
-            "starts: it is fed straight from where the tool change (or the program's start) leaves the tool [-Wapproach]\n");
+            "starts: on a mill it is positioned over its end at rapid and fed down along Z from where the tool change (or "
+            "the program's start) leaves the tool; a lathe feeds it straight from there [-Wapproach]\n");
+  // That cut: over its end first, then down along Z with the length offset (it was fed
+  // diagonally from the tool change down through whatever stood between).
+  EXPECT_THAT(line.output, HasSubstr("N120 G90 G54 G00 X50. Y0.\nN130 G43 H02 G94 G01 Z0. F100.\n"));
   Compiled arc = compile_text("UNITS/MM\nCUTTER/10\nLOADTL/1\nSPINDL/1000,RPM,CLW\nFROM/20,0,0\nFEDRAT/100,MMPM\n"
                               "CIRCLE/0,0,0,0,0,1,20\nGOTO/-20,0,0\nFINI\n",
                               machine("fanuc-mill"), {.certify = true});

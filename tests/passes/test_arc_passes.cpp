@@ -474,7 +474,7 @@ TEST(ArcLegalise, AnRFormatArcNearHalfATurnIsSplitWhereItsCentreWouldNotHold) {
   Compiled short_arc = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/5,0,0\nINDIRV/0,1,0\n"
                                     "CIRCLE/0,0,0,0,0,1,5\nGOTO/4.999810,0.043633,0\n", rm, {.certify = true});
   ASSERT_TRUE(short_arc.ok) << short_arc.diags;
-  EXPECT_THAT(short_arc.output, HasSubstr(" G03 Y0.044 R5.\nN70 M05\n"));
+  EXPECT_THAT(short_arc.output, HasSubstr(" G03 Y0.044 R5.\nN80 M05\n"));
   // A full circle off the grid: its halves' centres did not hold (0.1 mm off, refused).
   Compiled circle = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/10.0007,0.0003,0\nINDIRV/0,1,0\n"
                                  "CIRCLE/0.0003,0.0003,0,0,0,1,10.0004\nGOTO/10.0007,0.0003,0\n", rm, {.certify = true});

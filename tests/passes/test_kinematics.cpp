@@ -306,7 +306,7 @@ TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {
   ASSERT_TRUE(p.ok) << p.diags;
   // Each CL move (1 mm at 500 mm/min) is split in two by the transform (B swings 10 degrees
   // about a point 10 mm up): each half takes 0.001 min, F1000 (1/min), written on every block.
-  EXPECT_THAT(p.output, HasSubstr("N35 G93 X-0.0829 Z0.3854 B15. F1000.\nN40 X-0.0977 Z0.3834 B20. F1000.\n"));
+  EXPECT_THAT(p.output, HasSubstr("N40 G93 X-0.0829 Z0.3854 B15. F1000.\nN45 X-0.0977 Z0.3834 B20. F1000.\n"));
 }
 
 TEST(KinematicsPass, TransformModeSplitsMovesWhereTheTipWouldLeaveTheSegment) {

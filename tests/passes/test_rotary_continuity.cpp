@@ -53,9 +53,9 @@ TEST(RotaryContinuity, AWindingAxisIsUnwoundWithTheToolClear) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr(":16:1: warning: C would wind to C405, past its range (-400 to 400): retracting along "
                                  "the tool axis, unwinding and re-engaging [-Wunwind]"));
-  EXPECT_THAT(c.output, HasSubstr("N70 X14.142 Y-14.142 Z-3.5 C315.\nN75 X20. Y0. Z-4. C360.\nN80 G00 X25. Z4.66\n"
-                                  "N85 G49\nN90 G00 C0.\nN95 G00 G234 H01\nN100 G00 X25. Y0. Z4.66\n"
-                                  "N105 G94 G01 X20. Z-4. F800.\nN110 X14.142 Y14.142 Z-4.5 C45.\nN115 X0. Y20. Z-5. C90.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N75 X14.142 Y-14.142 Z-3.5 C315.\nN80 X20. Y0. Z-4. C360.\nN85 G00 X25. Z4.66\n"
+                                  "N90 G49\nN95 G00 C0.\nN100 G00 G234 H01\nN105 G00 X25. Y0. Z4.66\n"
+                                  "N110 G94 G01 X20. Z-4. F800.\nN115 X14.142 Y14.142 Z-4.5 C45.\nN120 X0. Y20. Z-5. C90.\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 }
 
@@ -94,9 +94,9 @@ TEST(RotaryContinuity, ABranchFlipMidCutIsARetractAndReEngageAtThePoint) {
   Compiled c = compile_text(cl, machine("neg-umc", machine_toml), certified());
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr(":9:1: warning: the rotary axes must jump here: retracting, rotating and re-engaging"));
-  EXPECT_THAT(c.output, HasSubstr("N45 X0.0787 B-34.\nN50 G00 X-1.0396 Z2.0518\nN55 G49\nN60 G00 B34. C-180.\n"
-                                  "N65 G00 G234 H01\nN70 G00 X-1.0396 Y0. Z2.0518\nN75 G94 G01 X0.0787 Z0.3937 F19.69\n"
-                                  "N80 X0.1181 B40.\nN85 G49\n"));
+  EXPECT_THAT(c.output, HasSubstr("N50 X0.0787 B-34.\nN55 G00 X-1.0396 Z2.0518\nN60 G49\nN65 G00 B34. C-180.\n"
+                                  "N70 G00 G234 H01\nN75 G00 X-1.0396 Y0. Z2.0518\nN80 G94 G01 X0.0787 Z0.3937 F19.69\n"
+                                  "N85 X0.1181 B40.\nN90 G49\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 }
 
@@ -109,11 +109,11 @@ TEST(RotaryContinuity, AnUnwindCodeRenamesTheAxisWithoutMotion) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr(":16:1: warning: C would wind to C405, past its range (-400 to 400): renamed by whole "
                                  "turns (codes.unwind) [-Wunwind]"));
-  EXPECT_THAT(c.output, HasSubstr("N75 X20. Y0. Z-4. C360.\nN80 G92 C0.\nN85 G94 G01 X14.142 Y14.142 Z-4.5 C45. F800.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N80 X20. Y0. Z-4. C360.\nN85 G92 C0.\nN90 G94 G01 X14.142 Y14.142 Z-4.5 C45. F800.\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 
   std::string off = c.output;
-  off.replace(off.find("N80 G92 C0."), 11, "N80 G92 C10.");
+  off.replace(off.find("N85 G92 C0."), 11, "N85 G92 C10.");
   gcode::Result r = gcode::interpret(off, machine("umc-wind", toml));
   ASSERT_FALSE(r.problems.empty());
   EXPECT_THAT(r.problems[0].message, HasSubstr("G92 renames C360 as C10: not whole turns, so the part's angle would change"));

@@ -250,7 +250,7 @@ TEST(Certify, ANearlyWholeHelixWithAShortChordIsSplit) {
   Result x = certified_compile(t.path("turn.cls"), t.path("turn.nc"), machine("haas-umc750"));
   ASSERT_TRUE(x.r.ok) << x.diags;
   EXPECT_THAT(read_file(t.path("turn.nc")),
-              HasSubstr("G18 G03 X2.6824 Y1.6008 Z-0.8902 K-0.2391 I-0.7047\nN50 X4.0123 Y1.5516 Z-0.2251 K0.3022 I0.6801\n"));
+              HasSubstr("G18 G03 X2.6824 Y1.6008 Z-0.8902 K-0.2391 I-0.7047\nN55 X4.0123 Y1.5516 Z-0.2251 K0.3022 I0.6801\n"));
   EXPECT_LE(x.r.certificate->max_deviation, 0.0001);
 }
 
