@@ -15,10 +15,12 @@
 //
 // A rapid is split only where the position before it is known (a move or an arc before it;
 // a load of the tool already in the spindle, a frame or work offset, or a raw block that can
-// move no axis is no motion: NX writes the first ones at every operation), the tool axis does not change along it (a rapid that turns a
-// rotary is left as the CL gives it), and cutter compensation is off and not switched by it
-// (a block more would change the compensated path, or start or cancel it on a Z move). The first move after a tool change is the backend's (X Y,
-// then Z with the length offset).
+// move no axis is no motion: NX writes the first ones at every operation), and the tool axis
+// does not change along it (a rapid that turns a rotary is left as the CL gives it). With
+// cutter compensation on or switched by it, a block more would change the compensated path (or
+// start or cancel it on a Z move): such a rapid is written as a straight feed at the machine's
+// max_feed instead, along the CL's line, and the feed before it said again after. The first
+// move after a tool change is the backend's (X Y, then Z with the length offset).
 //
 // Its contract (what it expects, guarantees, reads, and the IR facts it requires and
 // provides) is rapid_split_pass() at the end of this file.
@@ -44,20 +46,24 @@ class RapidSplit : public Pass {
     eps_ = ctx.resolution();
   }
 
-  void run(ir::Operation& op, PassContext&) override {
+  void run(ir::Operation& op, PassContext& ctx) override {
     if (!on_) return;
     std::vector<ir::Instr> out;  // built only once a rapid is split
     for (size_t i = 0; i < op.body.size(); ++i) {
       const ir::Instr& in = op.body[i];
       if (const auto* m = std::get_if<ir::Move>(&in.op)) {
-        if (m->kind == ir::MoveKind::Rapid && known_ && !comp_ && !comp_switch_) {
+        if (m->kind == ir::MoveKind::Rapid && known_) {
           if (auto mid = midpoint(*m)) {
             if (out.empty() && i > 0) out.assign(op.body.begin(), op.body.begin() + std::ptrdiff_t(i));
-            ir::Move piece = *m;
-            piece.point = *mid;
-            piece.axis_written = false;
-            out.push_back({in.loc, piece});
             split_ = true;
+            if (!comp_ && !comp_switch_) {
+              ir::Move piece = *m;
+              piece.point = *mid;
+              piece.axis_written = false;
+              out.push_back({in.loc, piece});
+            } else if (linear(*m, in.loc, out, ctx)) {
+              continue;
+            }
           }
         }
         at_ = m->point;
@@ -87,6 +93,8 @@ class RapidSplit : public Pass {
         // leaves the tool where it stood: the rapid after it was written whole, down and across
         // at once. One that may move axes (G28, G53, an axis word, a macro) leaves it unknown.
         if (may_move_axes(op.str(ins->text))) known_ = false;
+      } else if (const auto* f = std::get_if<ir::Feed>(&in.op)) {
+        feed_ = *f;
       } else if (!keeps_position(in.op)) {
         known_ = false;
       }
@@ -106,6 +114,31 @@ class RapidSplit : public Pass {
            std::holds_alternative<ir::Stop>(op) || std::holds_alternative<ir::ToolPreselect>(op);
   }
 
+  // With cutter compensation on (or switched by it) a block more would add a corner to the
+  // compensated path, and start or cancel the offset on a move along Z: the rapid is written as
+  // a straight feed at the machine's fastest (max_feed, per minute), which the control
+  // interpolates along the CL's line, and the feed in force before it is said again after it.
+  // Left as a G00 it went down and across at once, 14 mm under the CL's line at the middle
+  // (certified). False, with an error, where the machine has no max_feed.
+  bool linear(const ir::Move& m, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
+    if (ctx.machine.max_feed <= 0) {
+      ctx.diags.error(loc, "a rapid along and across the tool axis with cutter compensation on: the control's G00 is not "
+                           "interpolated (motion.rapids_linear = false), so it would leave the CL's line, and split it "
+                           "would change the compensated path; it is written as a feed at the machine's fastest, which "
+                           "machine '" + ctx.machine.name + "' does not give (max_feed)");
+      return false;
+    }
+    out.push_back({loc, ir::Feed{ctx.machine.max_feed * ctx.from_output(), ir::FeedMode::PerMinute}});
+    ir::Move fed = m;
+    fed.kind = ir::MoveKind::Feed;
+    out.push_back({loc, fed});
+    if (feed_) out.push_back({loc, *feed_});
+    at_ = m.point;
+    axis_ = m.axis;
+    comp_switch_ = false;
+    return true;
+  }
+
   // The corner of the split move, or nothing where the rapid goes only along the tool axis,
   // only across it, or turns the tool axis.
   std::optional<ir::Vec3> midpoint(const ir::Move& m) const {
@@ -122,6 +155,7 @@ class RapidSplit : public Pass {
   double eps_ = 0;
   bool head_ = false, tilting_table_ = false;  // the machine's rotaries
   bool known_ = false, comp_ = false, comp_switch_ = false, split_ = false;
+  std::optional<ir::Feed> feed_;  // the CL's feed in force
   int tool_ = -1;
   ir::Vec3 at_ = ir::Vec3::Zero(), axis_ = ir::Vec3::UnitZ();
 };
@@ -134,11 +168,12 @@ const PassInfo& rapid_split_pass() {
       .summary = "split rapids that go along and across the tool axis, for controls whose rapids are not interpolated",
       .expects = "moves in the part frame with their tool axes (before kinematics); cycles formed",
       .guarantees = "where motion.rapids_linear is false: no CL rapid goes both along the tool axis and across it "
-                    "(by more than an increment) from a known position with the tool axis unchanged and cutter compensation "
-                    "off (on a machine with a head: only with the tool along Z and no tilting table); going up it "
-                    "rises first, going down it crosses first, so the tool never passes below the CL's straight line. "
+                    "(by more than an increment) from a known position with the tool axis unchanged (on a machine with a "
+                    "head: only with the tool along Z and no tilting table); going up it rises first, going down it "
+                    "crosses first, so the tool never passes below the CL's straight line; with cutter compensation on "
+                    "or switched by it, it is a feed at max_feed along that line (an error where max_feed is 0). "
                     "Nothing changes where rapids are linear",
-      .settings = "motion.rapids_linear, kinematics.axes (head or table, axis), format.X (one increment)",
+      .settings = "motion.rapids_linear, kinematics.axes (head or table, axis), format.X (one increment), max_feed",
       .needs = ir::CyclesFormed,
       .provides = ir::RapidsSplit,
       .breaks = 0,

@@ -65,9 +65,28 @@ TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   // After the tool change: X Y, then Z with the length offset (the backend's), not split again.
-  // The moves that start and cancel compensation carry G41 and G40: as they are.
-  EXPECT_THAT(c.output, HasSubstr("N100 G90 G54 G00 X50. Y50.\nN110 G43 H02 Z5.\nN120 G41 D2 X60. Z20.\n"
-                                  "N130 G40 X70. Z30.\nN140 G91 G28 Z0.\n"));
+  // The moves that start and cancel compensation carry G41 and G40: not split (a corner more in
+  // the compensated path), but fed at the machine's fastest, along the CL's line (as G00 they
+  // went up and across at once, off the line).
+  EXPECT_THAT(c.output, HasSubstr("N100 G90 G54 G00 X50. Y50.\nN110 G43 H02 Z5.\nN120 S1000 M03\n"
+                                  "N130 G41 D2 G94 G01 X60. Z20. F10000.\nN140 G40 X70. Z30. F10000.\nN150 M05\n"));
+  // With compensation on, the feed in force before is said again after it.
+  Compiled on = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/100,0,30\nCUTCOM/LEFT,1\nFEDRAT/500\n"
+      "GOTO/100,10,30\nRAPID\nGOTO/0,10,2\nGOTO/0,10,-1\nGOTO/0,30,-1\nCUTCOM/OFF\nGOTO/0,40,-1\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(on.ok) << on.diags;
+  EXPECT_THAT(on.output, HasSubstr("N70 G41 D1 G94 G01 Y10. F500.\nN80 X0. Z2. F10000.\nN90 Z-1. F500.\nN100 Y30.\n"));
+  // A machine with no max_feed has no fastest feed to give it: an error at the rapid.
+  Compiled none = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/100,0,30\nCUTCOM/LEFT,1\nFEDRAT/500\n"
+      "GOTO/100,10,30\nRAPID\nGOTO/0,10,2\n",
+      machine("slow-mill", "[slow-mill]\ninherits = \"fanuc-mill\"\nmax_feed = 0.0\n"));
+  EXPECT_THAT(none.diags, HasSubstr("part.cls:10:1: error: a rapid along and across the tool axis with cutter compensation "
+                                    "on: the control's G00 is not interpolated (motion.rapids_linear = false), so it "
+                                    "would leave the CL's line, and split it would change the compensated path; it is "
+                                    "written as a feed at the machine's fastest, which machine 'slow-mill' does not give "
+                                    "(max_feed)"));
 }
 
 TEST(RapidSplit, AlongATiltedToolAxisOnTheFiveAxis) {
@@ -145,14 +164,14 @@ TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
 }
 
 // G40 is written on the first straight move after CUTCOM/OFF, not on an arc: a rapid after
-// such an arc carries it and is not split.
+// such an arc carries it and is not split, but fed along the CL's line at the fastest feed.
 TEST(RapidSplit, NotTheMoveThatCarriesG40AfterAnArc) {
   Compiled c = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
       "CUTCOM/LEFT\nGOTO/10,0,-1\nCUTCOM/OFF\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nRAPID\nGOTO/40,10,20\n",
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
-  EXPECT_THAT(c.output, HasSubstr("G40 G00 X40. Z20.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N100 G40 G01 X40. Z20. F10000.\n"));
 }
 
 // G41/G42 and G40 come on a move in the plane: on a plunge or a retract along Z alone the
