@@ -202,7 +202,10 @@ class Comparison : public ProgramSink {
   template <class OnPath>
   size_t nearest_end(size_t j, double d, OnPath on_path, std::vector<double>& passed, const Vec3& p, const Vec3* axis) {
     auto score = [&](const TipSegment& t, double dist) {
-      double s = dist / tol_;
+      // A block with another length offset than the CL's tool's stands there by chance (after
+      // a tool change with no retract, the last tool's height is the new tool's first point
+      // before its G43): the one with the tool's own register is the point's.
+      double s = dist / tol_ + (wrong_length_register(t) ? 2 : 0);
       if (five_axis_ && axis && axis_tol_ > 0) {
         const double n = t.axis.norm() * axis->norm();
         const double c = n > 0 ? std::clamp(t.axis.dot(*axis) / n, -1.0, 1.0) : 1.0;
@@ -248,6 +251,10 @@ class Comparison : public ProgramSink {
   // The tool the CL loaded cuts, with its own length offset (a wrong H puts the tip where
   // another tool's length says). Reported once per tool change.
   void tool_ok(const TipSegment& s);
+  bool wrong_length_register(const TipSegment& s) const {
+    return want_tool_ > 0 && s.raw.tool == want_tool_ && (s.raw.length_register > 0 || offsets_written()) &&
+           s.raw.length_register != want_h_;
+  }
   // Whether the machine's programs select a length offset register (a mill's G43 H{offset}, a
   // lathe's T word): then one must be in force where the CL's points are reached.
   // (A G43 with no H, or a D: the register comes from elsewhere, and none is read.)

@@ -351,7 +351,7 @@ void Comparison::tool_ok(const TipSegment& s) {
   if (s.raw.tool != want_tool_) {
     fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl(), 0);
     tool_reported_ = true;
-  } else if ((s.raw.length_register > 0 || offsets_written()) && s.raw.length_register != want_h_) {
+  } else if (wrong_length_register(s)) {
     // Register 0 (G43 H00, a lathe's T0100) is no offset at all: the tip off by the tool's
     // length. It was taken for "none said" and passed.
     fail(loc_, s.raw.line,

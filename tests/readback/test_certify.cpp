@@ -315,6 +315,27 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   EXPECT_THAT(r.out, HasSubstr("result: PASS"));
 }
 
+// A machine with no retract before the tool change (codes.safe_retract = ""): the new tool's
+// first block, X Y before its G43, ends at the last tool's height, which is the new tool's
+// first CL point. That block was taken as the point's own and failed as "no tool length offset
+// in force (register 0)" (the NIST drilling file b270_alldrill, refused); the next block,
+// there with the tool's own H, is the point's.
+TEST(Certify, ABlockThereWithoutTheToolsLengthOffsetIsNotThePointsOwn) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,100\nGOTO/0,0,-1\n"
+                         "RAPID\nGOTO/0,0,50\nLOADTL/2\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,50\nGOTO/20,0,5\n"
+                         "GOTO/20,0,-1\nFINI\n";
+  const char* toml = "[no-retract]\ninherits = \"fanuc-mill\"\n[no-retract.codes]\nsafe_retract = \"\"\n";
+  Compiled c = compile_text(cl, machine("no-retract", toml), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N90 T2 M06 (T2)\nN100 S1000 M03\nN110 G54 G00 X20. Y0.\nN120 G43 H02 Z50.\n"));
+  // With no block there under H02, the point is still refused.
+  Compiled plain = compile_text(cl, machine("no-retract", toml));
+  std::string wrong = plain.output;
+  wrong.replace(wrong.find("N120 G43 H02 Z50.\n"), 19, "N120 Z50.\n");
+  EXPECT_THAT(verify_text(cl, machine("no-retract", toml), wrong).diags,
+              HasSubstr("error: no tool length offset is in force (register 0), tool 2's is 2"));
+}
+
 // Found by the differential test (head-table-bc, seed 837): a move to a tool axis 0.43 degrees
 // from the pole. The transform splits it by the turn of C, so its last dozen blocks move the
 // tip some thousandths each, and the angles' rounding times the tool's length shakes the tip
