@@ -51,7 +51,8 @@ class ProgramWriter : public Backend {
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);
   virtual void retract_for_stop(SourceLoc loc) {}
-  virtual void after_raw_motion() {}  // a raw block that may have moved the axes was written
+  // A raw block that may have moved the axes was written (`z_only`: what it may move is Z alone).
+  virtual void after_raw_motion(bool /*z_only*/) {}
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 

@@ -147,7 +147,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (rotates) unclamp(loc);
   if (!rapid && tool_ >= 0) warn_spindle_stopped(loc, "cutting move");
 
-  if (rapid && after_raw_move_ && tool_ >= 0 && !need_length_offset_ && mv.point.z() > pos_.z()) {
+  if (rapid && after_raw_move_ && raw_z_only_ && tool_ >= 0 && !need_length_offset_ && mv.point.z() > pos_.z()) {
     // Up from the last CL point: along Z first, then across at that height (the rule of
     // rapid-split, from the last point the CL knows; the raw block may have left the tool low).
     e_.begin(loc);
@@ -197,11 +197,13 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   const bool modal = m_.modal.coordinates;
   const bool in_plane = e_.differs('X', x) || e_.differs('Y', y);
   bool any = !modal || in_plane || e_.differs('Z', z) || rotates;
-  // A pending G41/G42 or G40 waits for a block that moves in the plane: on a move along Z alone
-  // the control starts or cancels the offset during it, so the tool went sideways by the
-  // radius while it plunged beside the wall, or was pulled onto the contour as it came up. The
-  // plunge is made on the CL's point; the offset comes on (or off) with the lead-in (lead-out)
-  // across, or, before an arc, the arc refuses it.
+  // A pending G41/G42 waits for a block that moves in the plane: on a move along Z alone the
+  // control starts the offset during it, so the tool went sideways by the radius while it
+  // plunged beside the wall; the plunge is made on the CL's point, the offset comes on with the
+  // lead-in across (before an arc, the arc refuses it). A pending G40 waits likewise past a
+  // retract (cancelled on it the tool was pulled onto the contour as it came up), but goes on a
+  // plunge: the CL has the tool down there without the offset, and an arc after it, which
+  // cannot carry G40, was cut still offset.
   if (!any && !need_work_offset_ && !need_length_offset_ && !incremental_) {
     pos_ = mv.point;
     return;  // the control is there already
@@ -210,7 +212,10 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   absolute_code();
   work_offset_code();
   // (A G40 that cancels nothing goes on the next move, as before.)
-  if (in_plane || (comp_pending_set_ && comp_pending_.side == ir::CompSide::Off && !comp_on_)) comp_code();
+  // (Nor may compensation stay on through a move that tilts the tool: the G40 goes on it.)
+  const bool cancel_here = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off &&
+                           (!comp_on_ || mv.point.z() < pos_.z() || rotates);
+  if (in_plane || cancel_here) comp_code();
   if (need_length_offset_) {
     e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
     need_length_offset_ = false;

@@ -313,7 +313,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           if (!moves_axes)
             for (const RotaryAxis& r : m_.kinematics.rotaries) rotaries_kept += r.name[0];
           e_.forget_all_but(rotaries_kept);
-          if (moves_axes) after_raw_motion();
+          if (moves_axes) after_raw_motion(moves_along_z_only(text));
           feed_written_ = false;
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
           e_.comment("CL: " + std::string(op.str(x.text)));

@@ -158,19 +158,35 @@ std::vector<double> code_numbers(std::string_view t, char letter) {
   return out;
 }
 
-bool may_move_axes(std::string_view block) {
-  if (!axis_words(block).empty()) return true;
-  for (double g : code_numbers(block, 'G'))
-    if ((g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 || std::abs(g - 66) < 1e-6 ||
-        std::abs(g - 66.1) < 1e-6)
-      return true;
-  // An M code moves axes where the builder made it so (a pallet change, M60 on a Fanuc, M50 on
-  // a Haas; a macro called by M code): only the codes every control gives the same meaning,
-  // none of which moves an axis, are known not to.
+namespace {
+
+// An M code moves axes where the builder made it so (a pallet change, M60 on a Fanuc, M50 on
+// a Haas; a macro called by M code): only the codes every control gives the same meaning,
+// none of which moves an axis, are known not to.
+bool has_m_code_that_may_move(std::string_view block) {
   static constexpr int kStill[] = {0, 1, 3, 4, 5, 7, 8, 9, 19, 29, 48, 49};
   for (double m : code_numbers(block, 'M'))
     if (m != std::floor(m) || std::find(std::begin(kStill), std::end(kStill), int(m)) == std::end(kStill)) return true;
   return false;
+}
+
+bool calls_a_macro(std::string_view block) {
+  for (double g : code_numbers(block, 'G'))
+    if (std::abs(g - 65) < 1e-6 || std::abs(g - 66) < 1e-6 || std::abs(g - 66.1) < 1e-6) return true;
+  return false;
+}
+
+}  // namespace
+
+bool may_move_axes(std::string_view block) {
+  if (!axis_words(block).empty() || calls_a_macro(block) || has_m_code_that_may_move(block)) return true;
+  for (double g : code_numbers(block, 'G'))
+    if ((g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6) return true;
+  return false;
+}
+
+bool moves_along_z_only(std::string_view block) {
+  return may_move_axes(block) && axis_words(block) == "Z" && !calls_a_macro(block) && !has_m_code_that_may_move(block);
 }
 
 }  // namespace clpc

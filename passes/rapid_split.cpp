@@ -119,13 +119,15 @@ class RapidSplit : public Pass {
   // a straight feed at the machine's fastest (max_feed, per minute), which the control
   // interpolates along the CL's line, and the feed in force before it is said again after it.
   // Left as a G00 it went down and across at once, 14 mm under the CL's line at the middle
-  // (certified). False, with an error, where the machine has no max_feed.
+  // (certified). False, with an error, where the machine has no max_feed, or no FEDRAT has
+  // come before it (the feed after it would be the fastest, where a cut with no FEDRAT is refused).
   bool linear(const ir::Move& m, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
-    if (ctx.machine.max_feed <= 0) {
+    if (ctx.machine.max_feed <= 0 || !feed_) {
       ctx.diags.error(loc, "a rapid along and across the tool axis with cutter compensation on: the control's G00 is not "
                            "interpolated (motion.rapids_linear = false), so it would leave the CL's line, and split it "
-                           "would change the compensated path; it is written as a feed at the machine's fastest, which "
-                           "machine '" + ctx.machine.name + "' does not give (max_feed)");
+                           "would change the compensated path; it is written as a feed at the machine's fastest, " +
+                               (feed_ ? "which machine '" + ctx.machine.name + "' does not give (max_feed)"
+                                      : std::string("and with no FEDRAT before it there is no feed to return to")));
       return false;
     }
     out.push_back({loc, ir::Feed{ctx.machine.max_feed * ctx.from_output(), ir::FeedMode::PerMinute}});

@@ -77,6 +77,10 @@ class Comparison : public ProgramSink {
 
   void consume(size_t n);
   void spindle_ok(const TipSegment& s);
+  // A cut across the tool axis with the cutter compensation the CL has in force (none, left,
+  // right): verify takes D as no offset, so the path alone does not show a G41 where the CL has
+  // no CUTCOM, or none where it has. Said once until they agree again.
+  void comp_ok(const TipSegment& s);
 
   // A CL point within the tolerance of where the tool is already needs no block of its own
   // (a move shorter than the output resolution is rightly dropped).
@@ -378,6 +382,10 @@ class Comparison : public ProgramSink {
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since
+  int cl_comp_ = 0;           // the CL's cutter compensation, as the program's: 0 none, 1 G41, 2 G42
+  SourceLoc cl_comp_loc_;     // its CUTCOM
+  bool cancelling_ = false;   // CUTCOM/OFF after compensation, and no straight cut across since
+  bool comp_said_ = false;    // a cut with other compensation than the CL's reported, and they have not agreed since
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();

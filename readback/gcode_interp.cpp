@@ -1066,6 +1066,7 @@ class Interp {
   // Feed per revolution and the spindle speed, for times: with constant surface speed (G96)
   // the speed at the segment's middle diameter, within the G50 clamp.
   void spindle_info(Segment& s) const {
+    s.comp = comp_;
     s.per_rev = per_rev_;
     s.spindle = spindle_on_;
     s.spindle_code = spindle_on_ ? spindle_code_ : 0;

@@ -47,6 +47,7 @@ struct Segment {
   int work_offset = 1;        // 1 = G54 ... 6 = G59, 7.. = extended
   int tool = 0;
   int length_register = 0;    // the tool length offset in force (G43 H; lathe T's offset), 0: none
+  int comp = 0;               // cutter compensation in force: 0 none (G40), 1 left (G41), 2 right (G42)
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
   bool thread = false;        // a thread cut (G32, G92, G76): synchronised with the spindle, feed = the lead per revolution

@@ -56,6 +56,11 @@ void Comparison::operation(const ir::Operation& op) {
             tool_reported_ = false;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
+          } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
+            const int was = cl_comp_;
+            cl_comp_ = x.side == ir::CompSide::Off ? 0 : x.side == ir::CompSide::Left ? 1 : 2;
+            cancelling_ = cl_comp_ == 0 && was != 0;
+            cl_comp_loc_ = loc_;
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
             // The M code the machine starts this direction with (M03 clockwise on the built-ins).
@@ -146,6 +151,7 @@ void Comparison::consume(size_t n) {
   for (size_t i = 0; i < n && !win_.empty(); ++i) {
     check_limits(win_.front());
     spindle_ok(win_.front());
+    comp_ok(win_.front());
     if (finite(win_.front().end)) {
       at_ = win_.front().end;
       at_axis_ = win_.front().axis;
@@ -153,6 +159,34 @@ void Comparison::consume(size_t n) {
     }
     win_.pop_front();
   }
+}
+
+// Compared on a mill's cuts across the tool axis: the post starts and ends G41/G42 on the move
+// across after a plunge or a retract (CutterComp.StartsAndEndsOnAMoveInThePlane), and a
+// rapid after a tool change positions before it. (A lathe's tool nose compensation is not
+// compared.)
+void Comparison::comp_ok(const TipSegment& s) {
+  if (m_.is_lathe() || s.raw.kind == gcode::Segment::Kind::Rapid || !finite(s.start) || !finite(s.end)) return;
+  const Vec3 d = s.end - s.start;
+  const Vec3 ax = s.axis.norm() > 0 ? Vec3(s.axis.normalized()) : Vec3(Vec3::UnitZ());
+  if ((d - d.dot(ax) * ax).norm() <= tol_) return;
+  // The control cancels on a straight move: an arc right after CUTCOM/OFF keeps the offset
+  // (RapidSplit.NotTheMoveThatCarriesG40AfterAnArc) until the first straight move across.
+  if (cancelling_ && s.raw.kind == gcode::Segment::Kind::Arc) return;
+  cancelling_ = false;
+  if (s.raw.comp == cl_comp_) {
+    comp_said_ = false;
+    return;
+  }
+  if (comp_said_) return;
+  comp_said_ = true;
+  static const char* const kCode[] = {"no cutter compensation (G40)", "G41 (left)", "G42 (right)"};
+  fail(loc_, s.raw.line,
+       std::string("the program cuts here with ") + kCode[s.raw.comp] + ", where the CL has " +
+           (cl_comp_ == 0 ? std::string("no cutter compensation") + (cl_comp_loc_.line > 0 ? " (CUTCOM/OFF at line " + std::to_string(cl_comp_loc_.line) + ")" : std::string())
+                          : std::string(cl_comp_ == 1 ? "CUTCOM/LEFT" : "CUTCOM/RIGHT") + " (line " + std::to_string(cl_comp_loc_.line) + "), " + kCode[cl_comp_]) +
+           ": the cut is offset by the cutter's radius from where the CL puts it",
+       0);
 }
 
 // A cut made with the spindle stopped where the CL has it turning (after SPINDL, before

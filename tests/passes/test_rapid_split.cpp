@@ -77,6 +77,16 @@ TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(on.ok) << on.diags;
   EXPECT_THAT(on.output, HasSubstr("N70 G41 D1 G94 G01 Y10. F500.\nN80 X0. Z2. F10000.\nN90 Z-1. F500.\nN100 Y30.\n"));
+  // With no FEDRAT before it there is no feed to return to (the cuts after it ran at 10000).
+  Compiled no_feed = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,30\nCUTCOM/LEFT,1\nRAPID\nGOTO/0,-10,-5\n"
+      "GOTO/50,-10,-5\n",
+      machine("fanuc-mill"));
+  EXPECT_THAT(no_feed.diags, HasSubstr("part.cls:8:1: error: a rapid along and across the tool axis with cutter "
+                                       "compensation on: the control's G00 is not interpolated (motion.rapids_linear = "
+                                       "false), so it would leave the CL's line, and split it would change the compensated "
+                                       "path; it is written as a feed at the machine's fastest, and with no FEDRAT before "
+                                       "it there is no feed to return to"));
   // A machine with no max_feed has no fastest feed to give it: an error at the rapid.
   Compiled none = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/100,0,30\nCUTCOM/LEFT,1\nFEDRAT/500\n"
@@ -152,8 +162,15 @@ TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
   for (const char* raw : {"INSERT/G53 Z0.", "INSERT/M60", "AUXFUN/60"}) {  // M60: a pallet change
     Compiled moved = compile_text(start + raw + "\nRAPID\nGOTO/40,40,-3\n", machine("fanuc-mill"));
     EXPECT_THAT(moved.output, HasSubstr("\nN100 G00 X40. Y40.\nN110 Z-3.\n")) << raw;
-    Compiled up = compile_text(start + raw + "\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
-    EXPECT_THAT(up.output, HasSubstr("\nN100 G00 Z30.\nN110 X40. Y40.\n")) << raw;
+  }
+  // Up: where the block moves Z alone, X Y stand over the CL's last point and the rapid goes up
+  // first; after a pallet change or a G28 with X Y, where the tool stands is not known: across
+  // first (up first went down at an unknown X Y).
+  Compiled up = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
+  EXPECT_THAT(up.output, HasSubstr("\nN100 G00 Z30.\nN110 X40. Y40.\n"));
+  for (const char* raw : {"INSERT/M60", "INSERT/G91 G28 X0. Y0. Z0.\nINSERT/G90", "INSERT/G65 P9000 Z0."}) {
+    Compiled moved = compile_text(start + raw + "\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
+    EXPECT_THAT(moved.output, HasSubstr(" G00 X40. Y40.\nN110 Z30.\n")) << raw;
   }
   Compiled haas = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,-3\n", machine("haas-umc750"));
   EXPECT_THAT(haas.output, HasSubstr("G53 Z0.\nN65 M11 M13\nN70 G00 B0. C0.\nN75 M10 M12\nN80 X1.5748 Y1.5748\nN85 Z-0.1181\n"));
@@ -186,6 +203,14 @@ TEST(CutterComp, StartsAndEndsOnAMoveInThePlane) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z5.\nN70 G94 G01 Z-1. F100.\nN80 G41 D1 X10.\nN90 Y20.\nN100 Z5.\n"
                                   "N110 G40 G00 X30. Y30.\n"));
+  // A plunge after CUTCOM/OFF carries the G40: the CL has the tool down there without the
+  // offset, and the arc after it, which cannot carry G40, was cut still offset.
+  Compiled ramp = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,-10,5\nGOTO/0,-10,-5\n"
+      "CUTCOM/LEFT,1\nGOTO/50,-10,-5\nCUTCOM/OFF\nGOTO/50,-10,-8\nCIRCLE/50,0,-8,0,0,1,10\nGOTO/60,0,-8\nGOTO/60,0,20\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(ramp.ok) << ramp.diags;
+  EXPECT_THAT(ramp.output, HasSubstr("N80 G41 D1 X50.\nN90 G40 Z-8.\nN100 G17 G03 X60. Y0. I0. J10.\n"));
   // With no move across after it, the G40 comes before the program's end.
   Compiled end = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"

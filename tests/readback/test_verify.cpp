@@ -163,6 +163,31 @@ TEST_F(VerifyPlate, ACutWithTheSpindleTurningTheOtherWayFails) {
                                               "where the CL turns it the way the machine's M03 does"));
 }
 
+// Cutter compensation the CL does not have, or none where it has some: verify takes D as no
+// offset, so the path alone did not show it (a G41 inserted passed). An arc right after
+// CUTCOM/OFF keeps the offset to the next straight move across, as the post writes it.
+TEST_F(VerifyPlate, CutterCompensationOtherThanTheClsFails) {
+  Checked on = verify(cl, m, edit(program_for(cl, m), "N90 X30. F800.", "N90 G41 D1 X30. F800."));
+  EXPECT_FALSE(on.report.ok);
+  EXPECT_THAT(first_error(on.diags), HasSubstr("plate.cls:11:1: error: the program cuts here with G41 (left), where the CL has "
+                                               "no cutter compensation: the cut is offset by the cutter's radius from where "
+                                               "the CL puts it"));
+  write_file(cl, edit(kPlate, "GOTO/30,0,-2\n", "CUTCOM/RIGHT,1\nGOTO/30,0,-2\n"));
+  const std::string right = program_for(cl, m);
+  EXPECT_THAT(right, HasSubstr("N90 G42 D1 X30. F800.\n"));
+  EXPECT_TRUE(verify(cl, m, right).report.ok);
+  Checked off = verify(cl, m, edit(right, "N90 G42 D1 X30. F800.", "N90 X30. F800."));
+  EXPECT_THAT(first_error(off.diags), HasSubstr("plate.cls:12:1: error: the program cuts here with no cutter compensation "
+                                                "(G40), where the CL has CUTCOM/RIGHT (line 11), G42 (right)"));
+  write_file(cl, edit(kPlate, "GOTO/30,0,-2\nGOTO/30,20,-2\n", "CUTCOM/LEFT,1\nGOTO/30,0,-2\nGOTO/30,20,-2\nCUTCOM/OFF\n"));
+  const std::string arc_after = program_for(cl, m);
+  EXPECT_THAT(arc_after, HasSubstr("N110 G17 G03 X10. I-10. J0.\nN120 G40 G01 X0.\n"));
+  EXPECT_TRUE(verify(cl, m, arc_after).report.ok);
+  Checked late = verify(cl, m, edit(arc_after, "N120 G40 G01 X0.", "N120 G01 X0.\nG40"));
+  EXPECT_THAT(first_error(late.diags), HasSubstr("error: the program cuts here with G41 (left), where the CL has no cutter "
+                                                 "compensation (CUTCOM/OFF at line 14)"));
+}
+
 TEST_F(VerifyPlate, DroppedBlockFails) {
   Checked c = verify(cl, m, edit(program_for(cl, m), "N100 Y20.\n", ""));
   EXPECT_FALSE(c.report.ok);
