@@ -286,9 +286,31 @@ void Lexer::find_hidden_records(unsigned char* b, unsigned char* e, size_t first
     return nl ? nl : e;
   };
   unsigned char* buf = buf_.get();
+  // The line before the join is a record's head, words and commas before its major word
+  // (`TLON,$` then `GOFWD/...`): the joined word is that record's own.
+  auto head_before = [&](const unsigned char* q) {
+    const unsigned char* p = q;
+    while (p > buf && p[-1] != '\n') --p;
+    enum { Start, InWord, AfterWord, AfterComma } st = Start;
+    for (; p < q; ++p) {
+      if (std::isalnum(*p) || *p == '_') {
+        if (st == AfterWord) return false;  // two words with no comma between: text
+        st = InWord;
+      } else if (*p == ',') {
+        if (st != InWord && st != AfterWord) return false;
+        st = AfterComma;
+      } else if (*p == ' ' || *p == '\t') {
+        if (st == InWord) st = AfterWord;
+      } else {
+        return false;
+      }
+    }
+    return st == AfterComma;
+  };
   for (size_t i = first_splice; i < splices_.size(); ++i) {
     const unsigned char* q = buf + (splices_[i].at - base_);
     if (q > e) break;
+    if (head_before(q)) continue;
     // The joined text runs on to the line end, through any later joins (GO$ / TO/1,2,3).
     const unsigned char* word = q;
     if (MajorId id = record_at(q, line_end(q), &word); id != MajorId::Unknown)

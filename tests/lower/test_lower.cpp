@@ -599,6 +599,10 @@ TEST(Lower, ALineContinuedIntoARecordIsRefused) {
         << head;
   }
   EXPECT_EQ(err("PPRINT/(=========$\n=====)\nGOTO/0,0,5\n"), "");  // text continued by text
+  // A record's head continued by its major word is one record.
+  EXPECT_EQ(err("GOTO/0,0,5\nTLON,$\nGOFWD/(CIRCLE/0,0,5,10),ON,(LINE/0,0,5,-1,1,5)\n"),
+            err("GOTO/0,0,5\nTLON,GOFWD/(CIRCLE/0,0,5,10),ON,(LINE/0,0,5,-1,1,5)\n"));
+  EXPECT_EQ(err("GOTO/0,0,5\nPPRINT ROUGH,$\nGOTO/0,0,50\n"), "3:1: " + joins + "GOTO" + lost);
   EXPECT_EQ(err("SPINDL/1000,$\nCLW\nFEDRAT/MMPM,$\n250\nGOTO/0,0,5\n"), "");  // words continued by words
   EXPECT_EQ(err("GOTO/0,0,5\nPAINT/COLOR,$\nFEDRAT/250\nGOTO/0,0,50\n"), "3:1: " + joins + "FEDRAT" + lost);
   // A record with a head, one with a statement label, one whose word a '$' splits, and a
