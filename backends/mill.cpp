@@ -424,7 +424,8 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
     // arc was cut on the tool's centre where the CL offsets it. (G40 after an arc is written on
     // the next line: the arc keeps the offset it had, RapidSplit.NotTheMoveThatCarriesG40AfterAnArc.)
     d_.error(loc, "cutter compensation (CUTCOM) starts on an arc: the control starts G41/G42 only on a straight move "
-                  "(G00/G01); have the CAM system turn it on before a line (a lead-in)");
+                  "(G00/G01), and clpc only on one across the tool axis (not on a plunge); have the CAM system turn "
+                  "it on before a line across (a lead-in)");
     comp_pending_set_ = false;
     return;
   }

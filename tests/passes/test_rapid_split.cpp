@@ -229,8 +229,9 @@ TEST(CutterComp, WhatTheControlCannotMakeAsTheClAsksIsRefused) {
       "CUTCOM/LEFT\nCIRCLE/10,10,-1,0,0,1,10\nGOTO/20,10,-1\nGOTO/40,10,-1\n",
       machine("fanuc-mill"));
   EXPECT_THAT(on.diags, HasSubstr("part.cls:9:1: error: cutter compensation (CUTCOM) starts on an arc: the control "
-                                  "starts G41/G42 only on a straight move (G00/G01); have the CAM system turn it on "
-                                  "before a line (a lead-in)"));
+                                  "starts G41/G42 only on a straight move (G00/G01), and clpc only on one across the "
+                                  "tool axis (not on a plunge); have the CAM system turn it on before a line across (a "
+                                  "lead-in)"));
   // In another plane than the mill's XY (the plane word was dropped: G42 in G17).
   Compiled zx = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nCUTCOM/RIGHT,2,ZXPLAN\n"
