@@ -181,10 +181,13 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
 
-  if (!rapid && (need_length_offset_ || at_safe_height_) && tool_ >= 0 && (e_.differs('X', x) || e_.differs('Y', y))) {
-    // A cut from the safe height (a tool's first move, -Wapproach; or after a retract of the
-    // post's own): over the point at rapid first, then fed down along Z. Fed straight from up
-    // there it went diagonally down through whatever stands between.
+  if (!rapid && (need_length_offset_ || at_safe_height_ || (after_raw_move_ && raw_z_only_)) && tool_ >= 0 &&
+      (e_.differs('X', x) || e_.differs('Y', y))) {
+    // A cut from the safe height (a tool's first move, -Wapproach; after a retract of the
+    // post's own, or a raw block that moves Z alone, G53 Z0.): over the point at rapid first,
+    // then fed down along Z. Fed straight from up there it went diagonally down through
+    // whatever stands between. (After a pallet change or a macro, where the tool stands is
+    // not known even in Z: fed from there as the CL says.)
     e_.begin(loc);
     absolute_code();
     work_offset_code();

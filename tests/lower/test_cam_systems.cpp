@@ -1007,12 +1007,14 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   // A block that may move them (an axis word, even B-10.; G53): they are positioned again as the
   // post positions them, unclamped, alone, and clamped (restated with the cut, they were left
   // unclamped). A G28 with no axis named, which homes every axis on the Haas, is refused.
-  for (const char* moving : {"INSERT/G00 B-10.", "INSERT/G53 G00 Z0."}) {
-    Compiled again = compile_text(haas + moving + "\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
-    ASSERT_TRUE(again.ok) << again.diags;
-    EXPECT_THAT(again.output, HasSubstr(" M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 G01 X2.3622 Y1.5748 "
-                                        "Z-0.0787 F7.87\n")) << moving;
-  }
+  Compiled again = compile_text(haas + "INSERT/G00 B-10.\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
+  ASSERT_TRUE(again.ok) << again.diags;
+  EXPECT_THAT(again.output, HasSubstr(" M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
+  // After G53 Z0. the tool is up there over the last point: over the cut's end at rapid, then
+  // fed down (fed straight from machine home it went diagonally down into the part).
+  Compiled up = compile_text(haas + "INSERT/G53 G00 Z0.\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(up.ok) << up.diags;
+  EXPECT_THAT(up.output, HasSubstr(" M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 X2.3622 Y1.5748\nN80 G01 Z-0.0787 F7.87\n"));
   Compiled home = compile_text(haas + "INSERT/G28\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
   EXPECT_FALSE(home.ok);
   EXPECT_THAT(home.diags, HasSubstr("part.cls:9:1: error: the block 'G28' (INSERT, PREFUN or AUXFUN) returns to a "
