@@ -298,9 +298,11 @@ int main(int argc, char** argv) {
     vo.program = verify_program;
     vo.report = verify_report;
     VerifyReport r = verify_file(verify_input, *machine, vo, std::cerr);
-    if (json) print_report_json(std::cout, r);
-    else print_report(std::cout, r);
-    return r.ok ? kOk : kFailed;
+    // With the program on standard output (-o -), the report goes to standard error.
+    std::ostream& report_out = output == "-" ? std::cerr : std::cout;
+    if (json) print_report_json(report_out, r);
+    else print_report(report_out, r);
+    return r.ok && r.written ? kOk : kFailed;
   }
 
   if (*plot) {

@@ -57,7 +57,10 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   CompiledProgram cp;
   CompileOptions co = opt.compile;
   co.certify = false;  // certified here, with the whole report (and --program's program)
-  if (!compile_for_readback(input, m, co, opt.keep, opt.program, err, cp)) return rep;
+  ProtectedInput program(opt.program);
+  // The program goes to a temporary file first; -o gets it once it has passed (a program that
+  // failed replaced the file there), and `-o -` then reads it back from a file, not from '-'.
+  if (!compile_for_readback(input, m, co, {}, opt.program, err, cp)) return rep;
   SourceFile& src = cp.source;
   Diagnostics d(&err);
   d.set_source(&src);
@@ -76,8 +79,35 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   rep.input = input;
   src.on_progress(nullptr);
   progress.clear();
-  if (!opt.report.empty()) write_report(opt.report, rep, cp, m, err);
+  if (!opt.report.empty() && !write_report(opt.report, rep, cp, m, err)) rep.written = false;
+  if (!opt.keep.empty()) {
+    if (!rep.ok) {
+      err << "clpc: error: the program does not pass: it is not written to '" << opt.keep
+          << "' (compile --no-verify writes it unchecked)\n";
+      rep.written = false;
+    } else if (!copy_out(cp.temp.path(), opt.keep, err)) {
+      rep.written = false;
+    }
+  }
   return rep;
+}
+
+bool copy_out(const std::string& from, const std::string& to, std::ostream& err) {
+  std::ifstream in(from, std::ios::binary);
+  OutputFile out;
+  std::string why;
+  if (!in || !out.open(to, why)) {
+    err << "clpc: error: " << (in ? why : "cannot read the program back from '" + from + "'") << "\n";
+    return false;
+  }
+  std::string chunk(1 << 16, '\0');
+  while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0)
+    out.write(std::string_view(chunk.data(), size_t(in.gcount())));
+  if (!out.commit(why)) {
+    err << "clpc: error: " << why << "\n";
+    return false;
+  }
+  return true;
 }
 
 bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
@@ -113,6 +143,7 @@ bool write_report(const std::string& path, const VerifyReport& rep, const Compil
 PlotResult plot_file(const std::string& input, const std::string& output, const Machine& m, const PlotFileOptions& opt,
                      std::ostream& err) {
   CompiledProgram cp;
+  ProtectedInput program(opt.program);
   if (!compile_for_readback(input, m, opt.compile, {}, opt.program, err, cp)) return {};
   return plot_program(cp.path, input, cp.compiled.info, output, m, opt.plot, err);
 }

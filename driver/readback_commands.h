@@ -54,6 +54,10 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
 
 // The HTML report of a verification (readback/report_html.h), with the program's backplot,
 // written atomically to `path`.
+// Copies the file `from` to `to` atomically (an OutputFile: "-" is standard output); false,
+// with the error said, where it cannot.
+bool copy_out(const std::string& from, const std::string& to, std::ostream& err);
+
 bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
                   std::ostream& err);
 

@@ -49,6 +49,7 @@ struct VerifyReport {
   double tolerance = 0, axis_tolerance = 0;
   bool compiled = false;
   bool ok = false;
+  bool written = true;  // the files asked for (-o, --report) were written (or none was asked)
   double max_deviation = 0;  // output units
   SourceLoc max_loc;
   int max_gcode_line = 0;

@@ -13,6 +13,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <utility>
+#include <vector>
 
 namespace clpc {
 
@@ -102,8 +104,14 @@ void install_output_cleanup_handlers() {
   static std::once_flag once;
   std::call_once(once, [] {
     // SIGPIPE too: diagnostics piped into `head` that has gone (clpc compile ... 2>&1 | head)
-    // end the run as they would any program's, but not with a temporary file left behind.
-    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+    // end the run as they would any program's, but not with a temporary file left behind; and
+    // every other signal that ends a process (Ctrl-\'s SIGQUIT, a timer's SIGALRM, a file size
+    // limit's SIGXFSZ: each left a temporary). One the run was started ignoring (nohup's HUP, a
+    // background job's QUIT) stays ignored.
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU,
+                  SIGXFSZ}) {
+      struct sigaction old {};
+      if (sigaction(s, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
       struct sigaction sa {};
       sa.sa_handler = on_signal;
       sigemptyset(&sa.sa_mask);
@@ -112,9 +120,52 @@ void install_output_cleanup_handlers() {
   });
 }
 
+namespace {
+struct Input {
+  uint64_t id;
+  dev_t dev;
+  ino_t ino;
+};
+std::mutex g_inputs_lock;
+std::vector<Input> g_inputs;  // files being read (an inode is only one while its file is open)
+uint64_t g_next_input = 1;
+}  // namespace
+
+uint64_t protect_input(const std::string& path) {
+  struct stat st {};
+  if (path.empty() || path == "-" || stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+  std::lock_guard<std::mutex> hold(g_inputs_lock);
+  g_inputs.push_back({g_next_input, st.st_dev, st.st_ino});
+  return g_next_input++;
+}
+
+void release_input(uint64_t id) {
+  if (id == 0) return;
+  std::lock_guard<std::mutex> hold(g_inputs_lock);
+  for (size_t i = 0; i < g_inputs.size(); ++i)
+    if (g_inputs[i].id == id) {
+      g_inputs.erase(g_inputs.begin() + std::ptrdiff_t(i));
+      return;
+    }
+}
+
+bool is_protected_input(const std::string& path) {
+  struct stat st {};
+  if (path.empty() || path == "-" || stat(path.c_str(), &st) != 0) return false;
+  std::lock_guard<std::mutex> hold(g_inputs_lock);
+  for (const Input& in : g_inputs)
+    if (in.dev == st.st_dev && in.ino == st.st_ino) return true;
+  return false;
+}
+
 OutputFile::~OutputFile() { discard(); }
 
 bool OutputFile::open(const std::string& path, std::string& error) {
+  if (is_protected_input(path)) {
+    error = "the output '" + path + "' is a file this run reads (the CL, or the program checked or drawn); refusing to "
+            "overwrite it";
+    return false;
+  }
   path_ = path;
   to_stdout_ = path == "-";
   // A device or pipe (/dev/null, a FIFO) cannot be renamed over: the program goes through an

@@ -75,4 +75,20 @@ class OutputFile {
 // the signal. Installed once by the command line.
 void install_output_cleanup_handlers();
 
+// Files this run reads (a CL file, a program verify checks or plot draws): OutputFile::open
+// refuses to replace one, whatever command writes (`plot part.cls -o part.cls`, `verify
+// --report` onto the CL, `verify --program hand.nc -o hand.nc` each destroyed its input).
+// protect_input returns a token for release_input (0: nothing protected, not a regular file).
+uint64_t protect_input(const std::string& path);
+void release_input(uint64_t token);
+bool is_protected_input(const std::string& path);
+// Protects a file for a scope.
+struct ProtectedInput {
+  explicit ProtectedInput(const std::string& path) : token(protect_input(path)) {}
+  ~ProtectedInput() { release_input(token); }
+  ProtectedInput(const ProtectedInput&) = delete;
+  ProtectedInput& operator=(const ProtectedInput&) = delete;
+  uint64_t token;
+};
+
 }  // namespace clpc

@@ -1,4 +1,5 @@
 #include "support/source.h"
+#include "support/output.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -80,6 +81,8 @@ bool SourceFile::open(const std::string& path, std::string& error) {
   }
   fd_ = fd;
   size_ = uint64_t(st.st_size);
+  release_input(protected_);
+  protected_ = protect_input(path);
   drop_end_of_file_marks();
   detect_cr_line_ends();
   return true;
@@ -118,6 +121,7 @@ void SourceFile::open_memory(std::string name, std::string_view text) {
 
 SourceFile::~SourceFile() {
   if (fd_ >= 0) close(fd_);
+  release_input(protected_);
 }
 
 long SourceFile::read_at(uint64_t offset, char* dst, size_t n) const {

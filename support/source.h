@@ -61,6 +61,7 @@ class SourceFile {
   long read_raw(uint64_t offset, char* dst, size_t n) const;
   std::string name_;
   int fd_ = -1;
+  uint64_t protected_ = 0;  // protect_input's token: no output of this run may replace the file
   std::string_view memory_;
   bool in_memory_ = false;
   uint64_t size_ = 0;

@@ -352,6 +352,62 @@ TEST(OutputSafety, RefusesToOverwriteItsInput) {
   EXPECT_EQ(read_file(t.path("part.cls")), kHead + "RAPID\nGOTO/1,2,3\n");
 }
 
+// Every command refuses to replace a file the run reads: plot's -o (or its default name, for
+// an input called part.svg), verify's --report and -o onto the CL or onto the program it
+// checks (each destroyed its input, exit 0).
+TEST(OutputSafety, NoCommandOverwritesAFileItReads) {
+  TempDir t;
+  const std::string cl = t.path("part.cls"), text = kHead + "RAPID\nGOTO/1,2,3\nFEDRAT/100\nGOTO/10,2,3\n";
+  write_file(cl, text);
+  const std::string refuses = "is a file this run reads (the CL, or the program checked or drawn); refusing to overwrite it";
+  for (const std::string& args : {"plot -t fanuc-mill " + cl + " -o " + cl, "verify -t fanuc-mill " + cl + " --report " + cl,
+                                  "verify -t fanuc-mill " + cl + " -o " + cl}) {
+    RunResult r = run_clpc(args);
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_THAT(r.err, HasSubstr(refuses)) << args;
+    EXPECT_EQ(read_file(cl), text) << args;
+  }
+  write_file(t.path("drawn.svg"), text);
+  RunResult svg = run_clpc("plot -t fanuc-mill " + t.path("drawn.svg"));
+  EXPECT_EQ(svg.status, 1);
+  EXPECT_EQ(read_file(t.path("drawn.svg")), text);
+  ASSERT_EQ(run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("hand.nc")).status, 0);
+  const std::string hand = read_file(t.path("hand.nc"));
+  for (const std::string& args : {"verify -t fanuc-mill " + cl + " --program " + t.path("hand.nc") + " -o " + t.path("hand.nc"),
+                                  "verify -t fanuc-mill " + cl + " --program " + t.path("hand.nc") + " --report " + t.path("hand.nc"),
+                                  "plot -t fanuc-mill " + cl + " --program " + t.path("hand.nc") + " -o " + t.path("hand.nc")}) {
+    RunResult r = run_clpc(args);
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_THAT(r.err, HasSubstr(refuses)) << args;
+    EXPECT_EQ(read_file(t.path("hand.nc")), hand) << args;
+  }
+}
+
+// verify's files: a report that cannot be written fails the run (it exited 0); -o gets the
+// program only once it passes (a failing one replaced the file there), and `-o -` writes it
+// to standard output with the report on standard error (it failed, reading back '-').
+TEST(OutputSafety, VerifyWritesItsFilesOnlyWhenAllIsWell) {
+  TempDir t;
+  const std::string cl = t.path("part.cls");
+  write_file(cl, kHead + "RAPID\nGOTO/1,2,3\nFEDRAT/100\nGOTO/10,2,3\n");
+  RunResult report = run_clpc("verify -t fanuc-mill " + cl + " --report " + t.path("nodir/r.html"));
+  EXPECT_EQ(report.status, 1);
+  EXPECT_THAT(report.err, HasSubstr("error: cannot create the output in '" + t.path("nodir") + "'"));
+  ASSERT_EQ(run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("hand.nc")).status, 0);
+  std::string wrong = read_file(t.path("hand.nc"));
+  wrong.replace(wrong.find("X10."), 4, "X11.");
+  write_file(t.path("wrong.nc"), wrong);
+  write_file(t.path("keep.nc"), "OLD\n");
+  RunResult fails = run_clpc("verify -t fanuc-mill " + cl + " --program " + t.path("wrong.nc") + " -o " + t.path("keep.nc"));
+  EXPECT_EQ(fails.status, 1);
+  EXPECT_THAT(fails.err, HasSubstr("error: the program does not pass: it is not written to '" + t.path("keep.nc") + "'"));
+  EXPECT_EQ(read_file(t.path("keep.nc")), "OLD\n");
+  RunResult out = run_clpc("verify -t fanuc-mill " + cl + " -o -");
+  EXPECT_EQ(out.status, 0) << out.err;
+  EXPECT_EQ(out.out, read_file(t.path("hand.nc")));
+  EXPECT_THAT(out.err, HasSubstr("result: PASS"));
+}
+
 // Diagnostics piped into a reader that goes away (clpc compile ... 2>&1 | head -1): the run
 // dies of SIGPIPE as any program would, and leaves no temporary file beside the target; an
 // older program there stays as it was.
