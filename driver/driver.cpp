@@ -173,6 +173,11 @@ CompileResult compile_source(SourceFile& src, const std::string& output, const M
     const bool motion = pipeline.run(src, *sink);
     progress.clear();
     if (!motion && !d.has_errors()) d.error({}, "nothing to post: the file has no motion (GOTO, CIRCLE, ...)");
+    // A file cut short (or written on) while it was read posts what was read: a program
+    // without the rest of the part, certified against the part read.
+    if (src.changed_since_open())
+      d.error({}, "the file changed while it was read (its size or modification time is not what it was when the "
+                  "compile began): the program would not be the file's; run again once it is written");
     if (opt.certify && opt.emit == Emit::Gcode && !d.has_errors()) {
       // The program is read back and compared with the CL before it is put in place.
       if (!out.finish_writing(why)) {

@@ -57,6 +57,12 @@ void on_signal(int sig) {
   raise(sig);
 }
 
+std::string link_target(const std::string& path) {
+  char buf[4096];
+  const ssize_t n = readlink(path.c_str(), buf, sizeof buf - 1);
+  return n > 0 ? std::string(buf, size_t(n)) : std::string("?");
+}
+
 std::string dir_of(const std::string& path) {
   size_t slash = path.rfind('/');
   if (slash == std::string::npos) return ".";
@@ -168,10 +174,31 @@ bool OutputFile::open(const std::string& path, std::string& error) {
   }
   path_ = path;
   to_stdout_ = path == "-";
+  keep_mode_ = -1;
+  struct stat st;
+  if (!to_stdout_ && lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+    // A symbolic link is written through (the program replaces the file it names): renamed over,
+    // the link itself became a file and its target kept the old program.
+    char* real = realpath(path.c_str(), nullptr);
+    if (!real) {
+      error = "cannot write '" + path + "': it is a symbolic link to '" + link_target(path) + "', which does not exist";
+      return false;
+    }
+    path_ = real;
+    std::free(real);
+  }
   // A device or pipe (/dev/null, a FIFO) cannot be renamed over: the program goes through an
   // anonymous temporary file and is copied to it on success, as to standard output.
-  struct stat st;
-  to_special_ = !to_stdout_ && stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+  to_special_ = !to_stdout_ && stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+  if (!to_stdout_ && !to_special_ && stat(path_.c_str(), &st) == 0) {
+    // A program a shop made read-only (a proven program) is not replaced; one that is replaced
+    // keeps its permissions (it came back 644 from a 640).
+    if ((st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
+      error = "cannot write '" + path + "': it is read-only (write-protected); refusing to replace it";
+      return false;
+    }
+    keep_mode_ = int(st.st_mode & 07777);
+  }
   if (to_special_ && S_ISDIR(st.st_mode)) {
     error = "cannot write '" + path + "': it is a directory";
     return false;
@@ -183,8 +210,8 @@ bool OutputFile::open(const std::string& path, std::string& error) {
     dir = t && *t ? t : "/tmp";
     tmpl = dir + "/.clpc-stdout.clpc-" + std::to_string(getpid()) + "-XXXXXX";
   } else {
-    dir = dir_of(path);
-    std::string base = base_of(path);
+    dir = dir_of(path_);
+    std::string base = base_of(path_);
     remove_stale_temps(dir, base);
     tmpl = dir + "/." + base + ".clpc-" + std::to_string(getpid()) + "-XXXXXX";
   }
@@ -344,6 +371,7 @@ bool OutputFile::commit(std::string& error) {
     return false;
   }
   fd_ = -1;
+  if (keep_mode_ >= 0) chmod(temp_.c_str(), mode_t(keep_mode_));
   if (rename(temp_.c_str(), path_.c_str()) != 0) {
     error = "cannot write '" + path_ + "': " + strerror(errno);
     unlink(temp_.c_str());

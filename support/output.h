@@ -55,6 +55,7 @@ class OutputFile {
   void finish_writes();  // waits for the writer; the file then holds all that was written
   void writer();
   std::string path_, temp_;
+  int keep_mode_ = -1;  // the permissions of the file replaced (-1: none there)
   int fd_ = -1;
   bool to_stdout_ = false;
   bool to_special_ = false;  // a device or pipe: copied to, like standard output

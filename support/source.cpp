@@ -81,6 +81,8 @@ bool SourceFile::open(const std::string& path, std::string& error) {
   }
   fd_ = fd;
   size_ = uint64_t(st.st_size);
+  opened_size_ = int64_t(st.st_size);
+  opened_mtime_ns_ = int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
   release_input(protected_);
   protected_ = protect_input(path);
   drop_end_of_file_marks();
@@ -117,6 +119,13 @@ void SourceFile::open_memory(std::string name, std::string_view text) {
   size_ = text.size();
   drop_end_of_file_marks();
   detect_cr_line_ends();
+}
+
+bool SourceFile::changed_since_open() const {
+  struct stat st {};
+  if (fd_ < 0 || opened_size_ < 0 || fstat(fd_, &st) != 0) return false;
+  return int64_t(st.st_size) != opened_size_ ||
+         int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec != opened_mtime_ns_;
 }
 
 SourceFile::~SourceFile() {

@@ -30,6 +30,9 @@ class SourceFile {
   // Wraps an in-memory text (tests, fuzzers). The text must outlive the SourceFile.
   void open_memory(std::string name, std::string_view text);
   ~SourceFile();
+  // True where the regular file read has another size or modification time than when opened
+  // (truncated, appended to or rewritten meanwhile).
+  bool changed_since_open() const;
   SourceFile() = default;
   SourceFile(const SourceFile&) = delete;
   SourceFile& operator=(const SourceFile&) = delete;
@@ -65,6 +68,7 @@ class SourceFile {
   std::string_view memory_;
   bool in_memory_ = false;
   uint64_t size_ = 0;
+  int64_t opened_size_ = -1, opened_mtime_ns_ = 0;  // a regular file's, when opened
   bool cr_line_ends_ = false;
   std::function<void(uint64_t)> progress_;
   static constexpr uint32_t kCheckpointEvery = 1024;

@@ -352,6 +352,58 @@ TEST(OutputSafety, RefusesToOverwriteItsInput) {
   EXPECT_EQ(read_file(t.path("part.cls")), kHead + "RAPID\nGOTO/1,2,3\n");
 }
 
+// A file truncated, appended to or rewritten while it is read is not posted: the program
+// would be what was read of it (a 10-million-GOTO file cut to 40% mid-compile was certified).
+TEST(OutputSafety, AFileThatChangesWhileItIsReadIsNotPosted) {
+  TempDir t;
+  const std::string cl = t.path("part.cls");
+  write_file(cl, kHead + "RAPID\nGOTO/1,2,3\n");
+  SourceFile src;
+  std::string why;
+  ASSERT_TRUE(src.open(cl, why)) << why;
+  EXPECT_FALSE(src.changed_since_open());
+  write_file(cl, kHead + "RAPID\nGOTO/1,2,3\nGOTO/1,2,4\n");
+  EXPECT_TRUE(src.changed_since_open());
+  std::ostringstream err;
+  CompileResult r = compile_source(src, t.path("part.nc"), machine("fanuc-mill"), CompileOptions{}, err);
+  EXPECT_FALSE(r.ok);
+  EXPECT_THAT(err.str(), HasSubstr("error: the file changed while it was read (its size or modification time is not what "
+                                   "it was when the compile began)"));
+  EXPECT_FALSE(std::filesystem::exists(t.path("part.nc")));
+}
+
+// The file at the output path: a read-only one (a proven program a shop protected) is not
+// replaced; one replaced keeps its permissions; a symbolic link is written through, to the
+// file it names (renamed over, the link became a file and the target kept the old program).
+TEST(OutputSafety, TheFileThereKeepsItsProtectionItsModeAndItsLinks) {
+  TempDir t;
+  const std::string cl = t.path("part.cls");
+  write_file(cl, kHead + "RAPID\nGOTO/1,2,3\nFEDRAT/100\nGOTO/10,2,3\n");
+  write_file(t.path("proven.nc"), "OLD\n");
+  chmod(t.path("proven.nc").c_str(), 0444);
+  RunResult ro = run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("proven.nc"));
+  EXPECT_EQ(ro.status, 1);
+  EXPECT_THAT(ro.err, HasSubstr("error: cannot write '" + t.path("proven.nc") + "': it is read-only (write-protected); "
+                                "refusing to replace it"));
+  EXPECT_EQ(read_file(t.path("proven.nc")), "OLD\n");
+  write_file(t.path("shared.nc"), "OLD\n");
+  chmod(t.path("shared.nc").c_str(), 0640);
+  ASSERT_EQ(run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("shared.nc")).status, 0);
+  struct stat st {};
+  ASSERT_EQ(stat(t.path("shared.nc").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0640u);
+  write_file(t.path("target.nc"), "OLD\n");
+  ASSERT_EQ(symlink("target.nc", t.path("link.nc").c_str()), 0);
+  ASSERT_EQ(run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("link.nc")).status, 0);
+  ASSERT_EQ(lstat(t.path("link.nc").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+  EXPECT_THAT(read_file(t.path("target.nc")), HasSubstr("G01 X10."));
+  ASSERT_EQ(symlink("nowhere.nc", t.path("dangling.nc").c_str()), 0);
+  RunResult dangling = run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("dangling.nc"));
+  EXPECT_EQ(dangling.status, 1);
+  EXPECT_THAT(dangling.err, HasSubstr("it is a symbolic link to 'nowhere.nc', which does not exist"));
+}
+
 // Every command refuses to replace a file the run reads: plot's -o (or its default name, for
 // an input called part.svg), verify's --report and -o onto the CL or onto the program it
 // checks (each destroyed its input, exit 0).
