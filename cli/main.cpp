@@ -115,16 +115,24 @@ int main(int argc, char** argv) {
   std::vector<std::string> wflags;
 
   auto add_target = [&](CLI::App* c) {
-    c->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")->required();
+    c->add_option("-t,--target", machine_name, "Machine name, or a TOML file with one machine")
+        ->required()
+        ->check(CLI::Validator([](std::string& v) { return v.empty() ? std::string("the machine name is empty") : std::string(); }, "NAME"));
   };
   MachineRegistry::Job job;
   auto add_machine_files = [&](CLI::App* c) {
+    // One value per occurrence (--machines a.toml --machines b.toml): taking every word after it,
+    // it read the CL files after it as TOML.
     c->add_option("--machines", machine_files, "Machine descriptions (TOML) adding to or replacing the built-in ones")
-        ->check(CLI::ExistingFile);
+        ->check(CLI::ExistingFile)
+        ->allow_extra_args(false);
   };
   auto add_job = [&](CLI::App* c) {
-    c->add_option("--set", job.sets, "KEY=VALUE: change one machine key for this job (program.optional_stop=operation, units=inch; docs/machines.md)");
-    c->add_option("--job", job.files, "A TOML file whose [job] table changes machine keys for this job")->check(CLI::ExistingFile);
+    c->add_option("--set", job.sets, "KEY=VALUE: change one machine key for this job (program.optional_stop=operation, units=inch; docs/machines.md)")
+        ->allow_extra_args(false);
+    c->add_option("--job", job.files, "A TOML file whose [job] table changes machine keys for this job")
+        ->check(CLI::ExistingFile)
+        ->allow_extra_args(false);
   };
   std::string input_encoding = "utf-8";
   auto add_input_options = [&](CLI::App* c) {
@@ -133,7 +141,8 @@ int main(int argc, char** argv) {
     c->add_option("--input-encoding", input_encoding, "Encoding of comments and text in the CL data (default utf-8)")
         ->check(CLI::IsMember({"utf-8", "latin1"}));
     c->add_flag("--Werror", werror, "Treat warnings as errors");
-    c->add_option("-W", wflags, "-Wno-NAME: do not give warning NAME (names: docs/reliability.md); -Werror as --Werror");
+    c->add_option("-W", wflags, "-Wno-NAME: do not give warning NAME (names: docs/reliability.md); -Werror as --Werror")
+        ->allow_extra_args(false);
     c->add_flag("--force-family", force_family, "Post lathe CL data for a mill, or mill data for a lathe");
   };
 

@@ -2,6 +2,8 @@
 // atomic output, diagnostics format.
 #include <sys/stat.h>
 
+#include <filesystem>
+
 #include "helpers.h"
 
 using namespace clpc;
@@ -57,6 +59,28 @@ TEST(Cli, DefaultOutputNameAndRefusingTheInput) {
   EXPECT_EQ(same.status, 1);
   EXPECT_THAT(same.err, HasSubstr("is the input file; refusing to overwrite it"));
   EXPECT_EQ(read_file(t.path("part.cls")), kSmall);
+}
+
+// Options that may be given again take one value each: --machines, --set, --job and -W took
+// every word after them, so the CL files after --machines were read as TOML. An empty -t is
+// a usage error (it compiled for an empty machine).
+TEST(Cli, RepeatableOptionsTakeOneValueEach) {
+  TempDir t;
+  write_file(t.path("a.cls"), kSmall);
+  write_file(t.path("b.cls"), kSmall);
+  write_file(t.path("shop.toml"), "[my-mill]\ninherits = \"fanuc-mill\"\n");
+  RunResult two = run_clpc("compile -t my-mill --machines " + t.path("shop.toml") + " " + t.path("a.cls") + " " + t.path("b.cls"));
+  EXPECT_EQ(two.status, 0) << two.err;
+  EXPECT_TRUE(std::filesystem::exists(t.path("a.nc")));
+  EXPECT_TRUE(std::filesystem::exists(t.path("b.nc")));
+  RunResult set = run_clpc("compile --set units=inch " + t.path("a.cls") + " -t fanuc-mill -o " + t.path("inch.nc"));
+  EXPECT_EQ(set.status, 0) << set.err;
+  EXPECT_THAT(read_file(t.path("inch.nc")), HasSubstr("G20"));
+  RunResult w = run_clpc("compile -W no-units " + t.path("a.cls") + " -t fanuc-mill -o " + t.path("w.nc"));
+  EXPECT_EQ(w.status, 0) << w.err;
+  RunResult empty = run_clpc("compile -t '' " + t.path("a.cls"));
+  EXPECT_EQ(empty.status, 2);
+  EXPECT_THAT(empty.err, HasSubstr("the machine name is empty"));
 }
 
 TEST(Cli, ErrorKeepsTheOldOutputAndLeavesNoTemporary) {
