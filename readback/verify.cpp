@@ -225,9 +225,15 @@ bool Comparison::already_there(const Vec3& p, const Vec3* axis) {
       kin::angle_between(at_axis_.normalized(), axis->normalized()) > axis_tol_)
     return false;
   deviate((at_ - p).norm(), loc_, 0);
+  // The blocks after that come nearer the point go with it; one that goes away again is the
+  // way on to the next point (where the path turns back on itself, a cusp, the blocks past the
+  // turn lie within the tolerance too: taken here, the turn's own point was never reached).
+  double nearest = (at_ - p).norm();
   while (const TipSegment* s = peek(0)) {
-    if (!finite(s->end) || (s->end - p).norm() > tol_ || s->rotates) break;
-    deviate((s->end - p).norm(), loc_, s->raw.line);
+    const double d = finite(s->end) ? (s->end - p).norm() : kInf;
+    if (d > tol_ || d > nearest || s->rotates) break;
+    nearest = d;
+    deviate(d, loc_, s->raw.line);
     consume(1);
   }
   return true;

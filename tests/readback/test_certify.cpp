@@ -315,6 +315,25 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   EXPECT_THAT(r.out, HasSubstr("result: PASS"));
 }
 
+// Found by helper-41 (a Lissajous curve): the path turns back on itself at a cusp, and the
+// blocks past the turn lie within the tolerance of the points before it. A point the tool
+// already stood at took every block after it within the tolerance, past the turn, and the
+// turn's own point and all after it were "never reached" (a correct program refused). It takes
+// only the blocks that come nearer.
+TEST(Certify, APathThatTurnsBackOnItselfCertifies) {
+  const std::string cl =
+      "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/30.2,69.7,28\nFEDRAT/MMPM,250\nGOTO/30.1712,69.7110,20\n"
+      "GOTO/30.1461,69.7533,20\nGOTO/30.1229,69.7924,20\nGOTO/30.1018,69.8281,20\nGOTO/30.0826,69.8604,20\n"
+      "GOTO/30.0655,69.8894,20\nGOTO/30.0503,69.9150,20\nGOTO/30.0371,69.9373,20\nGOTO/30.0259,69.9562,20\n"
+      "GOTO/30.0168,69.9717,20\nGOTO/30.0096,69.9838,20\nGOTO/30.0044,69.9926,20\nGOTO/30.0012,69.9980,20\n"
+      "GOTO/30.0000,70.0000,20\nGOTO/30.0008,69.9986,20\nGOTO/30.0036,69.9939,20\nGOTO/30.0084,69.9857,20\n"
+      "GOTO/30.0153,69.9742,20\nGOTO/30.0241,69.9593,20\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
+  EXPECT_THAT(c.output, HasSubstr("N190 X30.001 Y69.998\nN200 X30. Y70.\nN210 X30.001 Y69.999\n"));
+}
+
 // A machine with no retract before the tool change (codes.safe_retract = ""): the new tool's
 // first block, X Y before its G43, ends at the last tool's height, which is the new tool's
 // first CL point. That block was taken as the point's own and failed as "no tool length offset
