@@ -111,6 +111,20 @@ bool MillBackend::changed(char letter, double value) const {
   return !m_.modal.coordinates || e_.differs(letter, value);
 }
 
+// A rapid block in X Y (and the rotaries) with the work offset: the positioning before Z.
+template <class RotaryWords>
+void MillBackend::position_across(const Emitter::Rounded& x, const Emitter::Rounded& y, bool rotaries,
+                                  const RotaryWords& rotary_words, SourceLoc loc) {
+  e_.begin(loc);
+  absolute_code();
+  work_offset_code();
+  motion_code(Motion::Rapid);
+  e_.modal_word('X', x);
+  e_.modal_word('Y', y);
+  if (rotaries) rotary_words();
+  e_.end();
+}
+
 void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   if (mv.kind == ir::MoveKind::From) {
     pos_ = mv.point;
@@ -162,14 +176,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     // From the safe height (or where a raw block left the tool): position in X Y (and the
     // rotaries) with the work offset, then bring Z down (with the length offset after a tool
     // change).
-    e_.begin(loc);
-    absolute_code();
-    work_offset_code();
-    motion_code(Motion::Rapid);
-    e_.modal_word('X', x);
-    e_.modal_word('Y', y);
-    if (mv.has_rotary) rotary_words();
-    e_.end();
+    position_across(x, y, mv.has_rotary, rotary_words, loc);
     e_.begin(loc);
     if (need_length_offset_)
       e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
@@ -188,14 +195,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     // then fed down along Z. Fed straight from up there it went diagonally down through
     // whatever stands between. (After a pallet change or a macro, where the tool stands is
     // not known even in Z: fed from there as the CL says.)
-    e_.begin(loc);
-    absolute_code();
-    work_offset_code();
-    motion_code(Motion::Rapid);
-    e_.modal_word('X', x);
-    e_.modal_word('Y', y);
-    if (mv.has_rotary) rotary_words();
-    e_.end();
+    position_across(x, y, mv.has_rotary, rotary_words, loc);
   }
   const bool modal = m_.modal.coordinates;
   const bool in_plane = e_.differs('X', x) || e_.differs('Y', y);

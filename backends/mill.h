@@ -51,6 +51,9 @@ class MillBackend : public ProgramWriter {
   bool tcp_on_ = false;
   bool tcp_in_force() const override { return tcp_on_; }
   bool at_safe_height_ = true;  // nothing moved since the last safe retract
+  template <class RotaryWords>
+  void position_across(const Emitter::Rounded& x, const Emitter::Rounded& y, bool rotaries, const RotaryWords& rotary_words,
+                       SourceLoc loc);
   // Rotaries clamped in a position (3+2) when a raw block that may move the axes came: the next
   // move positions them again as the post does (retract, unclamp, rotaries alone, clamp).
   // Restated with the move they were unclamped and never clamped again.
