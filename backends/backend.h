@@ -51,8 +51,8 @@ class ProgramWriter : public Backend {
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);
   virtual void retract_for_stop(SourceLoc loc) {}
-  // A raw block that may have moved the axes was written (`z_only`: what it may move is Z alone).
-  virtual void after_raw_motion(bool /*z_only*/) {}
+  // A raw block that may have moved the axes was written (`z_home`: it took Z alone to its home).
+  virtual void after_raw_motion(bool /*z_home*/) {}
   // Ends a run of canned-cycle holes (G80) if one is active.
   virtual void cancel_cycle(SourceLoc loc) {}
 
@@ -156,6 +156,7 @@ class ProgramWriter : public Backend {
   ir::CutterComp comp_pending_;
   bool comp_pending_set_ = false;
   bool comp_on_ = false;  // G41/G42 written and no G40 since
+  bool moved_since_off_ = false;  // a move written since the last CUTCOM/OFF
   ir::CutterComp comp_now_;  // the compensation written last
   int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once

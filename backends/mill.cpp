@@ -57,6 +57,7 @@ void MillBackend::moved() {
   position_known_ = true;
   at_safe_height_ = false;
   after_raw_move_ = false;
+  moved_since_off_ = true;
 }
 
 std::pair<const CodeTemplate*, TemplateVars> MillBackend::offset_select(int index) const {
@@ -430,6 +431,16 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
                   "(G00/G01), and clpc only on one across the tool axis (not on a plunge); have the CAM system turn "
                   "it on before a line across (a lead-in)");
     comp_pending_set_ = false;
+    return;
+  }
+  if (comp_pending_set_ && comp_on_ && moved_since_off_) {
+    // The G40 waited past a retract (on it, the control would have pulled the tool sideways by
+    // the radius) for a straight move across; an arc cannot carry it, and cut still offset it
+    // is not the CL's arc (certified).
+    d_.error(loc, "cutter compensation is to end (CUTCOM/OFF) before this arc, with only a move along the tool axis "
+                  "between: the control ends G41/G42 only on a straight move, and clpc only on one across the tool "
+                  "axis or down it (on a retract it would pull the tool sideways by the radius); have the CAM system "
+                  "end it on a line across (a lead-out)");
     return;
   }
   // Plane from the arc axis: G17 (axis Z), G18 (axis Y), G19 (axis X).

@@ -61,13 +61,14 @@ class MillBackend : public ProgramWriter {
   // A raw block that may move axes (G53 Z0., G28, a macro) leaves the tool where the CL does not
   // know: the next rapid positions X Y first and then comes down along Z, as after a retract
   // (written whole it went down and across at once from machine home into the part). Where the
-  // block may move Z alone, X Y stand over the CL's last point: a rapid up from there goes up
-  // first (from a pallet change or a G28 X Y, up first went down at an unknown X Y).
+  // blocks only took Z home (returns_z_home), X Y stand over the CL's last point: a rapid up
+  // from there goes up first (from a pallet change or a G28 X Y, up first went down at an
+  // unknown X Y).
   bool after_raw_move_ = false, raw_z_only_ = false;
-  void after_raw_motion(bool z_only) override {
+  void after_raw_motion(bool z_home) override {
     reposition_rotaries_ = clamped_;
+    raw_z_only_ = after_raw_move_ ? raw_z_only_ && z_home : z_home;  // every block since the last move
     after_raw_move_ = true;
-    raw_z_only_ = z_only;
   }
   void retract_for_stop(SourceLoc loc) override {
     if (!at_safe_height_ && tool_ >= 0) retract(loc);

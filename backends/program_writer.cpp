@@ -313,7 +313,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           if (!moves_axes)
             for (const RotaryAxis& r : m_.kinematics.rotaries) rotaries_kept += r.name[0];
           e_.forget_all_but(rotaries_kept);
-          if (moves_axes) after_raw_motion(moves_along_z_only(text));
+          if (moves_axes) after_raw_motion(returns_z_home(text));
           feed_written_ = false;
         } else if constexpr (std::is_same_v<T, ir::Passthrough>) {
           e_.comment("CL: " + std::string(op.str(x.text)));
@@ -910,6 +910,7 @@ void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   }
   comp_pending_ = c;
   comp_pending_set_ = true;
+  if (c.side == ir::CompSide::Off) moved_since_off_ = false;
 }
 
 }  // namespace clpc

@@ -287,6 +287,11 @@ int main(int argc, char** argv) {
     return kUsage;
   }
 
+  // The machine and job files this run reads are inputs too: no output may replace one (-o
+  // shop.toml destroyed it, with a note that a program was replaced).
+  for (const std::string& f : machine_files) protect_input(f);
+  for (const std::string& f : job.files) protect_input(f);
+  if (machine_name.find('/') != std::string::npos || machine_name.find(".toml") != std::string::npos) protect_input(machine_name);
   if (machine_name.empty() && !job.empty()) {
     std::cerr << "clpc: error: --set and --job change a machine: name it with -t\n";
     return kUsage;

@@ -185,8 +185,17 @@ bool may_move_axes(std::string_view block) {
   return false;
 }
 
-bool moves_along_z_only(std::string_view block) {
-  return may_move_axes(block) && axis_words(block) == "Z" && !calls_a_macro(block) && !has_m_code_that_may_move(block);
+bool returns_z_home(std::string_view block) {
+  if (axis_words(block) != "Z" || calls_a_macro(block) || has_m_code_that_may_move(block)) return false;
+  bool reference = false, machine = false;
+  for (double g : code_numbers(block, 'G')) {
+    if (std::abs(g - 28) < 1e-6 || std::abs(g - 30) < 1e-6) reference = true;
+    if (std::abs(g - 53) < 1e-6) machine = true;
+  }
+  if (reference) return true;
+  if (!machine) return false;
+  const std::vector<double> z = code_numbers(block, 'Z');  // (a negative Z's sign is not read: no number)
+  return !z.empty() && z.front() == 0;
 }
 
 }  // namespace clpc

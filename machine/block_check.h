@@ -29,8 +29,10 @@ std::vector<double> code_numbers(std::string_view block, char letter);
 // than the stops, spindle, coolant, orient, rigid tap and override codes (M60 changes pallets).
 bool may_move_axes(std::string_view block);
 
-// Whether what the block may move is Z alone (G53 Z0., G91 G28 Z0.): no other axis word, no
-// macro call, no M code that may move axes. X and Y then stand where they stood.
-bool moves_along_z_only(std::string_view block);
+// Whether the block takes Z alone up to its home and nothing else (G53 Z0., G91 G28 Z0., G30
+// Z0.): no other axis word, no macro call, no M code that may move axes. X and Y then stand
+// where they stood, and the tool above the part. (G00 Z-5. or G53 Z-100. moves Z alone, to
+// where the CL does not know.)
+bool returns_z_home(std::string_view block);
 
 }  // namespace clpc

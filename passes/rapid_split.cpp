@@ -61,7 +61,7 @@ class RapidSplit : public Pass {
               piece.point = *mid;
               piece.axis_written = false;
               out.push_back({in.loc, piece});
-            } else if (linear(*m, in.loc, out, ctx)) {
+            } else if (linear(*m, in.loc, out, ctx, feed_follows(op, i))) {
               continue;
             }
           }
@@ -120,9 +120,10 @@ class RapidSplit : public Pass {
   // interpolates along the CL's line, and the feed in force before it is said again after it.
   // Left as a G00 it went down and across at once, 14 mm under the CL's line at the middle
   // (certified). False, with an error, where the machine has no max_feed, or no FEDRAT has
-  // come before it (the feed after it would be the fastest, where a cut with no FEDRAT is refused).
-  bool linear(const ir::Move& m, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx) {
-    if (ctx.machine.max_feed <= 0 || !feed_) {
+  // come before it nor comes before the next cut (the feed after it would be the fastest,
+  // where a cut with no FEDRAT is refused).
+  bool linear(const ir::Move& m, SourceLoc loc, std::vector<ir::Instr>& out, PassContext& ctx, bool feed_follows) {
+    if (ctx.machine.max_feed <= 0 || (!feed_ && !feed_follows)) {
       ctx.diags.error(loc, "a rapid along and across the tool axis with cutter compensation on: the control's G00 is not "
                            "interpolated (motion.rapids_linear = false), so it would leave the CL's line, and split it "
                            "would change the compensated path; it is written as a feed at the machine's fastest, " +
@@ -139,6 +140,17 @@ class RapidSplit : public Pass {
     axis_ = m.axis;
     comp_switch_ = false;
     return true;
+  }
+
+  // A FEDRAT after instruction i, before any cut, in this chunk.
+  static bool feed_follows(const ir::Operation& op, size_t i) {
+    for (size_t j = i + 1; j < op.body.size(); ++j) {
+      const ir::Op& o = op.body[j].op;
+      if (std::holds_alternative<ir::Feed>(o)) return true;
+      if (const auto* m = std::get_if<ir::Move>(&o); m && m->kind == ir::MoveKind::Feed) return false;
+      if (std::holds_alternative<ir::Arc>(o) || std::holds_alternative<ir::Hole>(o)) return false;
+    }
+    return false;
   }
 
   // The corner of the split move, or nothing where the rapid goes only along the tool axis,

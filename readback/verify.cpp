@@ -85,6 +85,7 @@ void Comparison::operation(const ir::Operation& op) {
               point(p, a, x.kind == ir::MoveKind::Rapid);
             }
             if (x.kind != ir::MoveKind::From) sample(p);
+            if (x.kind != ir::MoveKind::From) cancelling_ = false;  // only an arc right after CUTCOM/OFF keeps the offset
           } else if constexpr (std::is_same_v<T, ir::Arc>) {
             if (rough_) {
               rough_arc(x);
@@ -92,6 +93,7 @@ void Comparison::operation(const ir::Operation& op) {
               arc(x);
               sample(model(x.end));
             }
+            cancelling_ = false;
           } else if constexpr (std::is_same_v<T, ir::RoughMark>) {
             if (x.begin) {
               rough_ = x;

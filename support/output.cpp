@@ -140,6 +140,16 @@ uint64_t g_next_input = 1;
 uint64_t protect_input(const std::string& path) {
   struct stat st {};
   if (path.empty() || path == "-" || stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+  return protect_input(st);
+}
+
+uint64_t protect_input_fd(int fd) {
+  struct stat st {};
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+  return protect_input(st);
+}
+
+uint64_t protect_input(const struct stat& st) {
   std::lock_guard<std::mutex> hold(g_inputs_lock);
   g_inputs.push_back({g_next_input, st.st_dev, st.st_ino});
   return g_next_input++;

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <thread>
 
+#include <sys/stat.h>
+
 #include "support/text_channel.h"
 
 namespace clpc {
@@ -81,6 +83,8 @@ void install_output_cleanup_handlers();
 // --report` onto the CL, `verify --program hand.nc -o hand.nc` each destroyed its input).
 // protect_input returns a token for release_input (0: nothing protected, not a regular file).
 uint64_t protect_input(const std::string& path);
+uint64_t protect_input_fd(int fd);  // standard input redirected from a file (`- < part.cls`)
+uint64_t protect_input(const struct stat& st);
 void release_input(uint64_t token);
 bool is_protected_input(const std::string& path);
 // Protects a file for a scope.

@@ -68,6 +68,8 @@ bool SourceFile::open(const std::string& path, std::string& error) {
     close(fd);
     return false;
   }
+  release_input(protected_);
+  protected_ = protect_input_fd(fd);  // (standard input redirected from a file is that file)
   if (!S_ISREG(st.st_mode)) {
     int spooled = spool_to_temp(fd, error);
     close(fd);
@@ -83,8 +85,6 @@ bool SourceFile::open(const std::string& path, std::string& error) {
   size_ = uint64_t(st.st_size);
   opened_size_ = int64_t(st.st_size);
   opened_mtime_ns_ = int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
-  release_input(protected_);
-  protected_ = protect_input(path);
   drop_end_of_file_marks();
   detect_cr_line_ends();
   return true;

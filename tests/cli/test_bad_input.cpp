@@ -419,6 +419,15 @@ TEST(OutputSafety, NoCommandOverwritesAFileItReads) {
     EXPECT_THAT(r.err, HasSubstr(refuses)) << args;
     EXPECT_EQ(read_file(cl), text) << args;
   }
+  // Standard input redirected from the file, and the machine file the run reads.
+  RunResult stdin_cl = run_clpc("compile -t fanuc-mill - -o " + cl + " < " + cl);
+  EXPECT_EQ(stdin_cl.status, 1);
+  EXPECT_THAT(stdin_cl.err, HasSubstr(refuses));
+  EXPECT_EQ(read_file(cl), text);
+  write_file(t.path("shop.toml"), "[my-mill]\ninherits = \"fanuc-mill\"\n");
+  RunResult toml = run_clpc("compile " + cl + " --machines " + t.path("shop.toml") + " -t my-mill -o " + t.path("shop.toml"));
+  EXPECT_EQ(toml.status, 1);
+  EXPECT_EQ(read_file(t.path("shop.toml")), "[my-mill]\ninherits = \"fanuc-mill\"\n");
   write_file(t.path("drawn.svg"), text);
   RunResult svg = run_clpc("plot -t fanuc-mill " + t.path("drawn.svg"));
   EXPECT_EQ(svg.status, 1);

@@ -1015,6 +1015,11 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   Compiled up = compile_text(haas + "INSERT/G53 G00 Z0.\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(up.ok) << up.diags;
   EXPECT_THAT(up.output, HasSubstr(" M11 M13\nN65 G00 B0. C0.\nN70 M10 M12\nN75 X2.3622 Y1.5748\nN80 G01 Z-0.0787 F7.87\n"));
+  // Z alone to somewhere else (G00 Z-2.) is not up: the cut is fed from there as the CL says
+  // (positioned across at that depth, it was a rapid through the material).
+  Compiled down = compile_text(haas + "INSERT/G00 Z-2.\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
+  ASSERT_TRUE(down.ok) << down.diags;
+  EXPECT_THAT(down.output, HasSubstr("N75 G01 X2.3622 Y1.5748 Z-0.0787 F7.87\n"));
   Compiled home = compile_text(haas + "INSERT/G28\nGOTO/60,40,-2\nFINI\n", machine("haas-umc750"));
   EXPECT_FALSE(home.ok);
   EXPECT_THAT(home.diags, HasSubstr("part.cls:9:1: error: the block 'G28' (INSERT, PREFUN or AUXFUN) returns to a "

@@ -77,6 +77,13 @@ TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(on.ok) << on.diags;
   EXPECT_THAT(on.output, HasSubstr("N70 G41 D1 G94 G01 Y10. F500.\nN80 X0. Z2. F10000.\nN90 Z-1. F500.\nN100 Y30.\n"));
+  // A FEDRAT before the next cut gives the feed after it.
+  Compiled lead_in = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,30\nCUTCOM/LEFT,1\nRAPID\nGOTO/0,-10,-5\n"
+      "FEDRAT/MMPM,200\nGOTO/50,-10,-5\n",
+      machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(lead_in.ok) << lead_in.diags;
+  EXPECT_THAT(lead_in.output, HasSubstr("G41 D1 G94 G01 Y-10. Z-5. F10000.\nN80 X50. F200.\n"));
   // With no FEDRAT before it there is no feed to return to (the cuts after it ran at 10000).
   Compiled no_feed = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,30\nCUTCOM/LEFT,1\nRAPID\nGOTO/0,-10,-5\n"
@@ -168,7 +175,10 @@ TEST(RapidSplit, AfterARawBlockThatMovesNoAxis) {
   // first (up first went down at an unknown X Y).
   Compiled up = compile_text(start + "INSERT/G53 Z0.\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
   EXPECT_THAT(up.output, HasSubstr("\nN100 G00 Z30.\nN110 X40. Y40.\n"));
-  for (const char* raw : {"INSERT/M60", "INSERT/G91 G28 X0. Y0. Z0.\nINSERT/G90", "INSERT/G65 P9000 Z0."}) {
+  // (Z alone to somewhere else, G00 Z-5. or G53 Z-100., is not up; and a pallet change before
+  // a G53 Z0. leaves X Y unknown all the same.)
+  for (const char* raw : {"INSERT/M60", "INSERT/G91 G28 X0. Y0. Z0.\nINSERT/G90", "INSERT/G65 P9000 Z0.",
+                          "INSERT/M60\nINSERT/G53 Z0.", "INSERT/G53 Z-100."}) {
     Compiled moved = compile_text(start + raw + "\nRAPID\nGOTO/40,40,30\n", machine("fanuc-mill"));
     EXPECT_THAT(moved.output, HasSubstr(" G00 X40. Y40.\nN110 Z30.\n")) << raw;
   }
@@ -211,6 +221,14 @@ TEST(CutterComp, StartsAndEndsOnAMoveInThePlane) {
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(ramp.ok) << ramp.diags;
   EXPECT_THAT(ramp.output, HasSubstr("N80 G41 D1 X50.\nN90 G40 Z-8.\nN100 G17 G03 X60. Y0. I0. J10.\n"));
+  // After CUTCOM/OFF and a retract (which does not carry the G40), an arc cannot end the
+  // compensation: refused (it was cut offset, certified).
+  Compiled up_arc = compile_text(
+      "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,-10,5\nGOTO/0,-10,-5\n"
+      "CUTCOM/LEFT,1\nGOTO/50,-10,-5\nCUTCOM/OFF\nGOTO/50,-10,2\nCIRCLE/50,0,2,0,0,1,10\nGOTO/60,0,2\n",
+      machine("fanuc-mill"));
+  EXPECT_THAT(up_arc.diags, HasSubstr("part.cls:12:1: error: cutter compensation is to end (CUTCOM/OFF) before this arc, "
+                                      "with only a move along the tool axis between"));
   // With no move across after it, the G40 comes before the program's end.
   Compiled end = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
