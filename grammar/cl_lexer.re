@@ -310,10 +310,10 @@ void Lexer::find_hidden_records(unsigned char* b, unsigned char* e, size_t first
   for (size_t i = first_splice; i < splices_.size(); ++i) {
     const unsigned char* q = buf + (splices_[i].at - base_);
     if (q > e) break;
-    if (head_before(q)) continue;
     // The joined text runs on to the line end, through any later joins (GO$ / TO/1,2,3).
+    // (Most joins continue numbers: a word is looked for first, the line before only then.)
     const unsigned char* word = q;
-    if (MajorId id = record_at(q, line_end(q), &word); id != MajorId::Unknown)
+    if (MajorId id = record_at(q, line_end(q), &word); id != MajorId::Unknown && !head_before(q))
       hidden_.push_back({splices_[i].at + uint64_t(word - q), id, false});
   }
   for (const unsigned char* p = b; p < e;) {
