@@ -1,7 +1,9 @@
 // clpc: the command line.
 #include <unistd.h>
 
+#include <charconv>
 #include <climits>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 
@@ -119,6 +121,18 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::Validator([](std::string& v) { return v.empty() ? std::string("the machine name is empty") : std::string(); }, "NAME"));
   };
+  // A tolerance is a finite number above zero: CLI::PositiveNumber lets "nan" through (every
+  // comparison with it is false) and prints the range up to DBL_MAX digit by digit.
+  const CLI::Validator positive_finite(
+      [](std::string& v) {
+        double x = 0;
+        const char* end = v.data() + v.size();
+        auto [p, ec] = std::from_chars(v.data(), end, x);
+        if (ec != std::errc() || p != end || !std::isfinite(x) || x <= 0)
+          return "'" + v + "' is not a number above zero";
+        return std::string();
+      },
+      "POSITIVE");
   MachineRegistry::Job job;
   auto add_machine_files = [&](CLI::App* c) {
     // One value per occurrence (--machines a.toml --machines b.toml): taking every word after it,
@@ -162,9 +176,9 @@ int main(int argc, char** argv) {
                     "Write the program without reading it back and comparing it with the CL (the certificate)");
   compile->add_option("--tolerance", compile_tolerance,
                       "The certificate's largest deviation, in the machine's units (default: its arc tolerance plus one output increment)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   compile->add_option("--axis-tolerance", compile_axis_tolerance, "The certificate's largest tool-axis deviation, degrees (five-axis)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   compile->add_flag("--json", compile_json, "Give each program's certificate whole, as JSON on standard error");
   unsigned jobs = 1;
   compile->add_option("-j,--jobs", jobs, "Compile this many files at once (each file's diagnostics stay together, in input order)")
@@ -187,9 +201,9 @@ int main(int argc, char** argv) {
   verify->add_option("INPUT", verify_input, "CL file ('-' reads standard input)")->required();
   add_target(verify);
   verify->add_option("--tolerance", tolerance, "Largest deviation allowed, in the machine's units (default: its arc tolerance plus one output increment)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   verify->add_option("--axis-tolerance", axis_tolerance, "Largest tool-axis deviation allowed, degrees (five-axis)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   verify->add_flag("--json", json, "Write the report as JSON");
   std::string verify_program;
   verify->add_option("-o,--output", output, "Also keep the program in this file");

@@ -46,6 +46,26 @@ std::vector<std::string> words_after(const std::string& s, const std::string& ma
   return out;
 }
 
+// The words of argv after the command that look like options (`-x`, `--xyz`, `--xyz=v`) and
+// name none of its options. "-" alone is standard input. An option's value that starts with a
+// '-' (`--tolerance -1`) is taken for an option only if it names none; CLI11 reports such
+// values itself, so this list is used only when CLI11's error says nothing more precise.
+std::vector<std::string> unknown_options(const CLI::App& sub, int argc, char** argv) {
+  const std::vector<std::string> known = option_names(sub);
+  std::vector<std::string> out;
+  for (int i = 2; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--") break;
+    if (a.size() < 2 || a[0] != '-' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') continue;
+    if (size_t eq = a.find('='); eq != std::string::npos) a.resize(eq);
+    // Short options take their value glued on (-tfanuc-mill, -Wno-approach): the first two
+    // characters name the option.
+    const std::string name = a[1] == '-' ? a : a.substr(0, 2);
+    if (std::find(known.begin(), known.end(), name) == known.end()) out.push_back(a);
+  }
+  return out;
+}
+
 }  // namespace
 
 void short_help(const CLI::App& app, std::ostream& out) {
@@ -74,6 +94,13 @@ int report_parse_error(const CLI::App& app, const CLI::ParseError& e, int argc, 
   std::string msg;
   if (!sub && !first.empty() && first[0] != '-') {
     msg = "unknown command '" + first + "'" + did_you_mean(first, command_names(app));
+  } else if (dynamic_cast<const CLI::RequiredError*>(&e) && sub && !unknown_options(*sub, argc, argv).empty()) {
+    // CLI11 checks what is required before what is unknown: `compile --bogus` said "INPUT is
+    // required". The unknown option is the mistake to name.
+    for (const std::string& x : unknown_options(*sub, argc, argv)) {
+      if (!msg.empty()) msg += "\nclpc: error: ";
+      msg += "unknown option '" + x + "'" + did_you_mean(x, option_names(*sub));
+    }
   } else if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     const CLI::App& in = sub ? *sub : app;
     for (const std::string& x : words_after(what, "expected: ")) {

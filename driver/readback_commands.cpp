@@ -60,6 +60,16 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   ProtectedInput program(opt.program);
   // The program goes to a temporary file first; -o gets it once it has passed (a program that
   // failed replaced the file there), and `-o -` then reads it back from a file, not from '-'.
+  // The files to write are opened (as temporaries beside them) before any work: a folder that
+  // does not exist is said at once, not after a report that says PASS.
+  // The CL is protected before then (its SourceFile protects it only once open).
+  ProtectedInput cl_input(input == "-" ? "/dev/stdin" : input);
+  std::string why;
+  OutputFile report_out, keep_out;
+  if ((!opt.report.empty() && !report_out.open(opt.report, why)) || (!opt.keep.empty() && !keep_out.open(opt.keep, why))) {
+    err << "clpc: error: " << why << "\n";
+    return rep;
+  }
   if (!compile_for_readback(input, m, co, {}, opt.program, err, cp)) return rep;
   SourceFile& src = cp.source;
   Diagnostics d(&err);
@@ -79,25 +89,24 @@ VerifyReport verify_file(const std::string& input, const Machine& m, const Verif
   rep.input = input;
   src.on_progress(nullptr);
   progress.clear();
-  if (!opt.report.empty() && !write_report(opt.report, rep, cp, m, err)) rep.written = false;
+  if (!opt.report.empty() && !write_report(report_out, rep, cp, m, err)) rep.written = false;
   if (!opt.keep.empty()) {
     if (!rep.ok) {
       err << "clpc: error: the program does not pass: it is not written to '" << opt.keep
           << "' (compile --no-verify writes it unchecked)\n";
       rep.written = false;
-    } else if (!copy_out(cp.temp.path(), opt.keep, err)) {
+    } else if (!copy_out(cp.temp.path(), keep_out, err)) {
       rep.written = false;
     }
   }
   return rep;
 }
 
-bool copy_out(const std::string& from, const std::string& to, std::ostream& err) {
+bool copy_out(const std::string& from, OutputFile& out, std::ostream& err) {
   std::ifstream in(from, std::ios::binary);
-  OutputFile out;
   std::string why;
-  if (!in || !out.open(to, why)) {
-    err << "clpc: error: " << (in ? why : "cannot read the program back from '" + from + "'") << "\n";
+  if (!in) {
+    err << "clpc: error: cannot read the program back from '" << from << "'\n";
     return false;
   }
   std::string chunk(1 << 16, '\0');
@@ -110,7 +119,7 @@ bool copy_out(const std::string& from, const std::string& to, std::ostream& err)
   return true;
 }
 
-bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
+bool write_report(OutputFile& out, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
                   std::ostream& err) {
   // The backplot, drawn by clpc plot into a temporary file, goes inline.
   TempProgram svg;
@@ -126,12 +135,7 @@ bool write_report(const std::string& path, const VerifyReport& rep, const Compil
   }
   std::ostringstream html;
   write_report_html(html, rep, drawing);
-  OutputFile out;
   std::string why;
-  if (!out.open(path, why)) {
-    err << "clpc: error: " << why << "\n";
-    return false;
-  }
   out.write(html.str());
   if (!out.commit(why)) {
     err << "clpc: error: " << why << "\n";

@@ -11,6 +11,7 @@
 #include "readback/plot.h"
 #include "readback/verify.h"
 #include "machine/machine.h"
+#include "support/output.h"
 
 namespace clpc {
 
@@ -52,13 +53,13 @@ struct VerifyOptions {
 // diagnostics on `err` (with the CL record's source line) and in the report.
 VerifyReport verify_file(const std::string& input, const Machine& m, const VerifyOptions& opt, std::ostream& err);
 
-// The HTML report of a verification (readback/report_html.h), with the program's backplot,
-// written atomically to `path`.
-// Copies the file `from` to `to` atomically (an OutputFile: "-" is standard output); false,
-// with the error said, where it cannot.
-bool copy_out(const std::string& from, const std::string& to, std::ostream& err);
+// Copies the file `from` into `out`, opened by the caller (an OutputFile: "-" is standard
+// output), and commits it; false, with the error said, where it cannot.
+bool copy_out(const std::string& from, OutputFile& out, std::ostream& err);
 
-bool write_report(const std::string& path, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
+// The HTML report of a verification (readback/report_html.h), with the program's backplot,
+// written into `out`, opened by the caller, and committed.
+bool write_report(OutputFile& out, const VerifyReport& rep, const CompiledProgram& cp, const Machine& m,
                   std::ostream& err);
 
 struct PlotFileOptions {

@@ -454,6 +454,14 @@ TEST(OutputSafety, VerifyWritesItsFilesOnlyWhenAllIsWell) {
   RunResult report = run_clpc("verify -t fanuc-mill " + cl + " --report " + t.path("nodir/r.html"));
   EXPECT_EQ(report.status, 1);
   EXPECT_THAT(report.err, HasSubstr("error: cannot create the output in '" + t.path("nodir") + "'"));
+  // Said before any work: no report that says PASS above an output that cannot be written.
+  RunResult keep = run_clpc("verify -t fanuc-mill " + cl + " -o " + t.path("nodir/p.nc"));
+  EXPECT_EQ(keep.status, 1);
+  EXPECT_THAT(keep.out + keep.err, Not(HasSubstr("PASS")));
+  EXPECT_THAT(keep.err, HasSubstr("error: cannot create the output in '" + t.path("nodir") + "'"));
+  RunResult onto_cl = run_clpc("verify -t fanuc-mill - --report " + cl + " < " + cl);
+  EXPECT_EQ(onto_cl.status, 1);
+  EXPECT_THAT(onto_cl.err, HasSubstr("is a file this run reads"));
   ASSERT_EQ(run_clpc("compile " + cl + " -t fanuc-mill -o " + t.path("hand.nc")).status, 0);
   std::string wrong = read_file(t.path("hand.nc"));
   wrong.replace(wrong.find("X10."), 4, "X11.");

@@ -147,6 +147,27 @@ TEST(Cli, UnknownMachine) {
   RunResult r = run_clpc("compile - -t nosuch", kSmall);
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.err, HasSubstr("no machine named 'nosuch'"));
+  RunResult caps = run_clpc("compile - -t FANUC-MILL", kSmall);
+  EXPECT_THAT(caps.err, HasSubstr("no machine named 'FANUC-MILL'; did you mean 'fanuc-mill'?"));
+}
+
+// A tolerance is a finite number above zero ("nan" passed CLI11's check and certified with
+// the default); an unknown option is named even when INPUT is missing too.
+TEST(Cli, OptionValuesAndUnknownOptionsAreSaidPlainly) {
+  for (const char* v : {"nan", "-1", "0", "inf", "1e400", "2mm"}) {
+    RunResult r = run_clpc(std::string("compile - -t fanuc-mill -o - --tolerance ") + v, kSmall);
+    EXPECT_EQ(r.status, 2) << v;
+    EXPECT_EQ(r.err, std::string("clpc: error: --tolerance: '") + v +
+                         "' is not a number above zero\nRun 'clpc compile --help' for the options.\n");
+  }
+  EXPECT_EQ(run_clpc("compile - -t fanuc-mill -o - --axis-tolerance 0.02", kSmall).status, 0);
+  RunResult bogus = run_clpc("compile --bogus");
+  EXPECT_EQ(bogus.status, 2);
+  EXPECT_EQ(bogus.err, "clpc: error: unknown option '--bogus'\nRun 'clpc compile --help' for the options.\n");
+  RunResult slip = run_clpc("verify --tolerence=0.01");
+  EXPECT_EQ(slip.err, "clpc: error: unknown option '--tolerence'; did you mean '--tolerance'?\nRun 'clpc verify --help' for the options.\n");
+  RunResult missing = run_clpc("compile -t fanuc-mill");
+  EXPECT_THAT(missing.err, HasSubstr("INPUT is required"));
 }
 
 TEST(Cli, ExampleCompiles) {
