@@ -240,7 +240,9 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
       write_feed(mv.inverse_time, ir::FeedMode::InverseTime, loc);
     } else if (mv.combined_feed > 0) {
       // This block's own F (degrees per minute); the next ordinary block writes its feed again.
-      write_feed(mv.combined_feed, ir::FeedMode::PerMinute, loc);
+      // Above max_feed (a rotary turning fast near the pole) the control holds it there: F
+      // says so rather than a number of seven digits.
+      write_feed(m_.max_feed > 0 ? std::min(mv.combined_feed, m_.max_feed) : mv.combined_feed, ir::FeedMode::PerMinute, loc);
       feed_written_ = false;
     } else {
       feed_word(loc);

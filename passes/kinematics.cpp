@@ -536,6 +536,17 @@ class Kinematics : public Pass {
     if (k_.degrees_per_minute && simultaneous && !tcp(true) && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
         feed_.mode == ir::FeedMode::PerMinute && have_prev_)
       m.combined_feed = combined_feed(prev_tip_, tip, a);
+    // Neither: the control reads the CL's F over all its axes at once (mm and degrees), and the
+    // tip runs at another feed: five times the CL's on a part 300 mm from the axis.
+    if (!k_.inverse_time && !k_.degrees_per_minute && simultaneous && !tcp(true) && rotates &&
+        m.kind == ir::MoveKind::Feed && !feed_mode_reported_) {
+      feed_mode_reported_ = true;  // the machine's, not the record's: said once
+      d_->error(loc, "machine '" + ctx_->machine.name +
+                         "' turns its rotaries while feeding without tool centre point control, and says neither "
+                         "kinematics.inverse_time (G93) nor kinematics.degrees_per_minute: its control reads F over "
+                         "all the axes at once, so the tool would not cut at the CL's feed; set the one the control "
+                         "uses (docs/kinematics.md)");
+    }
     set_current(a, &axis);
     prev_tip_ = tip;
     prev_axis_ = axis;
@@ -834,6 +845,7 @@ class Kinematics : public Pass {
   std::optional<Vec3> singular_;  // the tool direction where an axis is free
   size_t free_ = 1;               // that axis
   SourceLoc bow_reported_;        // the record a bow beyond the tolerance was reported at
+  bool feed_mode_reported_ = false;  // a rotary feed with no feed mode (once: it is the machine's)
   mutable ir::Mat3 table_ = ir::Mat3::Identity();
   mutable kin::Angles table_for_{0, 0};
   mutable bool table_known_ = false;

@@ -62,6 +62,8 @@ class Comparison : public ProgramSink {
     k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m.units);
     five_axis_ = m.kinematics.has_rotaries();
     increment_ = std::abs(dequantize(1, m.format('Z')));
+    for (const RotaryAxis& r : m.kinematics.rotaries)
+      if (r.name.size() == 1) rotary_increment_ = std::max(rotary_increment_, std::abs(dequantize(1, m.format(r.name[0]))));
     table_ = !info.offsets.empty();
   }
 
@@ -388,6 +390,7 @@ class Comparison : public ProgramSink {
   bool comp_said_ = false;    // a cut with other compensation than the CL's reported, and they have not agreed since
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
+  double rotary_increment_ = 0;  // the coarsest rotary axis's output increment, degrees
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
   bool have_hole_ = false;
   struct Bow {

@@ -310,7 +310,7 @@ TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {
 }
 
 TEST(KinematicsPass, TransformModeSplitsMovesWhereTheTipWouldLeaveTheSegment) {
-  std::string extra = "[tr-umc]\ninherits = \"haas-umc750\"\n[tr-umc.kinematics]\nsimultaneous = \"transform\"\n";
+  std::string extra = "[tr-umc]\ninherits = \"haas-umc750\"\n[tr-umc.kinematics]\nsimultaneous = \"transform\"\ndegrees_per_minute = true\n";
   // A 40 degree swing of B about a point 100 mm off the rotary centre.
   std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\nGOTO/100,0,10,0,0,1\nGOTO/101,0,10," +
                    std::to_string(std::sin(40 * kPi / 180)) + ",0," + std::to_string(std::cos(40 * kPi / 180)) + "\n";
@@ -319,6 +319,26 @@ TEST(KinematicsPass, TransformModeSplitsMovesWhereTheTipWouldLeaveTheSegment) {
   ASSERT_TRUE(c.ok) << c.diags;
   gcode::Result g = gcode::interpret(c.output, m);
   EXPECT_GT(g.segments.size(), 8u);  // split into many pieces
+}
+
+// Without TCPC, G93 or degrees per minute, the control reads the CL's F over all the axes at
+// once (mm and degrees): on a part 100 mm from B the tool would cut at another feed than the
+// CL's, certified (helper-44's fault). Said once, at the first such move; a 3+2 job, whose
+// rotaries turn only at rapid, still posts on that machine.
+TEST(KinematicsPass, RotaryFeedsWithNoFeedModeAreRefusedOnce) {
+  Machine m = machine("no-mode", "[no-mode]\ninherits = \"haas-umc750\"\n[no-mode.kinematics]\nsimultaneous = \"transform\"\n"
+                                 "indexed = \"transform\"\n");
+  Compiled five = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/100,0,10,0,0,1\n"
+                               "GOTO/101,0,10,0.5,0,0.8660254\nGOTO/102,0,10,0.6427876,0,0.7660444\n",
+                               m);
+  EXPECT_FALSE(five.ok);
+  EXPECT_THAT(five.diags, HasSubstr(":7:1: error: machine 'no-mode' turns its rotaries while feeding without tool centre point "
+                                    "control, and says neither kinematics.inverse_time (G93) nor kinematics.degrees_per_minute"));
+  EXPECT_EQ(five.diags.find("says neither"), five.diags.rfind("says neither")) << five.diags;
+  Compiled tilted = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\nRAPID\n"
+                                 "GOTO/10,0,10,0.5,0,0.8660254\nGOTO/20,0,10,0.5,0,0.8660254\n",
+                                 m, {.certify = true});
+  EXPECT_TRUE(tilted.ok) << tilted.diags;
 }
 
 TEST(KinematicsPass, ThreeAxisMachineRefusesATiltedTool) {
@@ -332,7 +352,7 @@ TEST(KinematicsPass, HeadTableMachineFromToml) {
   // the transform puts the pivot where the tip must be.
   std::string toml = "[bc-head]\ninherits = \"fanuc-mill\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", \"rapid-split\", \"offset-table\", "
                      "\"kinematics\", \"arc-legalise\"]\n[bc-head.format]\nB = { decimals = 4 }\nC = { decimals = 4 }\nX = { decimals = 4 }\n"
-                     "Y = { decimals = 4 }\nZ = { decimals = 4 }\n[bc-head.kinematics]\nsimultaneous = \"transform\"\n"
+                     "Y = { decimals = 4 }\nZ = { decimals = 4 }\n[bc-head.kinematics]\nsimultaneous = \"transform\"\ndegrees_per_minute = true\n"
                      "pivot = 200.0\n[[bc-head.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\nside = \"table\"\n"
                      "cyclic = \"wind\"\n[[bc-head.kinematics.axes]]\nname = \"B\"\naxis = [0.0, 1.0, 0.0]\nside = \"head\"\n"
                      "min = -90.0\nmax = 90.0\n";
@@ -521,7 +541,7 @@ void round_trip(const std::string& file, const Machine& m, Trip& t) {
 
 TEST(RoundTrip, CorpusFiveAxisFilesInBothModes) {
   if (corpus_dir().empty()) GTEST_SKIP() << "no corpus at " << CLPC_CORPUS_DIR;
-  std::string both = fine_umc("umc-tcp", "") + fine_umc("umc-transform", "simultaneous = \"transform\"\nindexed = \"transform\"\n");
+  std::string both = fine_umc("umc-tcp", "") + fine_umc("umc-transform", "simultaneous = \"transform\"\nindexed = \"transform\"\ndegrees_per_minute = true\n");
   for (const char* name : {"umc-tcp", "umc-transform"}) {
     Machine m = machine(name, both);
     Trip t;

@@ -91,9 +91,9 @@ TEST(MachineLayouts, HeadHeadGantryUnderTcpExactBlocks) {
 TEST(MachineLayouts, HeadTableWithoutTcpSplitsMovesAndVerifyProvesTheWorstPoint) {
   Compiled c = compile_text(kShortFive, example(kExamples[2]), certified());
   ASSERT_TRUE(c.ok) << c.diags;
-  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z60.\nN70 G94 G01 Z5. F800.\nN80 X2.358 Z4.992 B0.469\n"));
-  EXPECT_THAT(c.output, HasSubstr("N700 X142.912 Z-27.478 B29.531\nN710 X145. Z-28.494 B30.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N1170 X145. Y-20. Z-28.494 C90. B30.\nN1180 G00 X20. Z60. B0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z60.\nN70 G94 G01 Z5. F800.\nN80 X2.358 Z4.992 B0.469 F6154.1\n"));
+  EXPECT_THAT(c.output, HasSubstr("N700 X142.912 Z-27.478 B29.531 F6066.4\nN710 X145. Z-28.494 B30. F6063.6\n"));
+  EXPECT_THAT(c.output, HasSubstr("N1170 X145. Y-20. Z-28.494 C90. B30. F5453.\nN1180 G00 X20. Z60. B0.\n"));
 
   // The same program with the tilting move in one block.
   std::string one = c.output;

@@ -330,7 +330,7 @@ TEST(CutterComp, CompensationWithATiltedToolUnderTcpcIsRefused) {
   EXPECT_THAT(dwo.output, HasSubstr("G41 D11"));
   // A head that tilts the tool leaves it tilted in the machine's coordinates, TCPC or not.
   const std::string head =
-      "[bhead]\ninherits = \"haas-umc750\"\n[bhead.kinematics]\nsimultaneous = \"transform\"\nindexed = \"transform\"\n"
+      "[bhead]\ninherits = \"haas-umc750\"\n[bhead.kinematics]\nsimultaneous = \"transform\"\nindexed = \"transform\"\ndegrees_per_minute = true\n"
       "[[bhead.kinematics.axes]]\nname = \"B\"\naxis = [0.0, 1.0, 0.0]\nside = \"head\"\nmin = -120.0\nmax = 120.0\n"
       "[[bhead.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\nside = \"table\"\ncyclic = \"wind\"\n";
   Compiled side = compile_text("UNITS/INCHES\nLOAD/TOOL,1,ADJUST,1\nSPINDL/RPM,5000,CLW\nRAPID\nGOTO/3,-1,-1,1,0,0\n"
