@@ -462,6 +462,23 @@ void check_job_codes(Reader& r, const Machine& m) {
                "\"plane\" needs codes.plane_on and codes.plane_off (say, \"G68.2 X{x} Y{y} Z{z} I{i} J{j} K{k}\" and "
                "\"G69\")");
   }
+  // A mode switched on with no code to switch it off stays on through G28, M06 and the next
+  // tool (G43.4 H01 kept for T2).
+  if (auto codes = r.sub("codes")) {
+    const bool tcp_used = m.kinematics.has_rotaries() &&
+                          (m.kinematics.simultaneous == Simultaneous::Tcp || m.kinematics.indexed == Indexed::Tcp);
+    const bool dwo_used = m.kinematics.has_rotaries() && m.kinematics.indexed == Indexed::Dwo;
+    for (auto [on, off, used, name] : {std::tuple{&m.codes.tcp_on, &m.codes.tcp_off, tcp_used, "tcp"},
+                                       std::tuple{&m.codes.dwo_on, &m.codes.dwo_off, dwo_used, "dwo"}})
+      if (used && !on->empty() && off->empty())
+        if (const toml::node* n = codes->find(std::string(name) + "_off") ? codes->find(std::string(name) + "_off")
+                                                                           : codes->find(std::string(name) + "_on"))
+          codes->error(*n, std::string(name) + (codes->find(std::string(name) + "_off") ? "_off" : "_on"),
+                       "machine '" + m.name + "' switches " + (std::string(name) == "tcp" ? "tool centre point control" : "its dynamic work offset") +
+                           " on with \"" + on->text + "\" and has no code to switch it off: it would stay on through the "
+                           "tool change and the retract; give the control's cancel (say, \"" +
+                           (std::string(name) == "tcp" ? "G49" : "G255") + "\")");
+  }
   auto p = r.sub("program");
   if (!p) return;
   if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())
@@ -700,6 +717,11 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         if (!a.has("name")) a.missing("name", "the axis word: A, B or C");
         else if (ax.name != "A" && ax.name != "B" && ax.name != "C")
           a.error(*a.find("name"), "name", "expected \"A\", \"B\" or \"C\", found \"" + ax.name + "\"");
+        else
+          for (const RotaryAxis& before : k.rotaries)
+            if (before.name == ax.name)
+              a.error(*a.find("name"), "name", "a second axis named \"" + ax.name +
+                                                   "\": each rotary is written with a word of its own (the other is the first [[axes]])");
         if (a.vec3("axis", ax.axis)) {
           if (ax.axis.norm() < 1e-9) a.error(*a.find("axis"), "axis", "must not be zero");
           else ax.axis.normalize();
@@ -814,6 +836,30 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       s->number("max_rounding", m.feeds.max_rounding);
       s->finish();
     }
+    // A control reads an F without a point as whole units (mm/min, in/min): with decimals it
+    // was written F5000 for 500 mm/min, and read back in clpc's own increments, certified.
+    auto no_point_with_decimals = [](const AddressFormat& g) { return g.point == AddressFormat::Point::Never && g.decimals > 0; };
+    auto why = [](const AddressFormat& g) {
+      return " is written without a point in " + std::to_string(g.decimals) +
+             " decimals: a control reads an F without a point in whole units, so every feed would be read " +
+             (g.decimals == 1 ? std::string("10") : "1" + std::string(size_t(g.decimals), '0')) +
+             " times too fast; say point = \"always\" (or decimals = 0)";
+    };
+    bool said = false;
+    if (auto s = r.sub("format"); s && no_point_with_decimals(m.format('F')))
+      if (const toml::node* n = s->find("F")) {
+        s->error(*n, "F", "F" + why(m.format('F')));
+        said = true;
+      }
+    if (auto s = r.sub("feeds"); s && !said)
+      for (const char* k : {"per_minute", "per_rev", "inverse_time", "tap", "lead"}) {
+        const AddressFormat& g = std::string(k) == "per_minute" ? m.feeds.per_minute
+                                 : std::string(k) == "per_rev"  ? m.feeds.per_rev
+                                 : std::string(k) == "tap"      ? m.feeds.tap
+                                 : std::string(k) == "lead"     ? m.feeds.lead
+                                                                : m.feeds.inverse_time;
+        if (const toml::node* n = s->find(k); n && no_point_with_decimals(g)) s->error(*n, k, "the feed" + why(g));
+      }
   }
   r.finish();
   return m;
@@ -895,6 +941,17 @@ bool MachineRegistry::add_source(std::unique_ptr<Source> src, Diagnostics& d, st
   const Source* s = src.get();
   sources_.push_back(std::move(src));
   for (auto&& [key, n] : s->table) {
+    // A machine of the same name is replaced whole, none of its keys kept: a shop's [fanuc-mill]
+    // with max_rpm = 8000 lost the built-in's M29 rigid tap. Said, with the way to keep them.
+    if (auto before = machines_.find(std::string(key.str())); before != machines_.end()) {
+      const std::string was = before->second.source->path == kBuiltinName ? std::string("the built-in one")
+                                                                               : "the one in " + before->second.source->path;
+      d.report_in(Severity::Note, s->path, SourceLoc{key.source().begin.line, key.source().begin.column},
+                  "machine '" + std::string(key.str()) + "' replaces " + was +
+                      " whole, keeping none of its keys; to change only some, give it a name of its own with inherits = \"" +
+                      std::string(key.str()) + "\"",
+                  line_of(s->text, key.source().begin.line));
+    }
     machines_[std::string(key.str())] = Entry{s, n.as_table()};
     if (names) names->push_back(std::string(key.str()));
   }
@@ -1055,11 +1112,18 @@ bool MachineRegistry::flatten(const std::string& name, std::vector<const toml::t
     if (std::find(chain.begin(), chain.end(), parent) != chain.end()) {
       std::string cycle;
       for (const auto& n : chain) cycle += n + " -> ";
-      c.error(inh->source(), name + ".inherits: inheritance cycle: " + cycle + parent);
+      c.error(inh->source(), name + ".inherits: inheritance cycle: " + cycle + parent +
+                                 (parent == name ? " (a machine that replaces '" + name +
+                                                       "' cannot inherit from it: give yours a name of its own)"
+                                                 : std::string()));
       return false;
     }
     if (!machines_.count(parent)) {
-      c.error(inh->source(), name + ".inherits: no machine named '" + parent + "'");
+      std::vector<std::string> names;
+      for (const auto& [n, e] : machines_) names.push_back(n);
+      const std::string near = closest(parent, names);
+      c.error(inh->source(), name + ".inherits: no machine named '" + parent + "'" +
+                                 (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
       return false;
     }
     if (!flatten(parent, layers, chain, d)) return false;

@@ -593,24 +593,42 @@ TEST(ShopFloor, FormatsTheControlWouldReadOtherwiseAreRefusedAtLoad) {
                         "([sequence] start and step): only digits (zero-padding) applies"));
 }
 
-// Feeds written without a point count the increments of their own format (feeds.per_rev,
-// feeds.lead, feeds.tap), and are read back so: verify read them by format.F and refused every
-// per-revolution block of a correct program (F2032 read as 2032 mm/rev).
-TEST(ShopFloor, FeedsWithoutAPointAreReadInTheirOwnIncrements) {
-  const Machine lathe = machine("lathe4", "[lathe4]\ninherits = \"fanuc-lathe\"\n[lathe4.feeds]\n"
-                                          "per_rev = { decimals = 4, point = \"never\" }\nlead = { decimals = 4, point = \"never\" }\n");
-  Compiled turn = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/30,0,2\nFEDRAT/0.2032,MMPR\n"
-                               "GOTO/30,0,-20\nGOTO/40,0,-20\n", lathe, {.certify = true});
-  ASSERT_TRUE(turn.ok) << turn.diags;
-  EXPECT_THAT(turn.output, HasSubstr(" G01 Z-20. F2032\n"));
-  Compiled thread = compile_text(test::thread_cl({0.3, 0.6, 0.8, 0.92}), lathe, {.certify = true});
-  ASSERT_TRUE(thread.ok) << thread.diags;
-  EXPECT_THAT(thread.output, HasSubstr("F15000"));
-  const Machine mill = machine("tap3", "[tap3]\ninherits = \"fanuc-mill\"\n[tap3.feeds]\ntap = { decimals = 3, point = \"never\" }\n");
-  Compiled tap = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/20,10,10\n"
-                              "CYCLE/TAP,DEPTH,10,PITCH,1.25,CLEAR,2\nGOTO/20,10,0\nCYCLE/OFF\n", mill, {.certify = true});
-  ASSERT_TRUE(tap.ok) << tap.diags;
-  EXPECT_THAT(tap.output, HasSubstr("F625000"));
+// A feed written without a point in decimals (format.F, feeds.per_rev, feeds.lead, feeds.tap)
+// is refused where it is asked: a control reads an F without a point in whole units, or in an
+// increment of its own parameters, so F5000 for 500.0 mm/min was cut ten times too fast and
+// certified (verify read it in clpc's own increments; helper-44). With a point every control
+// reads it the same.
+TEST(ShopFloor, FeedsWithoutAPointInDecimalsAreRefused) {
+  EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nF = { decimals = 1, point = \"never\" }\n"),
+            "shop.toml:4:5: error: m.format.F: F is written without a point in 1 decimals: a control reads an F without a "
+            "point in whole units, so every feed would be read 10 times too fast; say point = \"always\" (or decimals = 0)\n"
+            " 4 | F = { decimals = 1, point = \"never\" }\n   |     ^\n");
+  EXPECT_THAT(load_error("[lathe4]\ninherits = \"fanuc-lathe\"\n[lathe4.feeds]\nper_rev = { decimals = 4, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:11: error: lathe4.feeds.per_rev: the feed is written without a point in 4 decimals: a "
+                        "control reads an F without a point in whole units, so every feed would be read 10000 times too fast"));
+  EXPECT_THAT(load_error("[tap3]\ninherits = \"fanuc-mill\"\n[tap3.feeds]\ntap = { decimals = 3, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:7: error: tap3.feeds.tap: the feed is written without a point in 3 decimals"));
+  // Whole units without a point stay allowed: F500 is 500 mm/min on every control.
+  const Machine whole = machine("f0", "[f0]\ninherits = \"fanuc-mill\"\n[f0.format]\nF = { decimals = 0, point = \"never\" }\n");
+  Compiled c = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/500,MMPM\nGOTO/0,0,-2\n", whole,
+                            {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr(" G01 Z-2. F500\n"));
+}
+
+// Two rotaries of one name, and a mode switched on with no code to switch it off (G43.4 kept
+// through G28 and M06 for the next tool), are refused at their key.
+TEST(ShopFloor, AxesOfOneNameAndModesThatCannotBeCancelledAreRefused) {
+  EXPECT_THAT(load_error("[dupa]\ninherits = \"haas-umc750\"\n[[dupa.kinematics.axes]]\nname = \"A\"\naxis = [1.0, 0.0, 0.0]\n"
+                         "[[dupa.kinematics.axes]]\nname = \"A\"\naxis = [0.0, 0.0, 1.0]\n"),
+              HasSubstr("shop.toml:7:8: error: dupa.kinematics.axes[1].name: a second axis named \"A\""));
+  EXPECT_THAT(load_error("[hermle]\ninherits = \"haas-umc750\"\n[hermle.codes]\ntcp_off = \"\"\n"),
+              HasSubstr("shop.toml:4:11: error: hermle.codes.tcp_off: machine 'hermle' switches tool centre point control "
+                        "on with \"G00 G234 H{offset}\" and has no code to switch it off"));
+  EXPECT_THAT(load_error("[dwo]\ninherits = \"haas-umc750\"\n[dwo.codes]\ndwo_off = \"\"\n"),
+              HasSubstr("error: dwo.codes.dwo_off: machine 'dwo' switches its dynamic work offset on with"));
+  // A 3-axis machine that never uses TCPC may leave its codes empty.
+  EXPECT_EQ(load_error("[plain]\ninherits = \"fanuc-mill\"\n[plain.codes]\ntcp_off = \"\"\n"), "");
 }
 
 // format.N's digits pads the block numbers (N00010); it was read and then ignored.

@@ -90,6 +90,21 @@ TEST(MachineErrors, InheritanceCycleAndUnknownParent) {
             "shop.toml:5:12: error: b.inherits: inheritance cycle: a -> b -> a");
   EXPECT_EQ(first_line(load_error("[a]\ninherits = \"nobody\"\nfamily = \"mill\"\n", "a")),
             "shop.toml:2:12: error: a.inherits: no machine named 'nobody'");
+  EXPECT_EQ(first_line(load_error("[a]\ninherits = \"fanuc-mil\"\n", "a")),
+            "shop.toml:2:12: error: a.inherits: no machine named 'fanuc-mil'; did you mean 'fanuc-mill'?");
+}
+
+// A shop's [fanuc-mill] replaces the built-in whole (its M29 rigid tap, F format and max_feed
+// gone): a note says so and how to keep them; inheriting from the name it replaces is a cycle
+// that says what to do.
+TEST(MachineErrors, ReplacingAMachineByItsNameIsSaid) {
+  const std::string replaced = load_error("[fanuc-mill]\nfamily = \"mill\"\nmax_rpm = 8000.0\n", "fanuc-mill");
+  EXPECT_EQ(first_line(replaced),
+            "shop.toml:1:2: note: machine 'fanuc-mill' replaces the built-in one whole, keeping none of its keys; to change "
+            "only some, give it a name of its own with inherits = \"fanuc-mill\"");
+  EXPECT_THAT(load_error("[fanuc-mill]\ninherits = \"fanuc-mill\"\n", "fanuc-mill"),
+              HasSubstr("shop.toml:2:12: error: fanuc-mill.inherits: inheritance cycle: fanuc-mill -> fanuc-mill (a machine "
+                        "that replaces 'fanuc-mill' cannot inherit from it: give yours a name of its own)"));
 }
 
 TEST(MachineErrors, AbsurdValues) {
