@@ -88,6 +88,22 @@ void Lowerer::lower_rotate(const Record& r) {
   push(r.loc, ri);
 }
 
+namespace {
+
+// An angle that is a whole number of degrees when read as radians, to the digits a CAM system
+// writes (six decimals: 1.570796 is 90 within 0.00002 degrees), and no round number of degrees
+// itself. A degree value lands there by chance about once in a thousand draws of six digits,
+// and no table is indexed to such an angle.
+bool looks_like_radians(double a) {
+  constexpr double kPi = 3.14159265358979323846;
+  const double deg = std::abs(a) * 180 / kPi;
+  if (std::abs(a) < 0.01 || std::abs(a) > 2 * kPi + 1e-3) return false;
+  if (std::abs(a * 1000 - std::round(a * 1000)) < 1e-6) return false;  // 1.5, 0.25, 2.125: degrees
+  return std::abs(deg - std::round(deg)) < 2e-3 && std::fmod(std::round(deg), 5) == 0;
+}
+
+}  // namespace
+
 // ROTABL/angle[,AAXIS|BAXIS|CAXIS][,TABLE][,CLW|CCLW][,INCR|ABSOL|ATANGL]: positions the rotary
 // table (CATIA, CAMWorks). The angle is in degrees, except in SolidWorks CAM / CAMWorks files,
 // which write radians (docs/cl-input.md). No axis named: the machine's table axis ('?').
@@ -118,6 +134,18 @@ void Lowerer::lower_rotabl(const Record& r) {
                         " radians is more than a whole turn: is the angle in degrees? The two readings turn the part "
                         "differently; have the CAM system write the tool axis on the GOTOs (MULTAX), or remove "
                         "OPFEATSTART if the file is not SolidWorks CAM's");
+        return;
+      }
+      // The other way round: a whole number of degrees to five places when read as radians
+      // (1.570796, 0.785398, 3.141593) is SolidWorks CAM's radians in a file that does not say
+      // it is SolidWorks CAM's (its .apt flavour has no OPFEATSTART). No shop indexes 1.570796
+      // degrees; read as degrees it turned the part 1.57 where 90 was meant, certified.
+      if (info_.cam != ir::CamSystem::SolidWorks && looks_like_radians(p.number)) {
+        d_.error(p.loc, "ROTABL: " + std::string(p.name()) + " is " + num_text(std::round(p.number * 180 / kPi)) +
+                            " degrees in radians, to the digits given: SolidWorks CAM / CAMWorks write ROTABL in "
+                            "radians, other systems in degrees, and nothing in this file says which wrote it (a "
+                            "SolidWorks CAM file starts its operations with OPFEATSTART); the two readings turn the "
+                            "part differently. Have the CAM system write the tool axis on the GOTOs (MULTAX) instead");
         return;
       }
       ri.angle = p.number * (info_.cam == ir::CamSystem::SolidWorks ? 180 / kPi : 1.0);

@@ -1237,6 +1237,24 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
   EXPECT_THAT(sw.diags, HasSubstr("part.cls:6:8: error: ROTABL: SolidWorks CAM / CAMWorks files give the angle in "
                                   "radians (the file was taken for one from line 1: OPFEATSTART), and 90 radians is "
                                   "more than a whole turn: is the angle in degrees?"));
+  // The other way round: radians in a file that does not say it is SolidWorks CAM's (its .apt
+  // flavour has no OPFEATSTART). ROTABL/1.570796 was a turn of 1.57 degrees, certified.
+  for (const char* radians : {"1.570796", "0.785398", "3.141593", "-0.5236"}) {
+    std::string quarter = rot;
+    quarter.replace(quarter.find("ROTABL/90"), 9, std::string("ROTABL/") + radians);
+    Compiled r = compile_text(quarter, machine("haas-umc750"));
+    EXPECT_FALSE(r.ok) << radians;
+    EXPECT_THAT(r.diags, HasSubstr("part.cls:5:8: error: ROTABL: " + std::string(radians) + " is ")) << radians;
+    EXPECT_THAT(r.diags, HasSubstr(" degrees in radians, to the digits given: SolidWorks CAM / CAMWorks write ROTABL in "
+                                   "radians, other systems in degrees, and nothing in this file says which wrote it"));
+  }
+  // Degrees that are no such fraction stay degrees.
+  for (const char* degrees : {"1.5", "12.5", "33.3333", "7.25"}) {
+    std::string d = rot;
+    d.replace(d.find("ROTABL/90"), 9, std::string("ROTABL/") + degrees);
+    Compiled r = compile_text(d, machine("haas-umc750"), {.certify = true});
+    EXPECT_TRUE(r.ok) << degrees << r.diags;
+  }
 }
 
 // A cut with no feed is refused once, at its move: the made-up feed of 0 drew a second error at
