@@ -177,6 +177,57 @@ Lexer::Lexer(SourceFile& src, Diagnostics* diags, const bool* wanted)
   if (src_.read_at(0, bom, 3) == 3 && bom[0] == '\xEF' && bom[1] == '\xBB' && bom[2] == '\xBF')
     base_ = read_pos_ = line_start_ = 3;
   src_.note_line_start(1, base_);
+  char head[4096];
+  const long got = src_.read_at(base_, head, sizeof head);
+  card_image_ = got > 0 && looks_like_card_image(std::string_view(head, size_t(got)));
+  if (card_image_ && diags_ && !wanted_)
+    diags_->note(SourceLoc{1, 73}, "a card-image file (every line 80 columns, 73-80 a sequence field): columns 73-80 "
+                                   "are not read, as APT reads its cards");
+}
+
+// The first (up to eight) non-blank lines of the file are 80 columns, and columns 73-80 of
+// each are a card's identification field: letters, digits and blanks, ending in a number
+// that grows from card to card (`00000010`, `APT00030`), after a blank or a continuation in
+// column 72. Lines of a free-form file written in fixed columns (Creo, CATIA) can all be 80
+// long and end in eight digits of a number: those digits follow a digit or a point, and
+// blanking them would move the tool, so the test is strict; a deck it misses is refused at
+// its first record, as before.
+bool Lexer::looks_like_card_image(std::string_view head) {
+  int lines = 0;
+  long last = -1;
+  size_t i = 0;
+  while (i < head.size() && lines < 8) {
+    const size_t nl = head.find('\n', i);
+    if (nl == std::string_view::npos) break;  // the last, partial line is not judged
+    std::string_view line = head.substr(i, nl - i);
+    i = nl + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
+    if (line.size() != 80 || (line[71] != ' ' && line[71] != '$')) return false;
+    const std::string_view field = line.substr(72);
+    if (!std::isdigit(static_cast<unsigned char>(field.back()))) return false;
+    for (char c : field)
+      if (!(std::isdigit(static_cast<unsigned char>(c)) || (c >= 'A' && c <= 'Z') || c == ' ')) return false;
+    size_t d = field.size();
+    while (d > 0 && std::isdigit(static_cast<unsigned char>(field[d - 1]))) --d;
+    const long number = std::stol(std::string(field.substr(d)));
+    if (number <= last) return false;
+    last = number;
+    ++lines;
+  }
+  return lines >= 2;
+}
+
+// Blanks columns 73-80 of each whole line in [b, e) (b is a line's start).
+void Lexer::blank_card_columns(unsigned char* b, unsigned char* e) {
+  for (unsigned char* p = b; p < e;) {
+    auto* nl = static_cast<unsigned char*>(std::memchr(p, '\n', size_t(e - p)));
+    unsigned char* end = nl ? nl : e;
+    size_t len = size_t(end - p);
+    if (len && p[len - 1] == '\r') --len;
+    if (len > 72) std::memset(p + 72, ' ', std::min<size_t>(len, 80) - 72);
+    p = nl ? nl + 1 : e;
+  }
 }
 
 // Reads more of the file. The rules see only spliced text, and only whole lines of it (so a
@@ -231,6 +282,7 @@ int Lexer::fill() {
     unsigned char* from = const_cast<unsigned char*>(lim_);
     if (upto > from) {
       const size_t first_splice = splices_.size();
+      if (card_image_) blank_card_columns(from, upto);
       unsigned char* w = splice_lines(from, upto, [&](unsigned char* at, size_t removed) {
         splices_.push_back({base_ + uint64_t(at - b), uint32_t(removed)});
       });

@@ -53,6 +53,9 @@ class Lexer {
   // Records that move the tool (GOTO, CIRCLE, GOHOME, GOFWD, ...) skipped so far because the caller (a pre-scan) did not want them.
   uint32_t motion_skipped() const { return motion_skipped_; }
 
+  // The head of a file is APT's card-image form (docs/cl-input.md, "Card images").
+  static bool looks_like_card_image(std::string_view head);
+
  private:
   using Symbol = Parser::symbol_type;
   enum class Mode : uint8_t { LineStart, AfterMajor, Params, CommentText, AfterComment, SkipRecord };
@@ -98,6 +101,10 @@ class Lexer {
   uint64_t base_ = 0;       // file offset of buf_[0]
   uint64_t read_pos_ = 0;   // next file offset to read
   bool eof_ = false;
+  // A card-image file (APT's fixed form: every line 80 columns, 73-80 an identification or
+  // sequence field): those columns are no text and are blanked as each line is read.
+  bool card_image_ = false;
+  static void blank_card_columns(unsigned char* b, unsigned char* e);
   bool overflow_ = false;   // a token outgrew kMaxToken
   SourceLoc overflow_at_;   // where that token began
   std::string too_long() const;

@@ -1,5 +1,6 @@
 // Front end: the lexical rules and record forms of docs/cl-input.md, and every error path
 // with its message, line and column.
+#include "grammar/lexer.h"
 #include "helpers.h"
 
 using namespace clpc;
@@ -394,4 +395,37 @@ TEST(Lexer, SimpleRecordsEqualTheGrammarsOnTheEdges) {
   EXPECT_EQ(fast, slow);
   EXPECT_EQ(d1, d2);
   EXPECT_THAT(d1, ::testing::HasSubstr("edges.cls:13:6: error: number out of range: '1e999'"));  // the grammar reports, as before
+}
+
+// APT's card-image form: every line 80 columns, 73-80 an identification or sequence field.
+// Read as text, the field made FROM four values and GOTO/10,20 a point at Z110, and refused
+// every file with messages that never named it (helper-43). Columns 73-80 are not read, as APT
+// reads its cards, with one note; the records and their columns are the free form's. A file
+// whose lines are 80 columns for another reason (the field is no sequence) is free form.
+TEST(Lexer, CardImageFilesIgnoreColumns73To80) {
+  const std::vector<std::string> lines = {"UNITS/MM", "FROM/0,0,50", "GOTO/10,20,$", "    5", "CUTTER/10.0", "FINI"};
+  std::string card;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    std::string l = lines[i];
+    l.resize(72, ' ');
+    card += l + (i == 2 ? "APT00030" : "000000" + std::to_string((i + 1) * 10)) + "\n";
+  }
+  Parsed p = parse_text(card);
+  EXPECT_EQ(first_error(p.diags), "");
+  ASSERT_FALSE(p.diags.empty());
+  EXPECT_EQ(p.diags[0].loc, (SourceLoc{1, 73}));
+  EXPECT_EQ(p.diags[0].message,
+            "a card-image file (every line 80 columns, 73-80 a sequence field): columns 73-80 are not read, as APT reads its cards");
+  EXPECT_THAT(p.records, ElementsAre("1:1 UNITS/MM", "2:1 FROM/0,0,50", "3:1 GOTO/10,20,5", "5:1 CUTTER/10", "6:1 FINI"));
+  // 80 columns that end in no sequence field: free form, read whole (here an error, as before).
+  std::string wide = "GOTO/1.00000000,2.00000000,3.00000000,0.00000000,0.00000000,1.000000000000000000\n";
+  ASSERT_EQ(wide.size(), 81u);
+  EXPECT_EQ(first_error(parse_text(wide + wide).diags), "");
+  EXPECT_FALSE(grammar::Lexer::looks_like_card_image(wide + wide));
+  EXPECT_FALSE(grammar::Lexer::looks_like_card_image(card.substr(0, 81)));  // one card is no deck
+  // Fixed columns after a blank, but numbers that do not grow from line to line: free form.
+  std::string same = "GOTO / 10.0, 20.0, 30.0";
+  same.resize(72, ' ');
+  same += "12345678\n";
+  EXPECT_FALSE(grammar::Lexer::looks_like_card_image(same + same + same));
 }
