@@ -153,8 +153,8 @@ class Limits : public Pass {
         double v = k.work_zero[i] + p[i];
         if (v < k.travel.min[i] - 1e-9 || v > k.travel.max[i] + 1e-9)
           ctx.diags.error(loc, std::string(1, names[i]) + " reaches " + num_text(std::round(v * 1e4) / 1e4) +
-                                   unit + " in machine coordinates, beyond the travel (" + num_text(k.travel.min[i]) + " to " +
-                                   num_text(k.travel.max[i]) + ")");
+                                   unit + " in machine coordinates, beyond the travel (" + num_text(std::round(k.travel.min[i] * 1e4) / 1e4) +
+                                   " to " + num_text(std::round(k.travel.max[i] * 1e4) / 1e4) + ")");
         continue;
       }
       lo_[i] = std::min(lo_[i], p[i]);
@@ -163,7 +163,7 @@ class Limits : public Pass {
       if (!reported_[i] && span > travel + 1e-9) {
         reported_[i] = true;
         ctx.diags.error(loc, std::string("the program's ") + names[i] + " positions now span " +
-                                 num_text(std::round(span * 1e4) / 1e4) + unit + ", more than the machine's " + num_text(travel) +
+                                 num_text(std::round(span * 1e4) / 1e4) + unit + ", more than the machine's " + num_text(std::round(travel * 1e4) / 1e4) +
                                  unit + " of travel: it cannot fit wherever the part is set up" +
                                  (ctx.info.units_doubt.empty()
                                       ? std::string()
