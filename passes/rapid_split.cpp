@@ -13,7 +13,8 @@
 // Z alone or X and Y alone. A tilted head would move several axes on each piece, at their
 // own rates again: there only rapids with the tool along the program's Z are split.
 //
-// A rapid is split only where the position before it is known (a move or an arc before it;
+// A rapid is split only where the position before it is known (a move, an arc or a canned
+// cycle's hole before it, the cycle leaving the tool at its return level, G98 or G99;
 // a load of the tool already in the spindle, a frame or work offset, or a raw block that can
 // move no axis is no motion: NX writes the first ones at every operation), and the tool axis
 // does not change along it (a rapid that turns a rotary is left as the CL gives it). With
@@ -93,6 +94,16 @@ class RapidSplit : public Pass {
         // leaves the tool where it stood: the rapid after it was written whole, down and across
         // at once. One that may move axes (G28, G53, an axis word, a macro) leaves it unknown.
         if (may_move_axes(op.str(ins->text))) known_ = false;
+      } else if (const auto* h = std::get_if<ir::Hole>(&in.op)) {
+        // A canned cycle leaves the tool over the hole at its return level (G98: where the
+        // cycle started, G99: the R plane), as the backend writes it: the rapid after
+        // CYCLE/OFF went up and across at once.
+        const ir::CycleSpec& c = op.cycles[h->spec];
+        const double ret = ctx.machine.cycles.return_initial ? std::max(h->initial, c.clearance) : c.clearance;
+        at_ = h->point + h->axis * ret;
+        axis_ = h->axis;
+        known_ = true;
+        comp_switch_ = false;
       } else if (const auto* f = std::get_if<ir::Feed>(&in.op)) {
         feed_ = *f;
       } else if (!keeps_position(in.op)) {
@@ -111,7 +122,8 @@ class RapidSplit : public Pass {
     return std::holds_alternative<ir::Feed>(op) || std::holds_alternative<ir::Spindle>(op) ||
            std::holds_alternative<ir::Coolant>(op) || std::holds_alternative<ir::Comment>(op) ||
            std::holds_alternative<ir::Passthrough>(op) || std::holds_alternative<ir::Dwell>(op) ||
-           std::holds_alternative<ir::Stop>(op) || std::holds_alternative<ir::ToolPreselect>(op);
+           std::holds_alternative<ir::Stop>(op) || std::holds_alternative<ir::ToolPreselect>(op) ||
+           std::holds_alternative<ir::CycleOff>(op);  // G80 moves nothing: the tool stays at the return level
   }
 
   // With cutter compensation on (or switched by it) a block more would add a corner to the

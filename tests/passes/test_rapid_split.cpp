@@ -51,6 +51,22 @@ TEST(RapidSplit, UpFirstOrAcrossFirstWhereRapidsAreNotLinear) {
             "N170 X80.\n");
 }
 
+// A canned cycle leaves the tool over its last hole at the return level: the initial level
+// (G98) or the R plane (G99). The rapid after CYCLE/OFF went up and across at once from there
+// (helper-44); it goes up first, as after any move. Down and across, it crosses first.
+TEST(RapidSplit, AfterACannedCycleFromItsReturnLevel) {
+  const std::string cl = "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,50,20\n"
+                         "CYCLE/DRILL,10,2,100,MMPM\nGOTO/10,10,0\nGOTO/20,10,0\nCYCLE/OFF\nRAPID\nGOTO/0,0,50\n"
+                         "RAPID\nGOTO/40,40,5\n";
+  Compiled g98 = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(g98.ok) << g98.diags;
+  EXPECT_THAT(g98.output, HasSubstr("N80 X20.\nN90 G80\nN100 G00 Z50.\nN110 X0. Y0.\nN120 X40. Y40.\nN130 Z5.\n"));
+  Compiled g99 = compile_text(cl, machine("g99", "[g99]\ninherits = \"fanuc-mill\"\n[g99.cycles]\nreturn = \"r-plane\"\n"),
+                              {.certify = true});
+  ASSERT_TRUE(g99.ok) << g99.diags;
+  EXPECT_THAT(g99.output, HasSubstr(" G99 G81 X10. Y10. Z-10. R2. F100.\nN80 X20.\nN90 G80\nN100 G00 Z50.\nN110 X0. Y0.\n"));
+}
+
 TEST(RapidSplit, NothingChangesWhereRapidsAreLinear) {
   Compiled c = compile_text(kRapids, machine("linear-mill", kLinearMill), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
