@@ -172,7 +172,16 @@ void Lowerer::record(const Record& r) {
       lower_tool_change(r);
       return;
     case MajorId::Loadtl: case MajorId::Load: case MajorId::Turret:
+      toolno_named_ = -1;
       lower_tool_change(r); return;
+    case MajorId::Toolno:
+      // CATIA and NX describe a tool with TOOLNO and load it with LOADTL; some older posts
+      // change tools on TOOLNO alone. Which tool cuts is said at the next move if they differ.
+      if (!r.params.empty() && r.params[0].is_number()) {
+        toolno_named_ = int(r.params[0].number);
+        toolno_loc_ = r.loc;
+      }
+      return;
     case MajorId::Tldata: case MajorId::Cutter:
       // CUTTER/OFF ends the cutter's display in APT: no geometry, no motion.
       if (r.id == MajorId::Cutter && r.params.size() == 1 && r.params[0].is("OFF")) return;
@@ -255,7 +264,7 @@ void Lowerer::record(const Record& r) {
       return;
     case MajorId::Partno: case MajorId::Machin: case MajorId::Remark:
     case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:
-    case MajorId::Clrsrf: case MajorId::Toolno: case MajorId::Autops:
+    case MajorId::Clrsrf: case MajorId::Autops:
     case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler:
       return;
     case MajorId::Featno:

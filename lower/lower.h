@@ -184,6 +184,8 @@ class Lowerer : public RecordSink {
   bool rapid_next_ = false;
   std::optional<SourceLoc> retract_pending_;  // a RETRCT not yet followed by motion
   int tool_ = -1;                 // tool in the spindle (-1 = none yet)
+  int toolno_named_ = -1;         // a TOOLNO's tool with no LOADTL since (-1: none)
+  SourceLoc toolno_loc_;
   std::optional<ir::Spindle> last_spindle_;
   std::optional<ir::CoolantKind> last_coolant_;  // the last kind a COOLNT named (a bare ON resumes it)
   std::optional<SourceLoc> comp_on_at_;  // the CUTCOM/LEFT|RIGHT in force (none after CUTCOM/OFF)

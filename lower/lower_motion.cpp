@@ -229,6 +229,15 @@ bool Lowerer::extend_arc(const ir::Vec3& p, SourceLoc loc) {
 // (A file that loads no tool at all is the backend's to judge: a mill refuses its first cut, a lathe
 // cuts with the tool the turret holds.)
 bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
+  if (toolno_named_ >= 0) {
+    if (toolno_named_ != tool_ && tool_ >= 0)
+      d_.warning(toolno_loc_, "TOOLNO names tool " + std::to_string(toolno_named_) + ", and no LOADTL or TURRET follows it "
+                              "before the move at line " + std::to_string(loc.line) + ": the moves after it are cut with T" +
+                              std::to_string(tool_) + ", the tool loaded (TOOLNO describes a tool; a post that changes "
+                              "tools on it would cut them with T" + std::to_string(toolno_named_) + ")",
+                 "toolno");
+    toolno_named_ = -1;
+  }
   if (tool_ >= 0 || info_.tools.empty()) return true;
   const ir::ToolInfo& first = info_.tools.front();
   const std::string later = "T" + std::to_string(first.number) +

@@ -63,6 +63,7 @@ const std::vector<WarningName>& warning_names() {
       {"tool-offset", "a number read as a corrector (TURRET/5,12), or a CUTCOM register the machine's G41 has no place for"},
       {"tool-by-name", "an operation that names a tool without loading it by number"},
       {"tool-number", "a tool loaded as number 0 (not numbered in the CAM system), with its length register"},
+      {"toolno", "a TOOLNO naming another tool than the one loaded, with no LOADTL or TURRET after it before the next move"},
       {"unknown-record", "a record without motion that clpc does not know, passed through as a comment"},
       {"units", "units not given, or numbers that look like the other unit"},
   };

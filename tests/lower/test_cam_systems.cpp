@@ -1307,3 +1307,21 @@ TEST(CamSystems, AnInsertedProgramNumberIsRefused) {
                                  "program (O1234): loaded into the control, the program would end before it; the post "
                                  "writes the program number"));
 }
+
+// TOOLNO describes a tool (CATIA lists the job's tools with it, vtx550 three before its first
+// LOADTL); some older posts change tools on it alone. Where it names another tool than the one
+// loaded and no LOADTL follows before a move, a warning says which tool cuts (helper-43).
+TEST(CamSystems, AToolnoWithNoLoadAfterItSaysWhichToolCuts) {
+  const std::string head = "UNITS/MM\nCUTTER/10\nLOADTL/3\nSPINDL/1000,RPM,CLW\nFEDRAT/200,MMPM\nRAPID\nGOTO/0,0,10\n"
+                           "GOTO/0,0,-1\nRAPID\nGOTO/0,0,50\n";
+  Compiled alone = compile_text(head + "TOOLNO/4,8\nRAPID\nGOTO/50,0,10\nGOTO/50,0,-1\n", machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(alone.ok) << alone.diags;
+  EXPECT_THAT(alone.diags, HasSubstr("part.cls:11:1: warning: TOOLNO names tool 4, and no LOADTL or TURRET follows it before "
+                                     "the move at line 13: the moves after it are cut with T3, the tool loaded"));
+  Compiled loaded = compile_text(head + "TOOLNO/4,8\nLOADTL/4\nRAPID\nGOTO/50,0,10\nGOTO/50,0,-1\n", machine("fanuc-mill"),
+                                 {.certify = true});
+  ASSERT_TRUE(loaded.ok) << loaded.diags;
+  EXPECT_THAT(loaded.diags, Not(HasSubstr("TOOLNO")));
+  Compiled same = compile_text(head + "TOOLNO/3\nRAPID\nGOTO/50,0,10\n", machine("fanuc-mill"), {.certify = true});
+  EXPECT_THAT(same.diags, Not(HasSubstr("TOOLNO")));
+}
