@@ -22,6 +22,7 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // The tool already at the cut with the same offset: nothing to write. With another offset
   // (OSETNO), the T word is written again: the turret stays, the offset changes.
   if (t.tool == tool_ && offset == length_offset_) return;
+  side_ = 0;  // the next tool's side is where it starts
   end_drill_speed(loc);
   if (!tool_changer_for(t, loc)) return;
   if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
@@ -141,6 +142,23 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   return false;
 }
 
+// A lathe's tool cuts on one side of the spindle axis (the side its operation starts on: a
+// gang-tool lathe's tools may stand at minus X), and a facing cut ends a nose radius or so
+// past it, no more. A feed that ends more than 2 mm on the other side is no turning: an NX
+// file whose lathe work plane is XM-YM (the spindle along its X) gave a centre drill's plunge
+// as a feed along X through the centre to X-50, certified (helper-45).
+bool LatheBackend::stays_on_its_side(const ir::Vec3& p, bool feed, SourceLoc loc) {
+  const double past = 2.0 / ir::mm_per_unit(m_.units), x0 = pos_.x() * k_, x1 = p.x() * k_;
+  if (side_ == 0 && std::abs(x0) > past) side_ = x0 > 0 ? 1 : -1;
+  if (side_ == 0 && std::abs(x1) > past && !feed) side_ = x1 > 0 ? 1 : -1;
+  if (!feed || side_ == 0 || x1 * side_ >= -past) return true;
+  d_.error(loc, "a feed to radius " + num_text(std::round(x1 * 1e4) / 1e4) + ", " +
+                    num_text(std::round(std::abs(x1) * 1e4) / 1e4) + " past the spindle axis from the side this tool "
+                    "works on: a lathe's tool cuts on one side of it (a facing cut ends a nose radius past it); the CL "
+                    "must give X as the radius and Z along the spindle (in NX, the lathe work plane ZM-XM, not XM-YM)");
+  return false;
+}
+
 bool LatheBackend::changed(char letter, double value) const {
   return !m_.modal.coordinates || e_.differs(letter, value);
 }
@@ -159,6 +177,7 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!thread_ && mv.kind == ir::MoveKind::Feed && !speed_on_centre(mv, loc)) return;
+  if (!stays_on_its_side(mv.point, mv.kind == ir::MoveKind::Feed, loc)) return;
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
   // A move to where the tool is moves nothing: a G41/G42 waiting for its first move waits on

@@ -324,6 +324,26 @@ TEST(Threads, AThreadWithoutOffEndsWhereTheNextBegins) {
   EXPECT_THAT(c.diags, HasSubstr("22 thread cuts checked"));
 }
 
+// A lathe's tool works on one side of the spindle axis: a feed that ends more than 2 mm past
+// it, from the side the tool started on, is refused. An NX file with the XM-YM lathe work plane
+// gives a centre drill's plunge along its X: it was fed through the centre to X-50, certified
+// (helper-45). A facing cut that ends a nose radius past the centre, a cut out from the centre,
+// and a tool that works at minus X throughout (a gang-tool lathe) still post.
+TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
+  const std::string head = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,2\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.1\nRAPID\n";
+  Compiled drill = compile_text(head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n", machine("fanuc-lathe"));
+  EXPECT_FALSE(drill.ok);
+  EXPECT_THAT(drill.diags, HasSubstr(":10:1: error: a feed to radius -25, 25 past the spindle axis from the side this tool "
+                                     "works on: a lathe's tool cuts on one side of it"));
+  Compiled face = compile_text(head + "GOTO/30,0,2\nGOTO/30,0,0\nGOTO/-0.8,0,0\nGOTO/-0.8,0,2\nRAPID\nGOTO/0,0,1\n"
+                                      "GOTO/0,0,-1\nGOTO/12,0,-1\n",
+                               machine("fanuc-lathe"), {.certify = true});
+  EXPECT_TRUE(face.ok) << face.diags;
+  Compiled gang = compile_text(head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/0.8,0,0\nGOTO/-20,0,0\n", machine("fanuc-lathe"),
+                               {.certify = true});
+  EXPECT_TRUE(gang.ok) << gang.diags;
+}
+
 // Turning motion outside the XZ plane (an NX lathe work plane other than ZM-XM, a mill file
 // posted for a lathe) is refused at each record, with the rule and where to set it.
 TEST(LatheMotion, OutsideTheXzPlaneIsRefusedWithTheRule) {
