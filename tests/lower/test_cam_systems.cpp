@@ -960,6 +960,12 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
                          "control jumps to the N number it names, and the post writes no subprograms"},
       {"AUXFUN/30", "the block 'M30' (INSERT, PREFUN or AUXFUN) ends the program (M30): the blocks after it would never "
                     "run; the post ends it"},
+      // Another register than the one in force: the post's own came back at the next move, and
+      // the cuts ran in G54 (helper-45).
+      {"INSERT/G55", "the block 'G55' (INSERT, PREFUN or AUXFUN) selects a work offset (G55) the post does not select: "
+                     "it writes its own with the next move, so the cuts after it would run in G54; SET/55 selects it"},
+      {"INSERT/G54.1 P7", "the block 'G54.1 P7' (INSERT, PREFUN or AUXFUN) selects a work offset (G54.1) the post does "
+                          "not select"},
   };
   for (const auto& [record, message] : refused) {
     Compiled c = compile_text(head + record + "\n" + tail, machine("fanuc-mill"));
@@ -970,11 +976,12 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
   Compiled probe = compile_text(head + "INSERT/G65 P9814 D50. Z-10. H.05\n" + tail, machine("fanuc-mill"));
   ASSERT_TRUE(probe.ok) << probe.diags;
   EXPECT_THAT(probe.output, HasSubstr("\nG65 P9814 D50. Z-10. H.05\n"));
-  // Undone: G91 (G90 with the next block), another register (G54 again), G95 (G94 again).
-  Compiled u = compile_text(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
+  // Undone: G91 (G90 with the next block), the register in force said again (G54 again), G95
+  // (G94 again).
+  Compiled u = compile_text(head + "PREFUN/91\nINSERT/G54\nPREFUN/95\n" + tail, machine("fanuc-mill"));
   ASSERT_TRUE(u.ok) << u.diags;
-  EXPECT_THAT(u.output, HasSubstr("\nG91\nG55\nG95\nN70 G90 G54 G94 G01 X10. Y0. Z5. F500.\n"));
-  verifies(head + "PREFUN/91\nINSERT/G55\nPREFUN/95\n" + tail, machine("fanuc-mill"));
+  EXPECT_THAT(u.output, HasSubstr("\nG91\nG54\nG95\nN70 G90 G54 G94 G01 X10. Y0. Z5. F500.\n"));
+  verifies(head + "PREFUN/91\nINSERT/G54\nPREFUN/95\n" + tail, machine("fanuc-mill"));
   // G49 (a safety line): the length offset again with the next move; a comment names no code.
   const std::string g49 = head + "PREFUN/49\nINSERT/G18\nINSERT/M01 (G17 NEXT)\nCYCLE/DRILL,FEDTO,2,RAPTO,1,MMPM,100\n"
                           "GOTO/10,10,0\nCYCLE/OFF\n" + tail;
