@@ -100,13 +100,13 @@ bool Lowerer::on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end) {
   };
   double s = off(a.start), e = off(a.end);
   if (std::abs(s) > tol) {
-    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + num_text(std::abs(s)) +
+    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + num_text(std::round(std::abs(s) * 1e6) / 1e6) +
                          " off its circle of radius " + num_text(a.radius));
     return false;
   }
   if (std::abs(e) > tol) {
     d_.error(circle, "CIRCLE: the arc's end point (GOTO at line " + std::to_string(end.line) + ") is " +
-                         num_text(std::abs(e)) + " off its circle of radius " + num_text(a.radius));
+                         num_text(std::round(std::abs(e) * 1e6) / 1e6) + " off its circle of radius " + num_text(a.radius));
     return false;
   }
   return true;
