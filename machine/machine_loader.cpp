@@ -805,7 +805,8 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       if (k.section == "codes") read_template(*s, k.key, m.codes.*k.code, k.vars);
     s->finish();
   }
-  if (!passes.empty()) report_pipeline(r, m, passes);
+  // With no family there is no default pipeline to judge: the missing family is the error.
+  if (!passes.empty() && fam >= 0) report_pipeline(r, m, passes);
   check_job_codes(r, m);
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
