@@ -142,19 +142,26 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   return false;
 }
 
-// A lathe's tool cuts on one side of the spindle axis (the side its operation starts on: a
-// gang-tool lathe's tools may stand at minus X), and a facing cut ends a nose radius or so
-// past it, no more. A feed that ends more than 2 mm on the other side is no turning: an NX
-// file whose lathe work plane is XM-YM (the spindle along its X) gave a centre drill's plunge
-// as a feed along X through the centre to X-50, certified (helper-45).
-bool LatheBackend::stays_on_its_side(const ir::Vec3& p, bool feed, SourceLoc loc) {
-  const double past = 2.0 / ir::mm_per_unit(m_.units), x0 = pos_.x() * k_, x1 = p.x() * k_;
-  if (side_ == 0 && std::abs(x0) > past) side_ = x0 > 0 ? 1 : -1;
-  if (side_ == 0 && std::abs(x1) > past && !feed) side_ = x1 > 0 ? 1 : -1;
-  if (!feed || side_ == 0 || x1 * side_ >= -past) return true;
+// A lathe's tool cuts on one side of the spindle axis (the side of its first position off the
+// axis: a gang-tool lathe's tools may stand at minus X), and a facing cut ends its nose radius
+// past it, no more. A feed that ends further on the other side is no turning: an NX file whose lathe work plane is XM-YM (the spindle along its
+// X) gave a centre drill's plunge as a feed along X through the centre to X-50, certified
+// (helper-45). An arc is judged by its end.
+bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc) {
+  const double mm = 1.0 / ir::mm_per_unit(m_.units), x1 = x * k_;
+  const ir::ToolInfo* t = info_ ? info_->tool(tool_) : nullptr;
+  // A drill on the centreline goes no further than 1 mm past it; a turning tool's nose radius
+  // is not always in the CL (round inserts reach R12): 13 mm, or its radius and 1 mm.
+  const bool drill = t && t->kind == "DRILL";
+  const double allow = drill ? 1 * mm : std::max(13 * mm, (t ? t->corner_radius * k_ : 0) + 1 * mm);
+  if (side_ == 0) {
+    if (std::abs(x1) > 1e-3 * mm) side_ = x1 > 0 ? 1 : -1;
+    return true;
+  }
+  if (!feed || x1 * side_ >= -allow) return true;
   d_.error(loc, "a feed to radius " + num_text(std::round(x1 * 1e4) / 1e4) + ", " +
                     num_text(std::round(std::abs(x1) * 1e4) / 1e4) + " past the spindle axis from the side this tool "
-                    "works on: a lathe's tool cuts on one side of it (a facing cut ends a nose radius past it); the CL "
+                    "works on: a lathe's tool cuts on one side of it (a facing cut ends its nose radius past it); the CL "
                     "must give X as the radius and Z along the spindle (in NX, the lathe work plane ZM-XM, not XM-YM)");
   return false;
 }
@@ -177,7 +184,7 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!thread_ && mv.kind == ir::MoveKind::Feed && !speed_on_centre(mv, loc)) return;
-  if (!stays_on_its_side(mv.point, mv.kind == ir::MoveKind::Feed, loc)) return;
+  if (!stays_on_its_side(mv.point.x(), mv.kind == ir::MoveKind::Feed, loc)) return;
   const ir::Vec3 o = mv.point * k_;
   const bool rapid = mv.kind == ir::MoveKind::Rapid;
   // A move to where the tool is moves nothing: a G41/G42 waiting for its first move waits on
@@ -264,6 +271,7 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
     d_.error(loc, "arc with no programmed start position before it");
     return;
   }
+  if (!stays_on_its_side(a.end.x(), true, loc)) return;
   // G02/G03 are seen from +Y unless the machine says otherwise.
   bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.y() > 0);
   if (m_.lathe.arcs_from_minus_y) ccw = !ccw;

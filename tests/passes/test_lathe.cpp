@@ -324,24 +324,37 @@ TEST(Threads, AThreadWithoutOffEndsWhereTheNextBegins) {
   EXPECT_THAT(c.diags, HasSubstr("22 thread cuts checked"));
 }
 
-// A lathe's tool works on one side of the spindle axis: a feed that ends more than 2 mm past
-// it, from the side the tool started on, is refused. An NX file with the XM-YM lathe work plane
-// gives a centre drill's plunge along its X: it was fed through the centre to X-50, certified
-// (helper-45). A facing cut that ends a nose radius past the centre, a cut out from the centre,
-// and a tool that works at minus X throughout (a gang-tool lathe) still post.
+// A lathe's tool works on one side of the spindle axis (that of its first position off it): a
+// feed that ends further past it than a facing cut's nose radius is refused (1 mm for a drill,
+// 13 mm or the corner radius and 1 mm for other tools: round inserts reach R12). An NX file
+// with the XM-YM lathe work plane gives a centre drill's plunge along its X: it was fed through
+// the centre to X-50, certified (helper-45). A facing cut that ends a nose radius past the centre,
+// tools that work at minus X (a gang-tool lathe), one on each side, and arcs are judged so too
+// (helper-46).
 TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
   const std::string head = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,2\nSPINDL/RPM,800,CLW\nFEDRAT/MMPR,0.1\nRAPID\n";
-  Compiled drill = compile_text(head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n", machine("fanuc-lathe"));
-  EXPECT_FALSE(drill.ok);
-  EXPECT_THAT(drill.diags, HasSubstr(":10:1: error: a feed to radius -25, 25 past the spindle axis from the side this tool "
-                                     "works on: a lathe's tool cuts on one side of it"));
-  Compiled face = compile_text(head + "GOTO/30,0,2\nGOTO/30,0,0\nGOTO/-0.8,0,0\nGOTO/-0.8,0,2\nRAPID\nGOTO/0,0,1\n"
-                                      "GOTO/0,0,-1\nGOTO/12,0,-1\n",
-                               machine("fanuc-lathe"), {.certify = true});
-  EXPECT_TRUE(face.ok) << face.diags;
-  Compiled gang = compile_text(head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/0.8,0,0\nGOTO/-20,0,0\n", machine("fanuc-lathe"),
-                               {.certify = true});
-  EXPECT_TRUE(gang.ok) << gang.diags;
+  const std::string drill = "UNITS/MM\nMACHIN/TURN\nTLDATA/DRILL,10,0,50,118,0\nLOAD/TOOL,2\nSPINDL/RPM,800,CLW\n"
+                            "FEDRAT/MMPR,0.1\nRAPID\n";
+  for (const std::string& cl : {head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n",
+                                drill + "GOTO/2,0,0\nGOTO/-3,0,0\n",
+                                head + "GOTO/10,0,2\nGOTO/20,0,0\nCIRCLE/0,0,0,0,1,0,20\nGOTO/-20,0,0\n"}) {
+    Compiled c = compile_text(cl, machine("fanuc-lathe"));
+    EXPECT_FALSE(c.ok) << cl;
+    EXPECT_THAT(c.diags, HasSubstr(" past the spindle axis from the side this tool works on: a lathe's tool cuts on one "
+                                   "side of it")) << cl;
+  }
+  Compiled at = compile_text(head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n", machine("fanuc-lathe"));
+  EXPECT_THAT(at.diags, HasSubstr(":10:1: error: a feed to radius -25, 25 past the spindle axis"));
+  for (const std::string& cl :
+       {head + "GOTO/30,0,2\nGOTO/30,0,0\nGOTO/-0.8,0,0\nGOTO/-0.8,0,2\nRAPID\nGOTO/0,0,1\nGOTO/0,0,-1\nGOTO/12,0,-1\n",
+        head + "GOTO/60,0,2\nGOTO/60,0,0\nGOTO/-6,0,0\nGOTO/-6,0,2\n",  // a round insert's R6
+        head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/0.8,0,0\nGOTO/-20,0,0\n",
+        head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/-10,0,0\nRAPID\nGOTO/-40,0,5\nLOAD/TOOL,4\nRAPID\nGOTO/30,0,2\n"
+               "GOTO/30,0,-5\nGOTO/20,0,-5\n",
+        drill + "GOTO/0,0,5\nGOTO/0,0,-20\n"}) {
+    Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+    EXPECT_TRUE(c.ok) << cl << c.diags;
+  }
 }
 
 // Turning motion outside the XZ plane (an NX lathe work plane other than ZM-XM, a mill file
