@@ -90,16 +90,22 @@ void Lowerer::lower_rotate(const Record& r) {
 
 namespace {
 
-// An angle that is a whole number of degrees when read as radians, to the digits a CAM system
-// writes (six decimals: 1.570796 is 90 within 0.00002 degrees), and no round number of degrees
-// itself. A degree value lands there by chance about once in a thousand draws of six digits,
-// and no table is indexed to such an angle.
-bool looks_like_radians(double a) {
+// An angle written in radians: read as radians it is a round number of degrees to the digits
+// given, and read as degrees it is none. Six decimals (1.570796, 0.392699): within 0.002 degree
+// of a multiple of half a degree (22.5, 7.5, 12.5: bolt-circle divisions). Three to five
+// (1.571, 0.7854): within half a unit of the last digit of a multiple of 5 degrees. Fewer, or a
+// value that is a round number of thousandths in degrees (1.5, 2.125), never: a degree value
+// lands there by chance about once in a hundred draws, and no table is indexed to such angles.
+bool looks_like_radians(double a, std::string_view text) {
   constexpr double kPi = 3.14159265358979323846;
-  const double deg = std::abs(a) * 180 / kPi;
   if (std::abs(a) < 0.01 || std::abs(a) > 2 * kPi + 1e-3) return false;
-  if (std::abs(a * 1000 - std::round(a * 1000)) < 1e-6) return false;  // 1.5, 0.25, 2.125: degrees
-  return std::abs(deg - std::round(deg)) < 2e-3 && std::fmod(std::round(deg), 5) == 0;
+  const size_t point = text.find('.');
+  const size_t decimals = point == std::string_view::npos ? 0 : text.size() - point - 1;
+  if (decimals < 3) return false;
+  const double deg = std::abs(a) * 180 / kPi;
+  if (decimals >= 6) return std::abs(deg * 2 - std::round(deg * 2)) < 4e-3;
+  const double window = 0.5 * std::pow(10.0, -double(decimals)) * 180 / kPi;
+  return std::abs(deg - 5 * std::round(deg / 5)) < window;
 }
 
 }  // namespace
@@ -140,8 +146,8 @@ void Lowerer::lower_rotabl(const Record& r) {
       // (1.570796, 0.785398, 3.141593) is SolidWorks CAM's radians in a file that does not say
       // it is SolidWorks CAM's (its .apt flavour has no OPFEATSTART). No shop indexes 1.570796
       // degrees; read as degrees it turned the part 1.57 where 90 was meant, certified.
-      if (info_.cam != ir::CamSystem::SolidWorks && looks_like_radians(p.number)) {
-        d_.error(p.loc, "ROTABL: " + std::string(p.name()) + " is " + num_text(std::round(p.number * 180 / kPi)) +
+      if (info_.cam != ir::CamSystem::SolidWorks && looks_like_radians(p.number, p.name())) {
+        d_.error(p.loc, "ROTABL: " + std::string(p.name()) + " is " + num_text(std::round(p.number * 360 / kPi) / 2) +
                             " degrees in radians, to the digits given: SolidWorks CAM / CAMWorks write ROTABL in "
                             "radians, other systems in degrees, and nothing in this file says which wrote it (a "
                             "SolidWorks CAM file starts its operations with OPFEATSTART); the two readings turn the "

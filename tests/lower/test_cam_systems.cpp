@@ -1246,7 +1246,7 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
                                   "more than a whole turn: is the angle in degrees?"));
   // The other way round: radians in a file that does not say it is SolidWorks CAM's (its .apt
   // flavour has no OPFEATSTART). ROTABL/1.570796 was a turn of 1.57 degrees, certified.
-  for (const char* radians : {"1.570796", "0.785398", "3.141593", "-0.5236"}) {
+  for (const char* radians : {"1.570796", "0.785398", "3.141593", "-0.5236", "0.392699", "0.218166", "1.571"}) {
     std::string quarter = rot;
     quarter.replace(quarter.find("ROTABL/90"), 9, std::string("ROTABL/") + radians);
     Compiled r = compile_text(quarter, machine("haas-umc750"));
@@ -1256,7 +1256,7 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
                                    "radians, other systems in degrees, and nothing in this file says which wrote it"));
   }
   // Degrees that are no such fraction stay degrees.
-  for (const char* degrees : {"1.5", "12.5", "33.3333", "7.25"}) {
+  for (const char* degrees : {"1.5", "12.5", "33.3333", "7.25", "2.125", "0.375", "1.0"}) {
     std::string d = rot;
     d.replace(d.find("ROTABL/90"), 9, std::string("ROTABL/") + degrees);
     Compiled r = compile_text(d, machine("haas-umc750"), {.certify = true});
