@@ -962,10 +962,11 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
                     "run; the post ends it"},
       // Another register than the one in force: the post's own came back at the next move, and
       // the cuts ran in G54 (helper-45).
-      {"INSERT/G55", "the block 'G55' (INSERT, PREFUN or AUXFUN) selects a work offset (G55) the post does not select: "
-                     "it writes its own with the next move, so the cuts after it would run in G54; SET/55 selects it"},
-      {"INSERT/G54.1 P7", "the block 'G54.1 P7' (INSERT, PREFUN or AUXFUN) selects a work offset (G54.1) the post does "
-                          "not select"},
+      {"INSERT/G55", "the block 'G55' (INSERT, PREFUN or AUXFUN) selects a work offset (G55) other than the one the "
+                     "post has in force: it writes its own with the next move, so the cuts after it would not run in "
+                     "the block's; SET/n (55 for G55, 101 for the first extended register) selects it"},
+      {"INSERT/G54.1 P7", "the block 'G54.1 P7' (INSERT, PREFUN or AUXFUN) selects a work offset (G54.1) other than "
+                          "the one the post has in force"},
   };
   for (const auto& [record, message] : refused) {
     Compiled c = compile_text(head + record + "\n" + tail, machine("fanuc-mill"));
