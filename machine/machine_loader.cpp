@@ -837,12 +837,13 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       s->number("max_rounding", m.feeds.max_rounding);
       s->finish();
     }
-    // A control reads an F without a point as whole units (mm/min, in/min): with decimals it
-    // was written F5000 for 500 mm/min, and read back in clpc's own increments, certified.
+    // A control reads a feed per minute without a point as whole units (mm/min, in/min): with
+    // decimals it was written F5000 for 500 mm/min, and read back in clpc's own increments,
+    // certified.
     auto no_point_with_decimals = [](const AddressFormat& g) { return g.point == AddressFormat::Point::Never && g.decimals > 0; };
     auto why = [](const AddressFormat& g) {
       return " is written without a point in " + std::to_string(g.decimals) +
-             " decimals: a control reads an F without a point in whole units, so every feed would be read " +
+             " decimals: a control reads a feed per minute without a point in whole units, so every feed would be read " +
              (g.decimals == 1 ? std::string("10") : "1" + std::string(size_t(g.decimals), '0')) +
              " times too fast; say point = \"always\" (or decimals = 0)";
     };
@@ -852,12 +853,14 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         s->error(*n, "F", "F" + why(m.format('F')));
         said = true;
       }
+    // Per minute (and inverse time, 1/min) only: a feed per revolution or a lead without a
+    // point is read by the control's own increment (Fanuc lathes: 0.0001 mm/rev), as clpc
+    // writes and reads it back.
     if (auto s = r.sub("feeds"); s && !said)
-      for (const char* k : {"per_minute", "per_rev", "inverse_time", "tap", "lead"}) {
+      for (const char* k : {"per_minute", "inverse_time", "tap"}) {
+        if (std::string(k) == "tap" && m.cycles.tap_per_rev) continue;
         const AddressFormat& g = std::string(k) == "per_minute" ? m.feeds.per_minute
-                                 : std::string(k) == "per_rev"  ? m.feeds.per_rev
                                  : std::string(k) == "tap"      ? m.feeds.tap
-                                 : std::string(k) == "lead"     ? m.feeds.lead
                                                                 : m.feeds.inverse_time;
         if (const toml::node* n = s->find(k); n && no_point_with_decimals(g)) s->error(*n, k, "the feed" + why(g));
       }

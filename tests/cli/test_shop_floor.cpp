@@ -593,19 +593,16 @@ TEST(ShopFloor, FormatsTheControlWouldReadOtherwiseAreRefusedAtLoad) {
                         "([sequence] start and step): only digits (zero-padding) applies"));
 }
 
-// A feed written without a point in decimals (format.F, feeds.per_rev, feeds.lead, feeds.tap)
-// is refused where it is asked: a control reads an F without a point in whole units, or in an
-// increment of its own parameters, so F5000 for 500.0 mm/min was cut ten times too fast and
-// certified (verify read it in clpc's own increments; helper-44). With a point every control
-// reads it the same.
-TEST(ShopFloor, FeedsWithoutAPointInDecimalsAreRefused) {
+// A feed per minute written without a point in decimals (format.F, feeds.per_minute, a tap fed
+// per minute) is refused where it is asked: a control reads it in whole units, so F5000 for
+// 500.0 mm/min was cut ten times too fast and certified (verify read it in clpc's own
+// increments; helper-44). Feeds per revolution and leads without a point count the control's
+// own increment (a Fanuc lathe's 0.0001 mm/rev), and are read back so.
+TEST(ShopFloor, FeedsPerMinuteWithoutAPointInDecimalsAreRefused) {
   EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.format]\nF = { decimals = 1, point = \"never\" }\n"),
-            "shop.toml:4:5: error: m.format.F: F is written without a point in 1 decimals: a control reads an F without a "
-            "point in whole units, so every feed would be read 10 times too fast; say point = \"always\" (or decimals = 0)\n"
-            " 4 | F = { decimals = 1, point = \"never\" }\n   |     ^\n");
-  EXPECT_THAT(load_error("[lathe4]\ninherits = \"fanuc-lathe\"\n[lathe4.feeds]\nper_rev = { decimals = 4, point = \"never\" }\n"),
-              HasSubstr("shop.toml:4:11: error: lathe4.feeds.per_rev: the feed is written without a point in 4 decimals: a "
-                        "control reads an F without a point in whole units, so every feed would be read 10000 times too fast"));
+            "shop.toml:4:5: error: m.format.F: F is written without a point in 1 decimals: a control reads a feed per "
+            "minute without a point in whole units, so every feed would be read 10 times too fast; say point = "
+            "\"always\" (or decimals = 0)\n 4 | F = { decimals = 1, point = \"never\" }\n   |     ^\n");
   EXPECT_THAT(load_error("[tap3]\ninherits = \"fanuc-mill\"\n[tap3.feeds]\ntap = { decimals = 3, point = \"never\" }\n"),
               HasSubstr("shop.toml:4:7: error: tap3.feeds.tap: the feed is written without a point in 3 decimals"));
   // Whole units without a point stay allowed: F500 is 500 mm/min on every control.
@@ -614,6 +611,16 @@ TEST(ShopFloor, FeedsWithoutAPointInDecimalsAreRefused) {
                             {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr(" G01 Z-2. F500\n"));
+  // Per revolution and leads: the control's increment, written and read back so.
+  const Machine lathe = machine("lathe4", "[lathe4]\ninherits = \"fanuc-lathe\"\n[lathe4.feeds]\n"
+                                          "per_rev = { decimals = 4, point = \"never\" }\nlead = { decimals = 4, point = \"never\" }\n");
+  Compiled turn = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/30,0,2\nFEDRAT/0.2032,MMPR\n"
+                               "GOTO/30,0,-20\nGOTO/40,0,-20\n", lathe, {.certify = true});
+  ASSERT_TRUE(turn.ok) << turn.diags;
+  EXPECT_THAT(turn.output, HasSubstr(" G01 Z-20. F2032\n"));
+  Compiled thread = compile_text(test::thread_cl({0.3, 0.6, 0.8, 0.92}), lathe, {.certify = true});
+  ASSERT_TRUE(thread.ok) << thread.diags;
+  EXPECT_THAT(thread.output, HasSubstr("F15000"));
 }
 
 // Two rotaries of one name, and a mode switched on with no code to switch it off (G43.4 kept
