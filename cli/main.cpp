@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
       [](std::string& v) {
         double x = 0;
         const char* end = v.data() + v.size();
-        auto [p, ec] = std::from_chars(v.data(), end, x);
+        const char* from = v.size() > 1 && v[0] == '+' ? v.data() + 1 : v.data();  // from_chars takes no '+'
+        auto [p, ec] = std::from_chars(from, end, x);
         if (ec != std::errc() || p != end || !std::isfinite(x) || x <= 0)
           return "'" + v + "' is not a number above zero";
         return std::string();

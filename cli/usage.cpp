@@ -52,16 +52,25 @@ std::vector<std::string> words_after(const std::string& s, const std::string& ma
 // values itself, so this list is used only when CLI11's error says nothing more precise.
 std::vector<std::string> unknown_options(const CLI::App& sub, int argc, char** argv) {
   const std::vector<std::string> known = option_names(sub);
+  // The options that take a value: the word after them is that value (`-o -x.nc`).
+  std::vector<std::string> with_value;
+  for (const CLI::Option* o : sub.get_options())
+    if (o->get_type_size() != 0) {
+      for (const std::string& l : o->get_lnames()) with_value.push_back("--" + l);
+      for (const std::string& n : o->get_snames()) with_value.push_back("-" + n);
+    }
   std::vector<std::string> out;
   for (int i = 2; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--") break;
     if (a.size() < 2 || a[0] != '-' || (a[1] >= '0' && a[1] <= '9') || a[1] == '.') continue;
+    const bool glued = a.find('=') != std::string::npos || (a[1] != '-' && a.size() > 2);
     if (size_t eq = a.find('='); eq != std::string::npos) a.resize(eq);
     // Short options take their value glued on (-tfanuc-mill, -Wno-approach): the first two
     // characters name the option.
     const std::string name = a[1] == '-' ? a : a.substr(0, 2);
     if (std::find(known.begin(), known.end(), name) == known.end()) out.push_back(a);
+    else if (!glued && std::find(with_value.begin(), with_value.end(), name) != with_value.end()) ++i;
   }
   return out;
 }

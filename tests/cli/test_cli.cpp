@@ -168,6 +168,10 @@ TEST(Cli, OptionValuesAndUnknownOptionsAreSaidPlainly) {
   EXPECT_EQ(slip.err, "clpc: error: unknown option '--tolerence'; did you mean '--tolerance'?\nRun 'clpc verify --help' for the options.\n");
   RunResult missing = run_clpc("compile -t fanuc-mill");
   EXPECT_THAT(missing.err, HasSubstr("INPUT is required"));
+  // An option's value that starts with '-' is its value, not an unknown option.
+  RunResult value = run_clpc("compile -t fanuc-mill -o -x.nc");
+  EXPECT_THAT(value.err, HasSubstr("INPUT is required"));
+  EXPECT_EQ(run_clpc("compile - -t fanuc-mill -o - --tolerance +0.01", kSmall).status, 0);
 }
 
 TEST(Cli, ExampleCompiles) {
