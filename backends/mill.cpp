@@ -241,7 +241,14 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     } else if (mv.combined_feed > 0) {
       // This block's own F (degrees per minute); the next ordinary block writes its feed again.
       // Above max_feed (a rotary turning fast near the pole) the control holds it there: F
-      // says so rather than a number of seven digits.
+      // says so rather than a number of seven digits, and the slower cut is said, as any.
+      if (m_.max_feed > 0 && mv.combined_feed > m_.max_feed * (1 + 1e-9) && !(loc == feed_clamp_said_)) {
+        d_.warning(loc, "the rotaries turn too fast for the CL's feed here: F over all the axes would be " +
+                            num_text(std::round(mv.combined_feed)) + ", above machine '" + m_.name + "''s max_feed " +
+                            num_text(std::round(m_.max_feed * 1e4) / 1e4) + ": written as max_feed, slower than the CL asks",
+                   "feed-clamped");
+        feed_clamp_said_ = loc;
+      }
       write_feed(m_.max_feed > 0 ? std::min(mv.combined_feed, m_.max_feed) : mv.combined_feed, ir::FeedMode::PerMinute, loc);
       feed_written_ = false;
     } else {

@@ -382,6 +382,7 @@ TEST(Certify, NearThePoleTheBlockNearestInTipAndAxisIsThePointsOwn) {
   // 125.863), not at the first block within the tolerance of its tip (B 0.507).
   EXPECT_THAT(r.err, HasSubstr(", tool axis 0.0005 deg at " + t.path("pole.cls") + ":9 "));
   EXPECT_THAT(read_file(t.path("pole.nc")), HasSubstr(" C125.863 B0.433 F10000.\n"));  // held at max_feed near the pole
+  EXPECT_THAT(r.err, HasSubstr("warning: the rotaries turn too fast for the CL's feed here: F over all the axes would be "));
 }
 
 // Without threads (the browser build, support/threads.h) every stage runs in turn and the
