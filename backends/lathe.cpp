@@ -142,20 +142,29 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   return false;
 }
 
-// A lathe's tool cuts on one side of the spindle axis (the side of its first position off the
-// axis: a gang-tool lathe's tools may stand at minus X), and a facing cut ends its nose radius
-// past it, no more. A feed that ends further on the other side is no turning: an NX file whose lathe work plane is XM-YM (the spindle along its
-// X) gave a centre drill's plunge as a feed along X through the centre to X-50, certified
-// (helper-45). An arc is judged by its end.
+// A lathe's tool cuts on one side of the spindle axis (the side of its first position more than
+// 1 mm off it: a gang-tool lathe's tools may stand at minus X), and a facing cut ends its nose
+// radius past it, no more. A feed that ends further on the other side is no turning: an NX file
+// whose lathe work plane is XM-YM (the spindle along its X) gave a centre drill's plunge as a
+// feed along X through the centre to X-50, certified (helper-45). A tool that cuts along the
+// axis (a drill, centre drill, spot drill, tap, reamer) may go 1 mm past it and is never fed
+// across it; other tools 13 mm, or their corner radius and 1 mm (round inserts reach R12; a
+// TLDATA/TURN's nose radius is not read). An arc is judged by its end.
 bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc) {
-  const double mm = 1.0 / ir::mm_per_unit(m_.units), x1 = x * k_;
+  const double mm = 1.0 / ir::mm_per_unit(m_.units), x0 = pos_.x() * k_, x1 = x * k_;
   const ir::ToolInfo* t = info_ ? info_->tool(tool_) : nullptr;
-  // A drill on the centreline goes no further than 1 mm past it; a turning tool's nose radius
-  // is not always in the CL (round inserts reach R12): 13 mm, or its radius and 1 mm.
-  const bool drill = t && t->kind == "DRILL";
-  const double allow = drill ? 1 * mm : std::max(13 * mm, (t ? t->corner_radius * k_ : 0) + 1 * mm);
+  const std::string kind = t ? t->kind : "";
+  const bool axial = kind == "DRILL" || kind == "TAP" || kind == "REAM" || kind == "CENTER" || kind == "SPOT" ||
+                     kind == "CDRILL";
+  if (axial && feed && std::abs(x1 - x0) > 1 * mm) {
+    d_.error(loc, "a " + kind + " tool fed along X, from radius " + num_text(std::round(x0 * 1e4) / 1e4) + " to " +
+                      num_text(std::round(x1 * 1e4) / 1e4) + ": on a lathe it cuts along Z, on the spindle axis; the CL "
+                      "must give X as the radius and Z along the spindle (in NX, the lathe work plane ZM-XM, not XM-YM)");
+    return false;
+  }
+  const double allow = axial ? 1 * mm : std::max(13 * mm, (t ? t->corner_radius * k_ : 0) + 1 * mm);
   if (side_ == 0) {
-    if (std::abs(x1) > 1e-3 * mm) side_ = x1 > 0 ? 1 : -1;
+    if (std::abs(x1) > 1 * mm) side_ = x1 > 0 ? 1 : -1;
     return true;
   }
   if (!feed || x1 * side_ >= -allow) return true;

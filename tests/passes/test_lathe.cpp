@@ -336,13 +336,23 @@ TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
   const std::string drill = "UNITS/MM\nMACHIN/TURN\nTLDATA/DRILL,10,0,50,118,0\nLOAD/TOOL,2\nSPINDL/RPM,800,CLW\n"
                             "FEDRAT/MMPR,0.1\nRAPID\n";
   for (const std::string& cl : {head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n",
-                                drill + "GOTO/2,0,0\nGOTO/-3,0,0\n",
+                                head + "GOTO/2,0,0\nGOTO/-25,0,0\n",
                                 head + "GOTO/10,0,2\nGOTO/20,0,0\nCIRCLE/0,0,0,0,1,0,20\nGOTO/-20,0,0\n"}) {
     Compiled c = compile_text(cl, machine("fanuc-lathe"));
     EXPECT_FALSE(c.ok) << cl;
     EXPECT_THAT(c.diags, HasSubstr(" past the spindle axis from the side this tool works on: a lathe's tool cuts on one "
                                    "side of it")) << cl;
   }
+  // A tool that cuts along the axis is never fed along X, through the centre or not (the part's
+  // face off X0 in an XM-YM file; helper-47).
+  for (const char* kind : {"DRILL", "CENTER", "SPOT", "TAP"})
+    for (const char* moves : {"GOTO/2,0,0\nGOTO/-3,0,0\n", "GOTO/103,0,0\nGOTO/80,0,0\n"}) {
+      std::string cl = drill + moves;
+      cl.replace(cl.find("DRILL"), 5, kind);
+      Compiled c = compile_text(cl, machine("fanuc-lathe"));
+      EXPECT_FALSE(c.ok) << cl;
+      EXPECT_THAT(c.diags, HasSubstr(":9:1: error: a " + std::string(kind) + " tool fed along X, from radius ")) << cl;
+    }
   Compiled at = compile_text(head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n", machine("fanuc-lathe"));
   EXPECT_THAT(at.diags, HasSubstr(":10:1: error: a feed to radius -25, 25 past the spindle axis"));
   for (const std::string& cl :
@@ -351,7 +361,8 @@ TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
         head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/0.8,0,0\nGOTO/-20,0,0\n",
         head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/-10,0,0\nRAPID\nGOTO/-40,0,5\nLOAD/TOOL,4\nRAPID\nGOTO/30,0,2\n"
                "GOTO/30,0,-5\nGOTO/20,0,-5\n",
-        drill + "GOTO/0,0,5\nGOTO/0,0,-20\n"}) {
+        drill + "GOTO/0,0,5\nGOTO/0,0,-20\n",
+        head + "GOTO/-0.8,0,2\nGOTO/-0.8,0,0\nGOTO/30,0,0\nGOTO/30,0,2\n"}) {  // a face cut from just past the centre
     Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
     EXPECT_TRUE(c.ok) << cl << c.diags;
   }
