@@ -760,7 +760,8 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
     if (!m_.codes.work_offset.empty()) {
       int index = 0;
       const std::vector<double> p = code_numbers(text, 'P');
-      if (g > 53.5 && g < 59.5 && is(g, std::round(g))) index = int(std::lround(g)) - 53;
+      if (is(g, 54) && !p.empty()) index = 6 + int(std::lround(p.front()));  // Fanuc's G54 Pn = G54.1 Pn
+      else if (g > 53.5 && g < 59.5 && is(g, std::round(g))) index = int(std::lround(g)) - 53;
       else if (is(g, 54.1) || is(g, 154)) index = p.empty() ? -1 : 6 + int(std::lround(p.front()));
       else if (g > 109.5 && g < 129.5 && is(g, std::round(g))) index = 6 + int(std::lround(g)) - 109;
       const int in_force = work_offset_ > 0 ? work_offset_ : m_.offsets.default_index;

@@ -91,20 +91,23 @@ void Lowerer::lower_rotate(const Record& r) {
 namespace {
 
 // An angle written in radians: read as radians it is a round number of degrees to the digits
-// given, and read as degrees it is none. Six decimals (1.570796, 0.392699): within 0.002 degree
-// of a multiple of half a degree (22.5, 7.5, 12.5: bolt-circle divisions). Three to five
-// (1.571, 0.7854): within half a unit of the last digit of a multiple of 5 degrees. Fewer, or a
-// value that is a round number of thousandths in degrees (1.5, 2.125), never: a degree value
-// lands there by chance about once in a hundred draws, and no table is indexed to such angles.
+// given, and read as degrees it is none. The digits given are the significant ones (CATIA
+// writes 0.480000 for 0.48 degrees: two). Six or more: within 0.002 degree of a multiple of half
+// a degree (22.5, 7.5, 12.5: bolt-circle divisions). Four or five (1.2566, 0.3927): within half
+// a unit of the last digit of a multiple of half a degree. Three (1.571): of a multiple of 5
+// degrees. Fewer: never. A degree value lands there by chance about once in a hundred draws of
+// such digits, and no table is indexed to such angles.
 bool looks_like_radians(double a, std::string_view text) {
   constexpr double kPi = 3.14159265358979323846;
   if (std::abs(a) < 0.01 || std::abs(a) > 2 * kPi + 1e-3) return false;
+  while (!text.empty() && text.back() == '0') text.remove_suffix(1);
   const size_t point = text.find('.');
   const size_t decimals = point == std::string_view::npos ? 0 : text.size() - point - 1;
   if (decimals < 3) return false;
   const double deg = std::abs(a) * 180 / kPi;
   if (decimals >= 6) return std::abs(deg * 2 - std::round(deg * 2)) < 4e-3;
   const double window = 0.5 * std::pow(10.0, -double(decimals)) * 180 / kPi;
+  if (decimals >= 4) return std::abs(deg - 0.5 * std::round(deg * 2)) < window;
   return std::abs(deg - 5 * std::round(deg / 5)) < window;
 }
 

@@ -967,6 +967,8 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
                      "the block's; SET/n (55 for G55, 101 for the first extended register) selects it"},
       {"INSERT/G54.1 P7", "the block 'G54.1 P7' (INSERT, PREFUN or AUXFUN) selects a work offset (G54.1) other than "
                           "the one the post has in force"},
+      {"INSERT/G54 P2", "the block 'G54 P2' (INSERT, PREFUN or AUXFUN) selects a work offset (G54) other than the one "
+                        "the post has in force"},
   };
   for (const auto& [record, message] : refused) {
     Compiled c = compile_text(head + record + "\n" + tail, machine("fanuc-mill"));
@@ -1247,7 +1249,7 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
                                   "more than a whole turn: is the angle in degrees?"));
   // The other way round: radians in a file that does not say it is SolidWorks CAM's (its .apt
   // flavour has no OPFEATSTART). ROTABL/1.570796 was a turn of 1.57 degrees, certified.
-  for (const char* radians : {"1.570796", "0.785398", "3.141593", "-0.5236", "0.392699", "0.218166", "1.571"}) {
+  for (const char* radians : {"1.570796", "0.785398", "3.141593", "-0.5236", "0.392699", "0.218166", "1.571", "1.2566", "0.3927"}) {
     std::string quarter = rot;
     quarter.replace(quarter.find("ROTABL/90"), 9, std::string("ROTABL/") + radians);
     Compiled r = compile_text(quarter, machine("haas-umc750"));
@@ -1257,7 +1259,7 @@ TEST(CamSystems, OnlyARecordOfItsOwnNamesTheCamSystem) {
                                    "radians, other systems in degrees, and nothing in this file says which wrote it"));
   }
   // Degrees that are no such fraction stay degrees.
-  for (const char* degrees : {"1.5", "12.5", "33.3333", "7.25", "2.125", "0.375", "1.0"}) {
+  for (const char* degrees : {"1.5", "12.5", "33.3333", "7.25", "2.125", "0.375", "1.0", "0.480000", "4.800", "2.330000"}) {
     std::string d = rot;
     d.replace(d.find("ROTABL/90"), 9, std::string("ROTABL/") + degrees);
     Compiled r = compile_text(d, machine("haas-umc750"), {.certify = true});
