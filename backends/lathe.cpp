@@ -142,6 +142,13 @@ bool LatheBackend::in_plane(const ir::Vec3& p, SourceLoc loc) {
   return false;
 }
 
+namespace {
+// A tool that cuts along its own axis (the spindle's, on a lathe): it has a diameter, not a nose.
+bool cuts_along_axis(const std::string& kind) {
+  return kind == "DRILL" || kind == "TAP" || kind == "REAM" || kind == "CENTER" || kind == "SPOT" || kind == "CDRILL";
+}
+}  // namespace
+
 // A lathe's tool cuts on one side of the spindle axis (the side of its first position more than
 // 1 mm off it: a gang-tool lathe's tools may stand at minus X), and a facing cut ends its nose
 // radius past it, no more. A feed that ends further on the other side is no turning: an NX file
@@ -154,8 +161,7 @@ bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc) {
   const double mm = 1.0 / ir::mm_per_unit(m_.units), x0 = pos_.x() * k_, x1 = x * k_;
   const ir::ToolInfo* t = info_ ? info_->tool(tool_) : nullptr;
   const std::string kind = t ? t->kind : "";
-  const bool axial = kind == "DRILL" || kind == "TAP" || kind == "REAM" || kind == "CENTER" || kind == "SPOT" ||
-                     kind == "CDRILL";
+  const bool axial = cuts_along_axis(kind);
   if (axial && feed && std::abs(x1 - x0) > 1 * mm) {
     d_.error(loc, "a " + kind + " tool fed along X, from radius " + num_text(std::round(x0 * 1e4) / 1e4) + " to " +
                       num_text(std::round(x1 * 1e4) / 1e4) + ": on a lathe it cuts along Z, on the spindle axis; the CL "
@@ -231,8 +237,7 @@ bool LatheBackend::speed_on_centre(const ir::Move& mv, SourceLoc loc) {
   if (!surface_ || rpm_fixed_ || spindle_ == ir::SpindleDir::Off) return true;
   const ir::ToolInfo* t = info_ && tool_ >= 0 ? info_->tool(tool_) : nullptr;
   const std::string kind = t ? t->kind : "";
-  const bool axial = kind == "DRILL" || kind == "TAP" || kind == "REAM" || kind == "CENTER" || kind == "SPOT" ||
-                     kind == "CDRILL" || kind == "MILL";
+  const bool axial = cuts_along_axis(kind) || kind == "MILL";
   if (!axial && (kind != "" || !t || !(t->diameter > 0))) return true;  // a turning tool: the clamp is the CL's
   if (!(t->diameter > 0)) {
     d_.error(loc, "drilling on the spindle's axis under constant surface speed (G96): the spindle would turn at its "
