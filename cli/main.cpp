@@ -121,6 +121,16 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::Validator([](std::string& v) { return v.empty() ? std::string("the machine name is empty") : std::string(); }, "NAME"));
   };
+  // A file clpc writes never has a name that starts with '-' (other than '-', standard output):
+  // `-o --bogus part.cls` wrote a program named --bogus, certified, when an option was missed.
+  // A file that must have such a name is written ./-name.
+  const CLI::Validator written_file(
+      [](std::string& v) {
+        if (v.size() > 1 && v[0] == '-')
+          return "'" + v + "' looks like an option, not a file name (write ./" + v + " if it is the file's name)";
+        return std::string();
+      },
+      "FILE");
   // A tolerance is a finite number above zero: CLI::PositiveNumber lets "nan" through (every
   // comparison with it is false) and prints the range up to DBL_MAX digit by digit.
   const CLI::Validator positive_finite(
@@ -164,7 +174,8 @@ int main(int argc, char** argv) {
   CLI::App* compile = app.add_subcommand("compile", "Compile CL files into G-code for one machine");
   compile->add_option("INPUT", inputs, "CL files ('-' reads standard input)")->required();
   add_target(compile);
-  compile->add_option("-o,--output", output, "Output file ('-' = standard output); default: INPUT with the machine's extension");
+  compile->add_option("-o,--output", output, "Output file ('-' = standard output); default: INPUT with the machine's extension")
+      ->check(written_file);
   std::string output_dir;
   compile->add_option("--output-dir", output_dir, "Write each program into this folder (named as INPUT, with the machine's extension)")
       ->check(CLI::ExistingDirectory);
@@ -207,9 +218,10 @@ int main(int argc, char** argv) {
       ->check(positive_finite);
   verify->add_flag("--json", json, "Write the report as JSON");
   std::string verify_program;
-  verify->add_option("-o,--output", output, "Also keep the program in this file");
+  verify->add_option("-o,--output", output, "Also keep the program in this file")->check(written_file);
   std::string verify_report;
-  verify->add_option("--report", verify_report, "Also write the report as an HTML page (operations, deviations, backplot)");
+  verify->add_option("--report", verify_report, "Also write the report as an HTML page (operations, deviations, backplot)")
+      ->check(written_file);
   verify->add_option("--program", verify_program, "Check this program (say, one edited by hand) against the CL instead of clpc's own")
       ->check(CLI::ExistingFile);
   add_machine_files(verify);
@@ -221,7 +233,7 @@ int main(int argc, char** argv) {
   CLI::App* plot = app.add_subcommand("plot", "Draw the emitted program's tool path (SVG: top, front, side, isometric)");
   plot->add_option("INPUT", plot_input, "CL file ('-' reads standard input)")->required();
   add_target(plot);
-  plot->add_option("-o,--output", output, "SVG file ('-' = standard output); default: INPUT with .svg");
+  plot->add_option("-o,--output", output, "SVG file ('-' = standard output); default: INPUT with .svg")->check(written_file);
   plot->add_option("--program", plot_program, "Plot this program instead of clpc's own")->check(CLI::ExistingFile);
   plot->add_option("--width", plot_width, "Width in pixels")->check(CLI::Range(200, 20000));
   plot->add_option("--height", plot_height, "Height in pixels")->check(CLI::Range(200, 20000));

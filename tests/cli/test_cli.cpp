@@ -168,9 +168,19 @@ TEST(Cli, OptionValuesAndUnknownOptionsAreSaidPlainly) {
   EXPECT_EQ(slip.err, "clpc: error: unknown option '--tolerence'; did you mean '--tolerance'?\nRun 'clpc verify --help' for the options.\n");
   RunResult missing = run_clpc("compile -t fanuc-mill");
   EXPECT_THAT(missing.err, HasSubstr("INPUT is required"));
-  // An option's value that starts with '-' is its value, not an unknown option.
+  // An option's value that starts with '-' is its value, not an unknown option; as a file to
+  // write it is refused (`-o --bogus part.cls` wrote a program named --bogus), ./-x.nc is taken.
   RunResult value = run_clpc("compile -t fanuc-mill -o -x.nc");
-  EXPECT_THAT(value.err, HasSubstr("INPUT is required"));
+  EXPECT_EQ(value.status, 2);
+  EXPECT_EQ(value.err, "clpc: error: --output: '-x.nc' looks like an option, not a file name (write ./-x.nc if it is "
+                       "the file's name)\nRun 'clpc compile --help' for the options.\n");
+  for (const char* args : {"compile - -t fanuc-mill -o --bogus", "verify - -t fanuc-mill --report -r.html",
+                           "verify - -t fanuc-mill -o -p.nc", "plot - -t fanuc-mill -o -p.svg"})
+    EXPECT_THAT(run_clpc(args, kSmall).err, HasSubstr("looks like an option, not a file name")) << args;
+  TempDir dir;
+  const std::string dashed = dir.path("-x.nc");
+  EXPECT_EQ(run_clpc("compile - -t fanuc-mill -o " + dashed, kSmall).status, 0);
+  EXPECT_THAT(read_file(dashed), HasSubstr("M30"));
   EXPECT_EQ(run_clpc("compile - -t fanuc-mill -o - --tolerance +0.01", kSmall).status, 0);
 }
 
