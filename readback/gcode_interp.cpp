@@ -468,7 +468,16 @@ class Interp {
     if (a.count('Z')) cyc_bottom_ = a['Z'];
     if (a.count('R')) cyc_r_ = a['R'];
     if (a.count('Q')) cyc_q_ = a['Q'];
-    if (a.count('P')) cyc_p_ = a['P'];
+    // P is the dwell at the bottom: milliseconds without a point (Fanuc, Haas), seconds with one
+    // (Haas). It was taken as seconds: G82 P500 counted 500 s in the cycle time.
+    if (a.count('P')) cyc_p_ = a.with_point('P') ? a['P'] : a['P'] / 1000.0;
+    // K (Fanuc) or L (Haas) repeats the hole: K0 stores the cycle without drilling, K3 drills it
+    // three times (G91: three holes a step apart). clpc writes neither; the reader does not follow.
+    for (char repeat : {'K', 'L'})
+      if (a.count(repeat) && a[repeat] != 1)
+        problem(line, std::string(1, repeat) + fmt(a[repeat]) + " in a canned cycle: the control " +
+                          (a[repeat] == 0 ? std::string("stores the cycle and drills no hole") : "drills the hole " + fmt(a[repeat]) + " times") +
+                          "; clpc's reader does not follow repeats, so the program cannot be checked against the CL");
     bool xy = a.count('X') || a.count('Y');
     if (!xy && !new_cycle) return;
     if (std::isnan(cyc_bottom_) || std::isnan(cyc_r_)) {
@@ -832,8 +841,15 @@ class Interp {
     thread_segments(steps, line);
   }
 
+  // A program is read in its machine's units (every format and limit is in them). A G20 or G21
+  // saying the other unit is an error, not a conversion: G21 made G20 on a millimetre machine
+  // was read as millimetres and passed, and the control would move every axis 25.4 times as far.
   void set_units(ir::Units u, int line) {
     if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
+    else if (u != m_.units)
+      problem(line, std::string(u == ir::Units::Inch ? "G20 (inches)" : "G21 (millimetres)") + " on a machine described in " +
+                        (m_.units == ir::Units::Inch ? "inches" : "millimetres") + ": the control would read every "
+                        "number 25.4 times " + (u == ir::Units::Inch ? "larger" : "smaller") + " than the program means");
     res_.units = u;
     res_.units_set = true;
   }

@@ -212,6 +212,13 @@ bool ProgramReader::read_next(TipSegment& out) {
     r.segments.clear();
     next_segment_ = 0;
     if (!read_line(line_)) {
+      // A program with no M30 or M02 was passed: the control stops at the last block with the
+      // spindle turning and the program not rewound (a hand edit that cut the end off).
+      if (!r.ended && !end_said_ && totals_.lines > 0) {
+        end_said_ = true;
+        r.problems.push_back({int(totals_.lines), "the program has no end (M30 or M02): the control stops after its last "
+                                                  "block with the spindle and coolant as they were"});
+      }
       if (dynamic_time_ && timer_.known()) {
         totals_.dynamic_known = true;
         totals_.dynamic_minutes = timer_.minutes() + totals_.dwell_minutes + totals_.tool_change_minutes;

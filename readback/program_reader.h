@@ -137,6 +137,7 @@ class ProgramReader {
   std::vector<Item> current_;
   size_t current_at_ = 0;
   bool ended_ = false;
+  bool end_said_ = false;  // a program without M30/M02 reported
   std::vector<gcode::Problem> problems_;  // of the segments handed over so far
 };
 

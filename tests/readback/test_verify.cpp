@@ -398,3 +398,34 @@ TEST(Verify, AMacroVariableSetByAnInsertIsReadPast) {
   Compiled bad = verify_text(cl, machine("fanuc-mill"), uses);
   EXPECT_FALSE(bad.ok);
 }
+
+// Hand edits the reader cannot take as the CL's (helper-49): G20 on a millimetre machine (read as
+// millimetres, every axis would move 25.4 times as far), no M30, a canned cycle repeated (K0
+// drills nothing, K3 thrice). And a cycle's P is milliseconds: G82 P500 counted 500 s.
+TEST_F(VerifyPlate, UnitsEndsAndRepeatsTheControlReadsOtherwiseFail) {
+  const std::string program = program_for(cl, m);
+  Checked inch = verify(cl, m, edit(program, "N10 G21", "N10 G20"));
+  EXPECT_FALSE(inch.report.ok);
+  EXPECT_THAT(first_error(inch.diags), HasSubstr("error: the program: G20 (inches) on a machine described in millimetres: the "
+                                                 "control would read every number 25.4 times larger than the program means"));
+  Checked endless = verify(cl, m, edit(program, "M30\n", "\n"));
+  EXPECT_FALSE(endless.report.ok);
+  EXPECT_THAT(endless.diags, HasSubstr("the program has no end (M30 or M02)"));
+
+  const std::string dcl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,CLW\nFEDRAT/100,MMPM\nRAPID\nGOTO/0,0,20\n"
+                          "CYCLE/DRILL,FEDTO,2,RAPTO,3,MMPM,100,DWELL,0.5\nGOTO/10,0,0\nGOTO/20,0,0\nCYCLE/OFF\nRAPID\n"
+                          "GOTO/20,0,50\nFINI\n";
+  Compiled c = compile_text(dcl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("G82 X10. Y0. Z-2. R3. P500 F100.\nN80 X20.\n"));
+  TempDir t2;
+  write_file(t2.path("d.cls"), dcl);
+  Checked timed = verify(t2.path("d.cls"), m);
+  ASSERT_TRUE(timed.report.ok) << timed.diags;
+  EXPECT_NEAR(timed.report.program.dwell_minutes * 60, 1.0, 1e-9);  // two holes, 0.5 s each
+  for (const auto& [repeat, said] : {std::pair{"K0", "stores the cycle and drills no hole"}, {"K3", "drills the hole 3 times"}}) {
+    Compiled r = verify_text(dcl, machine("fanuc-mill"), edit(c.output, "N80 X20.", std::string("N80 X20. ") + repeat));
+    EXPECT_FALSE(r.ok) << repeat;
+    EXPECT_THAT(r.diags, HasSubstr(std::string(repeat) + " in a canned cycle: the control " + said)) << r.diags;
+  }
+}
