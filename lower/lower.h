@@ -90,6 +90,7 @@ class Lowerer : public RecordSink {
   void lower_movarc(const Record& r);
   void lower_contour(const Record& r);
   void lower_indirv(const Record& r);
+  bool indirv_sense(ir::Arc& a, bool sense_said, SourceLoc loc);
   void lower_tlaxis(const Record& r);
   void push_arc(ir::Arc& a, SourceLoc loc, const char* what);
   void move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool axis_written);
@@ -170,6 +171,7 @@ class Lowerer : public RecordSink {
   ir::Vec3 axis_ = ir::Vec3::UnitZ();
   ir::Vec3 indirv_ = ir::Vec3::UnitX();  // INDIRV: where the next contour sets off
   bool has_indirv_ = false;
+  SourceLoc indirv_loc_;
   ir::Vec3 direction_ = ir::Vec3::UnitX();  // the way the last motion went at its end
   bool has_direction_ = false;
   ir::Vec3 from_ = ir::Vec3::Zero();
@@ -215,6 +217,7 @@ class Lowerer : public RecordSink {
   struct PendingArc {
     ir::Arc arc;
     SourceLoc loc;
+    bool open = false;  // points after its end may go on round it (Creo's 7-value CIRCLE)
   };
   std::optional<PendingArc> pending_arc_;
   bool arc_open_ = false;  // the last instruction is an arc that may take more points

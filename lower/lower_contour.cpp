@@ -80,6 +80,7 @@ void Lowerer::lower_indirv(const Record& r) {
   }
   indirv_ = xf_dir(v.normalized());
   has_indirv_ = true;
+  indirv_loc_ = r.loc;
 }
 
 // An arc as lowering hands it on: decided by its record, checked by the arc-direction pass.

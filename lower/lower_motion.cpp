@@ -62,7 +62,7 @@ void Lowerer::move_to(const ir::Vec3& p, SourceLoc loc, ir::MoveKind kind, bool 
       return;
     }
     push(pa.loc, pa.arc);
-    arc_open_ = pa.arc.layout == ir::ArcLayout::Creo7;
+    arc_open_ = pa.open;
     pos_ = p;
     return;
   }
@@ -258,6 +258,7 @@ void Lowerer::lower_goto(const Record& r) {
   // Under MULTAX/OFF APT writes three values a point: six are two points. A CAM system that
   // means a point and its tool axis has left MULTAX/OFF in force; the readings differ (a point
   // dropped, or a tool axis cut as a point near the origin): refused, not read at a guess.
+  has_indirv_ = false;  // INDIRV says where the next motion sets off: this one, a straight line to its point
   if (multax_off_ && r.params.size() == 6) {
     d_.error(r.params[3].loc, "GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs "
                               "MULTAX/ON; have the CAM system write MULTAX/ON before points with a tool axis");
@@ -377,6 +378,35 @@ ir::ArcDir circle_convention(ir::CamSystem cam, ir::ArcLayout layout) {
   return ir::ArcDir::Ccw;
 }
 
+// INDIRV before a CIRCLE gives the way the tool sets off round it (APT: the direction of the
+// next motion). It was dropped, and an arc INDIRV sent clockwise the long way round was cut
+// counter-clockwise by the axis's right-hand rule, certified (helper-48). It decides the sense
+// where nothing else does (a file of no known CAM system, no sense word); where the circle's
+// own sense says the other way, or INDIRV points along the radius or the axis, the CL does not
+// say which way the tool goes: an error at the CIRCLE.
+bool Lowerer::indirv_sense(ir::Arc& a, bool sense_said, SourceLoc loc) {
+  has_indirv_ = false;
+  const ir::Vec3 radial = a.start - a.center;
+  const ir::Vec3 in_plane = radial - radial.dot(a.axis) * a.axis;
+  const double turn = in_plane.normalized().cross(indirv_).dot(a.axis);
+  const std::string where = "INDIRV at line " + std::to_string(indirv_loc_.line);
+  if (!(std::abs(turn) > 1e-3)) {
+    d_.error(loc, "CIRCLE: " + where + " points along the circle's radius or axis: which way round the tool goes "
+                  "is not said; give INDIRV along the circle, or the sense (CLW, CCLW)");
+    return false;
+  }
+  const ir::ArcDir by_indirv = turn > 0 ? ir::ArcDir::Ccw : ir::ArcDir::Cw;
+  if (sense_said && by_indirv != a.hint) {
+    d_.error(loc, "CIRCLE: " + where + " sets off " + (by_indirv == ir::ArcDir::Ccw ? "counter-clockwise" : "clockwise") +
+                      " about the circle's axis, the circle's own sense is the other way: which way the tool goes is "
+                      "ambiguous");
+    return false;
+  }
+  a.hint = by_indirv;
+  a.layout = ir::ArcLayout::Contour;  // (said so in the arc-direction pass's messages)
+  return true;
+}
+
 void Lowerer::lower_circle(const Record& r) {
   ParamReader ps(r, d_);
   size_t n = 0;
@@ -441,13 +471,15 @@ void Lowerer::lower_circle(const Record& r) {
   }
   a.hint = worded != ir::ArcDir::Unknown ? worded : circle_convention(info_.cam, a.layout);
   if (worded != ir::ArcDir::Unknown) a.layout = ir::ArcLayout::Worded;
+  const bool open = a.layout == ir::ArcLayout::Creo7;
+  if (has_indirv_ && !indirv_sense(a, worded != ir::ArcDir::Unknown || info_.cam != ir::CamSystem::Unknown, r.loc)) return;
   if (rapid_next_) {
     d_.warning(r.loc, "RAPID before a CIRCLE is ignored: arcs are cut at the feed rate", "rapid-arc");
     rapid_next_ = false;
   }
   ensure_operation(r.loc);
   arc_open_ = false;
-  pending_arc_ = PendingArc{a, r.loc};
+  pending_arc_ = PendingArc{a, r.loc, open};
 }
 
 }  // namespace clpc

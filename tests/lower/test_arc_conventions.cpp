@@ -68,3 +68,38 @@ TEST(ArcConventions, CorpusGeometryAgreesWithEachDialectsConvention) {
   EXPECT_EQ(by_layout.count("Creo, CIRCLE, 7 values"), 1u);
   EXPECT_EQ(by_layout.count("CATIA, TLON,GOFWD circle"), 1u);
 }
+
+// INDIRV before a CIRCLE is the way the tool sets off round it (APT: the next motion's
+// direction). It was dropped: an arc INDIRV sends clockwise the long way round (270 degrees) was
+// cut counter-clockwise by the right-hand rule, certified (helper-48). It decides where nothing
+// else does; a known CAM system's convention or a sense word saying the other way, or an INDIRV
+// along the radius, is an error at the CIRCLE; a GOTO between uses it up.
+TEST(ArcConventions, IndirvBeforeACircleGivesItsSense) {
+  auto cl = [](const std::string& head, const std::string& indirv, const std::string& circle) {
+    return head + "UNITS/MM\nLOADTL/1\nCUTTER/10\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/10,0,5\nFEDRAT/MMPM,200\nGOTO/10,0,-1\n" +
+           indirv + circle + "\nGOTO/0,10,-1\nGOTO/0,10,5\nRAPID\nGOTO/0,10,50\nFINI\n";
+  };
+  const std::string circle = "CIRCLE/0,0,-1,0,0,1,10";
+  Compiled cw = compile_text(cl("", "INDIRV/0,-1,0\n", circle), machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(cw.ok) << cw.diags;
+  EXPECT_THAT(cw.output, ::testing::HasSubstr("G17 G02 X0. Y10. I-10. J0.\n"));
+  Compiled ccw = compile_text(cl("", "INDIRV/0,1,0\n", circle), machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(ccw.ok) << ccw.diags;
+  EXPECT_THAT(ccw.output, ::testing::HasSubstr("G17 G03 X0. Y10. I-10. J0.\n"));
+  // Used up by the GOTO after it: the circle keeps the right-hand rule.
+  Compiled stale = compile_text(cl("", "INDIRV/0,-1,0\nGOTO/10,0,-1\n", circle), machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(stale.ok) << stale.diags;
+  EXPECT_THAT(stale.output, ::testing::HasSubstr("G17 G03 X0. Y10. I-10. J0.\n"));
+  Compiled worded = compile_text(cl("", "INDIRV/0,-1,0\n", circle + ",CCLW"), machine("fanuc-mill"));
+  EXPECT_FALSE(worded.ok);
+  EXPECT_THAT(worded.diags, ::testing::HasSubstr("part.cls:10:1: error: CIRCLE: INDIRV at line 9 sets off clockwise about the "
+                                                 "circle's axis, the circle's own sense is the other way: which way the tool "
+                                                 "goes is ambiguous"));
+  Compiled nx = compile_text(cl("TOOL PATH/OP1,TOOL,EM10\n", "INDIRV/0,1,0\n", circle), machine("fanuc-mill"));
+  EXPECT_FALSE(nx.ok);
+  EXPECT_THAT(nx.diags, ::testing::HasSubstr("part.cls:11:1: error: CIRCLE: INDIRV at line 10 sets off counter-clockwise"));
+  Compiled radial = compile_text(cl("", "INDIRV/1,0,0\n", circle), machine("fanuc-mill"));
+  EXPECT_FALSE(radial.ok);
+  EXPECT_THAT(radial.diags, ::testing::HasSubstr("part.cls:10:1: error: CIRCLE: INDIRV at line 9 points along the circle's "
+                                                 "radius or axis: which way round the tool goes is not said"));
+}
