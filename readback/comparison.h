@@ -198,6 +198,9 @@ class Comparison : public ProgramSink {
   // A tap's feed keeps its pitch: over the hole's depth the tap may drift from its thread by
   // less than half an output increment.
   void tap_ok(const TipSegment& s, const ir::CycleSpec& spec);
+  // What the program does at and from a hole's bottom (win_[j]) as the control runs its code:
+  // the spindle's part (a tap's reversal, a bore's stop), a feed out, the dwell, the pecks.
+  void drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3& top, const Vec3& axis);
 
   // Where blocks lie closer together than the tolerance (a five-axis finish in tiny steps),
   // the first block end within it may not be the CL point's own: of the blocks that follow on

@@ -351,6 +351,7 @@ class Interp {
       double secs = has('P') ? (a.with_point('P') ? a['P'] : a['P'] / 1000.0)
                              : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
       res_.events.push_back({Event::Kind::Dwell, line, secs});
+      pending_dwell_ += secs;
       return;
     }
     if (g10) {
@@ -492,6 +493,7 @@ class Interp {
     auto seg = [&](Segment::Kind k, const Vec3& to) {
       Segment s = segment(k, to, rotary_, line);
       s.from_cycle = true;
+      s.cycle = uint8_t(cycle_);
       res_.segments.push_back(s);
       pos_ = to;
     };
@@ -519,7 +521,10 @@ class Interp {
     } else {
       seg(Segment::Kind::Feed, z(cyc_bottom_));
     }
-    if (cycle_ == 82 || cycle_ == 89) res_.events.push_back({Event::Kind::Dwell, line, cyc_p_});
+    if (cycle_ == 82 || cycle_ == 89) {
+      res_.events.push_back({Event::Kind::Dwell, line, cyc_p_});
+      res_.segments.back().dwell = float(cyc_p_);  // at the bottom: the feed just made
+    }
     double ret = cycle_return_initial_ ? std::max(initial_z_, cyc_r_) : cyc_r_;
     bool feed_out = cycle_ == 84 || cycle_ == 74 || cycle_ == 85 || cycle_ == 89;
     if (feed_out) {
@@ -960,6 +965,8 @@ class Interp {
     s.dwo = dwo_;
     s.plane = tilted_;
     s.feed = k == Segment::Kind::Rapid ? 0 : feed_;
+    s.dwell_before = float(pending_dwell_);
+    pending_dwell_ = 0;
     spindle_info(s);
     return s;
   }
@@ -1134,6 +1141,7 @@ class Interp {
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
   double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;
+  mutable double pending_dwell_ = 0;  // G04 seconds since the last segment (handed to the next one)
   int work_offset_ = 1;
   int tool_ = 0;
   int pending_tool_ = 0;

@@ -50,6 +50,9 @@ struct Segment {
   int comp = 0;               // cutter compensation in force: 0 none (G40), 1 left (G41), 2 right (G42)
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
+  uint8_t cycle = 0;          // that cycle's G code (81 ... 89, 73, 74, 76), 0: none
+  float dwell = 0;            // seconds dwelt at the end (a canned cycle's P)
+  float dwell_before = 0;     // seconds dwelt before it (G04 blocks since the last segment)
   bool thread = false;        // a thread cut (G32, G92, G76): synchronised with the spindle, feed = the lead per revolution
   bool tcp = false;           // tool centre point control on: X Y Z are the tip in the part frame
   bool dwo = false;           // dynamic work offset on: X Y Z turned with the table about the part zero

@@ -674,10 +674,81 @@ void Comparison::hole(const Vec3& point, const Vec3& tool_axis) {
       if (spec.feed > 0) f = ir::Feed{spec.feed, spec.feed_mode};
       feed_ok(s, f.value > 0 ? &f : nullptr);
     }
+    drills_as_asked(*j, spec, top, axis);
     consume(*j + 1);
   }
   prev_ = top;
   have_prev_ = true;
+}
+
+// A canned cycle's code says what the spindle does at the bottom and how the tool comes out,
+// which the path alone does not show: G81 for a tap fed it in and rapided it out turning forward,
+// G83 made G81 drilled 20 mm deep in one feed, G82 made G81 lost the dwell, all passed
+// (helper-49). Judged from the CL's cycle by the controls' meaning of the codes:
+//   - a tap is G84 (G74 left hand); a fine bore G76; a back bore G87; a bore that stops the
+//     spindle at the bottom G86, or moves that stop it; no other cycle reverses, orients or
+//     stops the spindle at the bottom;
+//   - a bore (or ream) and a bore with a dwell come out at feed;
+//   - a spot-dwell and a bore-dwell dwell at the bottom for the CL's time (within 1.5 ms: P is
+//     milliseconds); a peck's dwell is no part of the hole's size (clpc warns it is not written);
+//   - a peck cycle feeds no deeper at a time than its largest peck; a DEEP cycle leaves the hole
+//     between pecks (G73's chip break does not).
+void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3& top, const Vec3& axis) {
+  using K = ir::CycleKind;
+  const TipSegment& s = win_[j];
+  const int code = s.raw.cycle;
+  const std::string asked = "the CL's cycle is " + std::string(ir::cycle_kind_name(spec.kind));
+  auto wrong = [&](const std::string& what) { fail(loc_, s.raw.line, what + ", " + asked, 0); };
+  auto g = [](int c) { return "G" + std::to_string(c); };
+  const int spindle_code = spec.kind == K::Tap        ? (spec.left_hand ? 74 : 84)
+                           : spec.kind == K::FineBore ? 76
+                           : spec.kind == K::BackBore ? 87
+                           : spec.kind == K::BoreStop ? 86
+                                                      : 0;
+  const bool acts = code == 84 || code == 74 || code == 76 || code == 87 || code == 86;
+  const TipSegment* out = peek(j + 1);  // the move out of the hole
+  if (spindle_code != 0 && code != spindle_code) {
+    const bool stopped_by_moves = spec.kind == K::BoreStop && code == 0 && out && !out->raw.spindle;
+    if (!stopped_by_moves)
+      wrong("the hole is made " + (code ? "with " + g(code) : std::string("with plain moves")) + ", not " + g(spindle_code));
+    return;
+  }
+  if (spindle_code == 0 && acts) {
+    wrong(g(code) + (code == 84 || code == 74 ? " reverses" : code == 86 ? " stops" : " orients") +
+          " the spindle at the bottom");
+    return;
+  }
+  if ((spec.kind == K::Bore || spec.kind == K::BoreDwell) && out && out->raw.kind == gcode::Segment::Kind::Rapid)
+    wrong("the tool comes out of the hole at rapid traverse" + (code ? " (" + g(code) + ")" : std::string()));
+  if (spec.kind == K::SpotDwell || spec.kind == K::BoreDwell) {
+    const double dwell = s.raw.dwell + (out ? out->raw.dwell_before : 0.0);
+    if (std::abs(dwell - spec.dwell) > 0.0015)
+      wrong("the tool dwells " + fixed_text(dwell, 3) + " s at the bottom, not " + fixed_text(spec.dwell, 3) + " s");
+  }
+  if ((spec.kind == K::Peck || spec.kind == K::ChipBreak) && spec.peck > 0) {
+    if (spec.kind == K::Peck && code == 73) {
+      wrong("G73 breaks the chip without leaving the hole between pecks");
+      return;
+    }
+    // Each feed down the axis cuts from the deepest point reached before it (a peck cycle feeds
+    // back in from just above it).
+    const double most = std::max(spec.peck, spec.peck_next) * k_;
+    auto off_axis = [&](const Vec3& q) { return ((q - top) - (q - top).dot(axis) * axis).norm(); };
+    double deepest = std::max(0.0, -spec.clearance * k_);  // an R plane inside the hole: pecks count from it
+    for (size_t i = 0; i <= j; ++i) {
+      const TipSegment& d = win_[i];
+      if (d.raw.kind == gcode::Segment::Kind::Rapid || !finite(d.start) || !finite(d.end) || off_axis(d.start) > tol_ ||
+          off_axis(d.end) > tol_)
+        continue;
+      const double to = (top - d.end).dot(axis);  // depth below the top
+      if (to - deepest > most + tol_) {
+        wrong("the drill feeds " + fixed_text(to - deepest, 4) + " deeper at once" + (code ? " (" + g(code) + ")" : std::string()) +
+              ", its pecks are " + fixed_text(most, 4));
+        break;
+      }
+      deepest = std::max(deepest, to);
+    }
+  }
 }
 
 void Comparison::check_limits(const TipSegment& s) {

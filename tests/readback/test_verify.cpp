@@ -429,3 +429,45 @@ TEST_F(VerifyPlate, UnitsEndsAndRepeatsTheControlReadsOtherwiseFail) {
     EXPECT_THAT(r.diags, HasSubstr(std::string(repeat) + " in a canned cycle: the control " + said)) << r.diags;
   }
 }
+
+// A canned cycle's code says what the spindle does at the bottom and how the tool comes out,
+// which the path alone does not show. Each of these edits passed (helper-49): a tap drilled with
+// G81 (fed in, rapided out turning forward) or G74 (turned backwards), a DEEP cycle made G81 or
+// G73 or given a 20 mm Q, a spot-dwell made G81 (no dwell) or G86 (the spindle stopped), its
+// P made 50 s. A G89 for a spot-dwell (fed out, slower) is no harm.
+TEST(Verify, ACycleThatDoesOtherThanTheClsFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20\n"
+                         "CYCLE/DEEP,FEDTO,20,INCR,4,RAPTO,2,MMPM,100\nGOTO/10,0,0\nCYCLE/OFF\n"
+                         "CYCLE/DRILL,FEDTO,2,RAPTO,2,MMPM,100,DWELL,0.5\nGOTO/20,0,0\nCYCLE/OFF\n"
+                         "CYCLE/TAP,FEDTO,10,RAPTO,5,MMPR,1\nGOTO/30,0,0\nCYCLE/OFF\nRAPID\nGOTO/30,0,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("G83 X10. Y0. Z-20. R2. Q4. F100.\n"));
+  ASSERT_THAT(c.output, HasSubstr("G82 X20. Y0. Z-2. R2. P500 F100.\n"));
+  ASSERT_THAT(c.output, HasSubstr(" G84 X30. Y0. Z-10. R5. "));
+  const struct {
+    const char* from;
+    const char* to;
+    const char* said;
+  } edits[] = {
+      {"G84 X30.", "G81 X30.", "part.cl:13:1: error: the hole is made with G81, not G84, the CL's cycle is tap"},
+      {"G84 X30.", "G74 X30.", "part.cl:13:1: error: the hole is made with G74, not G84, the CL's cycle is tap"},
+      {"G83 X10.", "G81 X10.", "part.cl:7:1: error: the drill feeds 20.0000 deeper at once (G81), its pecks are 4.0000, "
+                               "the CL's cycle is peck"},
+      {"Q4.", "Q20.", "part.cl:7:1: error: the drill feeds 18.0000 deeper at once (G83), its pecks are 4.0000"},
+      {"G83 X10.", "G73 X10.", "part.cl:7:1: error: G73 breaks the chip without leaving the hole between pecks, the CL's "
+                               "cycle is peck"},
+      {"G82 X20. Y0. Z-2. R2. P500", "G81 X20. Y0. Z-2. R2.", "part.cl:10:1: error: the tool dwells 0.000 s at the bottom, "
+                                                               "not 0.500 s, the CL's cycle is spot-dwell"},
+      {"P500", "P50000", "part.cl:10:1: error: the tool dwells 50.000 s at the bottom, not 0.500 s"},
+      {"G82 X20. Y0. Z-2. R2. P500", "G86 X20. Y0. Z-2. R2.", "part.cl:10:1: error: G86 stops the spindle at the bottom, the "
+                                                               "CL's cycle is spot-dwell"},
+  };
+  for (const auto& e : edits) {
+    Compiled v = verify_text(cl, machine("fanuc-mill"), edit(c.output, e.from, e.to));
+    EXPECT_FALSE(v.ok) << e.to;
+    EXPECT_THAT(v.diags, HasSubstr(e.said)) << e.to;
+  }
+  Compiled fed_out = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G82 X20.", "G89 X20."));
+  EXPECT_TRUE(fed_out.ok) << fed_out.diags;
+}
