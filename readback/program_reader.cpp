@@ -1,12 +1,12 @@
 #include "readback/program_reader.h"
 
-
 #include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
 
 #include "support/text.h"
 #include "support/threads.h"
@@ -245,6 +245,23 @@ bool ProgramReader::read_next(TipSegment& out) {
   if (use_offsets_)
     if (auto it = offsets_.find(s.work_offset); it != offsets_.end()) out.shift = it->second;
   const kin::Angles a0 = angles(s.rotary_start), a1 = angles(s.rotary);
+  if (!table_turned_said_ && turned_without_part_frame(s, a0, a1)) {
+    table_turned_said_ = true;
+    // The code a template turns the mode on with: its last G word (G234 of "G00 G234 H{offset}").
+    auto g_code = [](const std::string& text) {
+      std::string last, word;
+      std::istringstream in(text);
+      while (in >> word)
+        if (word[0] == 'G' && word.find('{') == std::string::npos) last = word;
+      return last.empty() ? std::string("none") : last;
+    };
+    r.problems.push_back({s.line, "the table is turned and neither TCPC (" + g_code(m_.codes.tcp_on.text) +
+                                      "), a dynamic work offset (" + g_code(m_.codes.dwo_on.text) +
+                                      ") nor a tilted plane is in force: the control moves X Y Z "
+                                      "as machine axes, and where the part's zero lies from the table's centre of rotation "
+                                      "is the setup's, unknown here (this machine writes its 3+2 and five-axis work in the "
+                                      "part's frame)"});
+  }
   out.start = part_point(s, s.start, a0, out.shift);
   out.end = part_point(s, s.end, a1, out.shift);
   out.rotates = a0 != a1;
@@ -264,6 +281,28 @@ bool ProgramReader::read_next(TipSegment& out) {
   }
   out.index = index_++;
   return true;
+}
+
+// On a machine whose 3+2 and five-axis work are both written in the part's frame (a dynamic
+// work offset or a tilted plane, and TCPC), the shop sets the work offset at the part's zero,
+// wherever that lies from the table's centre of rotation. A move with the table turned and none
+// of them in force is then in machine axes about a point clpc does not know: G254 deleted after
+// a B90 C90 index passed, read as if the part's zero were on the centre (helper-49). A machine
+// whose posts transform (kinematics.simultaneous or .indexed = "transform") has its work offset
+// on that centre by its own rule, and is read so. Rotary-only moves (the index itself) and moves
+// are not judged; a move to a place from an unknown one is (the approach before G254).
+bool ProgramReader::turned_without_part_frame(const gcode::Segment& s, const kin::Angles& a0, const kin::Angles& a1) const {
+  const KinematicsSettings& k = m_.kinematics;
+  if (!k.has_rotaries() || k.simultaneous == Simultaneous::Transform || k.indexed == Indexed::Transform) return false;
+  auto turned = [&](const kin::Angles& a) {  // a table's rotary (a head's turns the tool, not the part's zero)
+    for (size_t i = 0; i < k.rotaries.size() && i < a.size(); ++i)
+      if (k.rotaries[i].table && std::isfinite(a[i]) && a[i] != 0) return true;  // (an angle not yet known is no turn)
+    return false;
+  };
+  if (s.tcp || s.dwo || s.plane || !(turned(a0) || turned(a1))) return false;
+  for (int i = 0; i < 3; ++i)
+    if (std::isfinite(s.end[i]) && !(s.start[i] == s.end[i])) return true;  // X, Y or Z moved (from unknown, too)
+  return false;
 }
 
 std::vector<gcode::Problem> ProgramReader::take_reader_problems() {

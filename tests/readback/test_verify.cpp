@@ -322,7 +322,12 @@ TEST(Verify, UnderTcpcATurningBlockIsTheStraightMoveOfItsTip) {
 
   c = verify(cl, m, edit(program, "N30 G54 G00 G234 H01\n", "N30 G54 G00 G43 H01\n"));
   EXPECT_FALSE(c.report.ok);
-  EXPECT_THAT(first_error(c.diags), HasSubstr("sweep.cls:10:1: error: CL point (0.1969, 0.0000, 0.0000) is never reached"));
+  EXPECT_THAT(c.diags, HasSubstr("sweep.cls:10:1: error: CL point (0.1969, 0.0000, 0.0000) is never reached"));
+  // On a machine whose work is written in the part's frame, a move with the table turned and
+  // neither TCPC nor G254 is in machine axes about a centre the part's zero is not known from.
+  EXPECT_THAT(first_error(c.diags),
+              HasSubstr("sweep.cls:9:1: error: the program: the table is turned and neither TCPC (G234), a dynamic work "
+                        "offset (G254) nor a tilted plane is in force: the control moves X Y Z as machine axes"));
 }
 
 TEST_F(VerifyPlate, JsonReport) {
@@ -470,4 +475,25 @@ TEST(Verify, ACycleThatDoesOtherThanTheClsFails) {
   }
   Compiled fed_out = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G82 X20.", "G89 X20."));
   EXPECT_TRUE(fed_out.ok) << fed_out.diags;
+}
+
+// On a machine that writes its 3+2 work with a dynamic work offset and its five-axis work under
+// TCPC, the work offset is the part's zero, wherever it lies from the table's centre. A move with
+// the table turned and neither in force is in machine axes about a point clpc does not know:
+// G254 deleted after a B90 C90 index passed, read as if the part's zero were on the centre
+// (helper-49).
+TEST(Verify, ATurnedTableWithoutItsDynamicWorkOffsetFails) {
+  const std::string cl = "UNITS/MM\nTOOL PATH/SIDE,TOOL,EM10\nTLDATA/MILL,10,0,50,0,0\nLOAD/TOOL,1,ADJUST,1\n"
+                         "SPINDL/RPM,6000,CLW\nMSYS/0,0,0,1,0,0,0,1,0\nRAPID\nGOTO/0,0,50,0,0,1\nFEDRAT/MMPM,500\n"
+                         "GOTO/30,0,50\nEND-OF-PATH\nTOOL PATH/SIDE2,TOOL,EM10\n"
+                         "MSYS/0,-20,-10,1,0,0,0,0,-1\nRAPID\nGOTO/0,0,50,0,0,1\nRAPID\nGOTO/0,0,2\nFEDRAT/MMPM,500\n"
+                         "GOTO/0,0,0\nGOTO/30,0,0\nRAPID\nGOTO/30,0,50\nEND-OF-PATH\nFINI\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  const size_t at = c.output.find(" G254");
+  ASSERT_NE(at, std::string::npos) << c.output;
+  Compiled v = verify_text(cl, machine("haas-umc750"), c.output.substr(0, at) + c.output.substr(at + 5));
+  EXPECT_FALSE(v.ok);
+  EXPECT_THAT(v.diags, HasSubstr("error: the program: the table is turned and neither TCPC (G234), a dynamic work offset "
+                                 "(G254) nor a tilted plane is in force"));
 }
