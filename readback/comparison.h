@@ -384,6 +384,8 @@ class Comparison : public ProgramSink {
   ir::Feed cl_feed_;          // the CL's feed in force
   SourceLoc cl_feed_loc_;
   bool cl_spindle_ = false;  // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
+  double cl_rpm_ = 0;         // the CL's speed in rpm (0: none, or a surface speed)
+  bool speed_said_ = false;  // a cut at another speed reported (once until it is right again)
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since

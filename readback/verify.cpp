@@ -63,6 +63,7 @@ void Comparison::operation(const ir::Operation& op) {
             cl_comp_loc_ = loc_;
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
+            cl_rpm_ = cl_spindle_ && x.mode == ir::SpindleMode::Rpm ? x.speed : 0;
             // The M code the machine starts this direction with (M03 clockwise on the built-ins).
             const std::vector<double> m =
                 code_numbers(x.dir == ir::SpindleDir::Ccw ? m_.codes.spindle_ccw.text : m_.codes.spindle_cw.text, 'M');
@@ -207,6 +208,20 @@ void Comparison::spindle_ok(const TipSegment& s) {
     return;
   }
   if (s.raw.spindle && s.raw.spindle_code == cl_spindle_code_) direction_said_ = false;
+  // The speed: a mill's S is the CL's rpm, rounded to S's increment. S5000 made S500 or S50000,
+  // and a drill's S0, passed (helper-49). (A lathe's S may be a surface speed: not compared.)
+  if (cut && cl_spindle_ && s.raw.spindle && cl_rpm_ > 0 && !m_.is_lathe()) {
+    const double slack = 0.5 * std::abs(dequantize(1, m_.format('S'))) + 1e-9 * cl_rpm_;
+    if (std::abs(s.raw.rpm - cl_rpm_) > slack) {
+      if (!speed_said_)
+        fail(loc_, s.raw.line, "the program cuts here at S" + num_text(s.raw.rpm) + ", the CL's spindle speed is " +
+                                   num_text(cl_rpm_) + " rpm",
+             0);
+      speed_said_ = true;
+    } else {
+      speed_said_ = false;
+    }
+  }
   if (!cut || !cl_spindle_ || s.raw.spindle) {
     if (s.raw.spindle) spindle_said_ = false;
     return;

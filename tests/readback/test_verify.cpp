@@ -497,3 +497,16 @@ TEST(Verify, ATurnedTableWithoutItsDynamicWorkOffsetFails) {
   EXPECT_THAT(v.diags, HasSubstr("error: the program: the table is turned and neither TCPC (G234), a dynamic work offset "
                                  "(G254) nor a tilted plane is in force"));
 }
+
+// A mill's S is the CL's rpm, rounded to S's increment: S3000 made S300 or S30000 passed, and a
+// drill's S0 too (helper-49).
+TEST_F(VerifyPlate, ACutAtAnotherSpindleSpeedFails) {
+  const std::string program = program_for(cl, m);
+  for (const char* s : {"S300 M03", "S30000 M03", "S0 M03"}) {
+    Checked c = verify(cl, m, edit(program, "S3000 M03", s));
+    EXPECT_FALSE(c.report.ok) << s;
+    EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:9:1: error: the program cuts here at " + std::string(s, std::string(s).find(' ')) +
+                                                ", the CL's spindle speed is 3000 rpm")) << s;
+  }
+  EXPECT_TRUE(verify(cl, m, edit(program, "S3000 M03", "S3000 M03")).report.ok);
+}
