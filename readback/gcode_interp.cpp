@@ -315,6 +315,12 @@ class Interp {
           break;
         case 7: case 8: case 88: case 83: res_.events.push_back({Event::Kind::Coolant, line, double(code)}); break;
         case 9: case 89: case 84: res_.events.push_back({Event::Kind::Coolant, line, 0}); break;
+        // A subprogram call runs blocks the reader does not have (M98 P9000 passed, where G65 was
+        // refused): what they move is not known.
+        case 97: case 98:
+          problem(line, "M" + std::to_string(code) + " calls a subprogram the reader does not have, so the program cannot be "
+                        "checked against the CL (written by an INSERT or AUXFUN? compile with --no-verify to take it unchecked)");
+          break;
         default: break;  // machine functions (clamps, ...) carry no motion
       }
     }

@@ -405,14 +405,17 @@ TEST(Verify, AMacroVariableSetByAnInsertIsReadPast) {
 }
 
 // Hand edits the reader cannot take as the CL's (helper-49): G20 on a millimetre machine (read as
-// millimetres, every axis would move 25.4 times as far), no M30, a canned cycle repeated (K0
-// drills nothing, K3 thrice). And a cycle's P is milliseconds: G82 P500 counted 500 s.
+// millimetres, every axis would move 25.4 times as far), a subprogram call, no M30, a canned
+// cycle repeated (K0 drills nothing, K3 thrice). And a cycle's P is milliseconds: G82 P500 counted 500 s.
 TEST_F(VerifyPlate, UnitsEndsAndRepeatsTheControlReadsOtherwiseFail) {
   const std::string program = program_for(cl, m);
   Checked inch = verify(cl, m, edit(program, "N10 G21", "N10 G20"));
   EXPECT_FALSE(inch.report.ok);
   EXPECT_THAT(first_error(inch.diags), HasSubstr("error: the program: G20 (inches) on a machine described in millimetres: the "
                                                  "control would read every number 25.4 times larger than the program means"));
+  Checked called = verify(cl, m, edit(program, "M30\n", "M98 P9000\nM30\n"));
+  EXPECT_FALSE(called.report.ok);
+  EXPECT_THAT(called.diags, HasSubstr("M98 calls a subprogram the reader does not have"));
   Checked endless = verify(cl, m, edit(program, "M30\n", "\n"));
   EXPECT_FALSE(endless.report.ok);
   EXPECT_THAT(endless.diags, HasSubstr("the program has no end (M30 or M02)"));
