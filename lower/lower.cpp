@@ -105,6 +105,14 @@ void Lowerer::record(const Record& r) {
       default: break;
     }
   }
+  // INDIRV says where the next motion sets off: a motion other than the CIRCLE or contour it
+  // decides uses it up (a stale one reversed a later arc).
+  switch (r.id) {
+    case MajorId::Goto: case MajorId::From: case MajorId::Gohome: case MajorId::Godlta: case MajorId::Movarc:
+      has_indirv_ = false;
+      break;
+    default: break;
+  }
   switch (r.id) {
     case MajorId::Goto: lower_goto(r); return;
     case MajorId::From: lower_from(r); return;

@@ -258,7 +258,6 @@ void Lowerer::lower_goto(const Record& r) {
   // Under MULTAX/OFF APT writes three values a point: six are two points. A CAM system that
   // means a point and its tool axis has left MULTAX/OFF in force; the readings differ (a point
   // dropped, or a tool axis cut as a point near the origin): refused, not read at a guess.
-  has_indirv_ = false;  // INDIRV says where the next motion sets off: this one, a straight line to its point
   if (multax_off_ && r.params.size() == 6) {
     d_.error(r.params[3].loc, "GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs "
                               "MULTAX/ON; have the CAM system write MULTAX/ON before points with a tool axis");

@@ -354,8 +354,7 @@ class Interp {
     if (g04) {
       // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
       // seconds.
-      double secs = has('P') ? (a.with_point('P') ? a['P'] : a['P'] / 1000.0)
-                             : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
+      double secs = has('P') ? dwell_p(a, line) : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
       res_.events.push_back({Event::Kind::Dwell, line, secs});
       pending_dwell_ += secs;
       return;
@@ -475,9 +474,8 @@ class Interp {
     if (a.count('Z')) cyc_bottom_ = a['Z'];
     if (a.count('R')) cyc_r_ = a['R'];
     if (a.count('Q')) cyc_q_ = a['Q'];
-    // P is the dwell at the bottom: milliseconds without a point (Fanuc, Haas), seconds with one
-    // (Haas). It was taken as seconds: G82 P500 counted 500 s in the cycle time.
-    if (a.count('P')) cyc_p_ = a.with_point('P') ? a['P'] : a['P'] / 1000.0;
+    // P is the dwell at the bottom (it was taken as seconds: G82 P500 counted 500 s).
+    if (a.count('P')) cyc_p_ = (cycle_ == 82 || cycle_ == 89) ? dwell_p(a, line) : a['P'];
     // K (Fanuc) or L (Haas) repeats the hole: K0 stores the cycle without drilling, K3 drills it
     // three times (G91: three holes a step apart). clpc writes neither; the reader does not follow.
     for (char repeat : {'K', 'L'})
@@ -855,6 +853,18 @@ class Interp {
   // A program is read in its machine's units (every format and limit is in them). A G20 or G21
   // saying the other unit is an error, not a conversion: G21 made G20 on a millimetre machine
   // was read as millimetres and passed, and the control would move every axis 25.4 times as far.
+  // A dwell's P (G04, G82, G89): whole milliseconds without a point (Fanuc, Haas), whatever
+  // format.P's implied decimals (the lathe's P500 was read 0.0005 s); seconds with one, on a
+  // control whose P takes a point (Haas: format.P writes one). Fanuc's takes none: P0.5 there is
+  // a problem, not half a second.
+  double dwell_p(const Words& a, int line) {
+    if (!a.with_point('P')) return a.raw['P' - 'A'] / 1000.0;
+    if (m_.format('P').point == AddressFormat::Point::Never)
+      problem(line, "P" + fmt(a.raw['P' - 'A']) + " with a decimal point: this control takes a dwell's P in whole "
+                    "milliseconds (its P is written without a point)");
+    return a.raw['P' - 'A'];
+  }
+
   void set_units(ir::Units u, int line) {
     if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
     else if (u != m_.units)

@@ -253,11 +253,17 @@ bool ProgramReader::read_next(TipSegment& out) {
       std::istringstream in(text);
       while (in >> word)
         if (word[0] == 'G' && word.find('{') == std::string::npos) last = word;
-      return last.empty() ? std::string("none") : last;
+      return last;
     };
-    r.problems.push_back({s.line, "the table is turned and neither TCPC (" + g_code(m_.codes.tcp_on.text) +
-                                      "), a dynamic work offset (" + g_code(m_.codes.dwo_on.text) +
-                                      ") nor a tilted plane is in force: the control moves X Y Z "
+    std::string modes;  // the machine's ways of working in the part's frame
+    auto add = [&](const std::string& what, const std::string& code) {
+      if (code.empty()) return;
+      modes += (modes.empty() ? "" : ", ") + what + " (" + code + ")";
+    };
+    add("TCPC", g_code(m_.codes.tcp_on.text));
+    add("a dynamic work offset", g_code(m_.codes.dwo_on.text));
+    add("a tilted plane", g_code(m_.codes.plane_on.text));
+    r.problems.push_back({s.line, "the table is turned and none of " + modes + " is in force: the control moves X Y Z "
                                       "as machine axes, and where the part's zero lies from the table's centre of rotation "
                                       "is the setup's, unknown here (this machine writes its 3+2 and five-axis work in the "
                                       "part's frame)"});

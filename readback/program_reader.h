@@ -137,9 +137,9 @@ class ProgramReader {
   std::vector<Item> current_;
   size_t current_at_ = 0;
   bool ended_ = false;
-  bool end_said_ = false;
+  bool end_said_ = false;  // a program without M30/M02 reported
   bool table_turned_said_ = false;  // a move with the table turned outside the part's frame reported
-  bool turned_without_part_frame(const gcode::Segment& s, const kin::Angles& a0, const kin::Angles& a1) const;  // a program without M30/M02 reported
+  bool turned_without_part_frame(const gcode::Segment& s, const kin::Angles& a0, const kin::Angles& a1) const;
   std::vector<gcode::Problem> problems_;  // of the segments handed over so far
 };
 

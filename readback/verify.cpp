@@ -704,12 +704,13 @@ void Comparison::hole(const Vec3& point, const Vec3& tool_axis) {
 //     spindle at the bottom G86, or moves that stop it; no other cycle reverses, orients or
 //     stops the spindle at the bottom;
 //   - a bore (or ream) and a bore with a dwell come out at feed;
-//   - a spot-dwell and a bore-dwell dwell at the bottom for the CL's time (within 1.5 ms: P is
-//     milliseconds); a peck's dwell is no part of the hole's size (clpc warns it is not written);
+//   - a spot-dwell and a bore-dwell dwell at the bottom for the CL's time (within half P's
+//     increment, 1.5 ms at least); a peck's dwell is no part of the hole's size (clpc warns it is not written);
 //   - a peck cycle feeds no deeper at a time than its largest peck; a DEEP cycle leaves the hole
 //     between pecks (G73's chip break does not).
 void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3& top, const Vec3& axis) {
   using K = ir::CycleKind;
+  const TipSegment* out = peek(j + 1);  // the move out of the hole (before `s`: peeking may grow the window)
   const TipSegment& s = win_[j];
   const int code = s.raw.cycle;
   const std::string asked = "the CL's cycle is " + std::string(ir::cycle_kind_name(spec.kind));
@@ -721,7 +722,6 @@ void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3
                            : spec.kind == K::BoreStop ? 86
                                                       : 0;
   const bool acts = code == 84 || code == 74 || code == 76 || code == 87 || code == 86;
-  const TipSegment* out = peek(j + 1);  // the move out of the hole
   if (spindle_code != 0 && code != spindle_code) {
     const bool stopped_by_moves = spec.kind == K::BoreStop && code == 0 && out && !out->raw.spindle;
     if (!stopped_by_moves)
@@ -737,7 +737,12 @@ void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3
     wrong("the tool comes out of the hole at rapid traverse" + (code ? " (" + g(code) + ")" : std::string()));
   if (spec.kind == K::SpotDwell || spec.kind == K::BoreDwell) {
     const double dwell = s.raw.dwell + (out ? out->raw.dwell_before : 0.0);
-    if (std::abs(dwell - spec.dwell) > 0.0015)
+    // Within a rounding of P: whole milliseconds where P takes no point, else half an increment
+    // of its seconds (P10. for 10.04 s with one decimal); 1.5 ms at least.
+    const AddressFormat& p = m_.format('P');
+    const double slack =
+        p.point == AddressFormat::Point::Never ? 0.0015 : std::max(0.0015, 0.5 * std::pow(10.0, -p.decimals) + 1e-9);
+    if (std::abs(dwell - spec.dwell) > slack)
       wrong("the tool dwells " + fixed_text(dwell, 3) + " s at the bottom, not " + fixed_text(spec.dwell, 3) + " s");
   }
   if ((spec.kind == K::Peck || spec.kind == K::ChipBreak) && spec.peck > 0) {

@@ -90,6 +90,12 @@ TEST(ArcConventions, IndirvBeforeACircleGivesItsSense) {
   Compiled stale = compile_text(cl("", "INDIRV/0,-1,0\nGOTO/10,0,-1\n", circle), machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(stale.ok) << stale.diags;
   EXPECT_THAT(stale.output, ::testing::HasSubstr("G17 G03 X0. Y10. I-10. J0.\n"));
+  // A GODLTA (or FROM, GOHOME, MOVARC) uses it up as well: an INDIRV down the axis for a plunge
+  // was taken for the circle's and refused it.
+  Compiled plunge = compile_text(cl("", "GOTO/10,0,0\nINDIRV/0,0,-1\nGODLTA/0,0,-1\n", circle), machine("fanuc-mill"),
+                                 {.certify = true});
+  ASSERT_TRUE(plunge.ok) << plunge.diags;
+  EXPECT_THAT(plunge.output, ::testing::HasSubstr("G17 G03 X0. Y10. I-10. J0.\n"));
   Compiled worded = compile_text(cl("", "INDIRV/0,-1,0\n", circle + ",CCLW"), machine("fanuc-mill"));
   EXPECT_FALSE(worded.ok);
   EXPECT_THAT(worded.diags, ::testing::HasSubstr("part.cls:10:1: error: CIRCLE: INDIRV at line 9 sets off clockwise about the "

@@ -6,6 +6,7 @@
 
 #include "driver/readback_commands.h"
 #include "helpers.h"
+#include "readback/gcode_interp.h"
 
 using namespace clpc;
 using namespace clpc::test;
@@ -326,8 +327,8 @@ TEST(Verify, UnderTcpcATurningBlockIsTheStraightMoveOfItsTip) {
   // On a machine whose work is written in the part's frame, a move with the table turned and
   // neither TCPC nor G254 is in machine axes about a centre the part's zero is not known from.
   EXPECT_THAT(first_error(c.diags),
-              HasSubstr("sweep.cls:9:1: error: the program: the table is turned and neither TCPC (G234), a dynamic work "
-                        "offset (G254) nor a tilted plane is in force: the control moves X Y Z as machine axes"));
+              HasSubstr("sweep.cls:9:1: error: the program: the table is turned and none of TCPC (G234), a dynamic work "
+                        "offset (G254) is in force: the control moves X Y Z as machine axes"));
 }
 
 TEST_F(VerifyPlate, JsonReport) {
@@ -497,8 +498,8 @@ TEST(Verify, ATurnedTableWithoutItsDynamicWorkOffsetFails) {
   ASSERT_NE(at, std::string::npos) << c.output;
   Compiled v = verify_text(cl, machine("haas-umc750"), c.output.substr(0, at) + c.output.substr(at + 5));
   EXPECT_FALSE(v.ok);
-  EXPECT_THAT(v.diags, HasSubstr("error: the program: the table is turned and neither TCPC (G234), a dynamic work offset "
-                                 "(G254) nor a tilted plane is in force"));
+  EXPECT_THAT(v.diags, HasSubstr("error: the program: the table is turned and none of TCPC (G234), a dynamic work offset "
+                                 "(G254) is in force"));
 }
 
 // A mill's S is the CL's rpm, rounded to S's increment: S3000 made S300 or S30000 passed, and a
@@ -512,4 +513,24 @@ TEST_F(VerifyPlate, ACutAtAnotherSpindleSpeedFails) {
                                                 ", the CL's spindle speed is 3000 rpm")) << s;
   }
   EXPECT_TRUE(verify(cl, m, edit(program, "S3000 M03", "S3000 M03")).report.ok);
+}
+
+// A dwell's P is whole milliseconds without a point, whatever format.P's implied decimals (the
+// lathe's G04 P500 was read 0.0005 s); seconds with one where the control's P takes a point
+// (Haas); on a Fanuc, whose P takes none, a point is a problem (helper-50).
+TEST(Verify, ADwellsPIsMillisecondsOrSecondsAsTheControlReadsIt) {
+  auto dwell = [](const char* block, const char* name, std::string* problem = nullptr) {
+    gcode::Result r = gcode::interpret(std::string(block) + "\nM30\n", machine(name));
+    if (problem) *problem = r.problems.empty() ? "" : r.problems.front().message;
+    for (const gcode::Event& e : r.events)
+      if (e.kind == gcode::Event::Kind::Dwell) return e.value;
+    return -1.0;
+  };
+  EXPECT_DOUBLE_EQ(dwell("G04 P500", "fanuc-lathe"), 0.5);
+  EXPECT_DOUBLE_EQ(dwell("G04 P500", "fanuc-mill"), 0.5);
+  EXPECT_DOUBLE_EQ(dwell("G04 P0.5", "haas-umc750"), 0.5);
+  std::string problem;
+  dwell("G04 P0.5", "fanuc-mill", &problem);
+  EXPECT_EQ(problem, "P0.5 with a decimal point: this control takes a dwell's P in whole milliseconds (its P is written "
+                     "without a point)");
 }
