@@ -643,10 +643,9 @@ void Comparison::hole(const Vec3& point, const Vec3& tool_axis) {
   const Vec3 bottom = top - axis * (spec.depth * k_);
   // The same hole again (a GOTO repeated in the cycle): drilled already, nothing to reach.
   if (have_hole_ && (hole_point_ - top).norm() <= tol_ && (hole_bottom_ - bottom).norm() <= tol_) return;
-  hole_bottom_ = bottom;
-  hole_point_ = top;
-  hole_axis_ = axis;
-  have_hole_ = true;
+  // Until this hole is reached the last hole is the one before: its feed out (a bore's, written
+  // as moves) is passed over on the way here. Taken as this one, every bore after the first
+  // was refused on machines without G85.
   // On the way: rapids, cycle motion, and feeds along this hole's axis.
   auto on_axis = [&](const Vec3& q) {
     Vec3 d = q - top;
@@ -692,6 +691,10 @@ void Comparison::hole(const Vec3& point, const Vec3& tool_axis) {
     drills_as_asked(*j, spec, top, axis);
     consume(*j + 1);
   }
+  hole_bottom_ = bottom;
+  hole_point_ = top;
+  hole_axis_ = axis;
+  have_hole_ = true;
   prev_ = top;
   have_prev_ = true;
 }

@@ -534,3 +534,17 @@ TEST(Verify, ADwellsPIsMillisecondsOrSecondsAsTheControlReadsIt) {
   EXPECT_EQ(problem, "P0.5 with a decimal point: this control takes a dwell's P in whole milliseconds (its P is written "
                      "without a point)");
 }
+
+// A bore on a machine without G85 is written as moves, fed out of each hole: the feed out of the
+// first hole is passed over on the way to the second. It was judged against the second's axis,
+// and every bore after the first was refused (helper-50).
+TEST(Verify, BoresWrittenAsMovesAreFedOutOfEachHole) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20\n"
+                         "CYCLE/BORE,FEDTO,20,RAPTO,2,MMPM,100\nGOTO/10,10,0\nGOTO/30,10,0\nGOTO/30,30,0\nCYCLE/OFF\n"
+                         "RAPID\nGOTO/30,30,50\nFINI\n";
+  const Machine plain = machine("no-bore", "[no-bore]\ninherits = \"fanuc-mill\"\n[no-bore.codes]\ncycle_bore = \"\"\n");
+  Compiled c = compile_text(cl, plain, {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, ::testing::Not(HasSubstr("G85")));
+  EXPECT_THAT(c.output, HasSubstr("G01 Z-20. F100.\n"));
+}
