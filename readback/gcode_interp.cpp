@@ -850,9 +850,6 @@ class Interp {
     thread_segments(steps, line);
   }
 
-  // A program is read in its machine's units (every format and limit is in them). A G20 or G21
-  // saying the other unit is an error, not a conversion: G21 made G20 on a millimetre machine
-  // was read as millimetres and passed, and the control would move every axis 25.4 times as far.
   // A dwell's P (G04, G82, G89): whole milliseconds without a point (Fanuc, Haas), whatever
   // format.P's implied decimals (the lathe's P500 was read 0.0005 s); seconds with one, on a
   // control whose P takes a point (Haas: format.P writes one). Fanuc's takes none: P0.5 there is
@@ -865,6 +862,9 @@ class Interp {
     return a.raw['P' - 'A'];
   }
 
+  // A program is read in its machine's units (every format and limit is in them). A G20 or G21
+  // saying the other unit is an error, not a conversion: G21 made G20 on a millimetre machine
+  // was read as millimetres and passed, and the control would move every axis 25.4 times as far.
   void set_units(ir::Units u, int line) {
     if (res_.units_set && u != res_.units) problem(line, "units change in the middle of the program");
     else if (u != m_.units)

@@ -247,26 +247,7 @@ bool ProgramReader::read_next(TipSegment& out) {
   const kin::Angles a0 = angles(s.rotary_start), a1 = angles(s.rotary);
   if (!table_turned_said_ && turned_without_part_frame(s, a0, a1)) {
     table_turned_said_ = true;
-    // The code a template turns the mode on with: its last G word (G234 of "G00 G234 H{offset}").
-    auto g_code = [](const std::string& text) {
-      std::string last, word;
-      std::istringstream in(text);
-      while (in >> word)
-        if (word[0] == 'G' && word.find('{') == std::string::npos) last = word;
-      return last;
-    };
-    std::string modes;  // the machine's ways of working in the part's frame
-    auto add = [&](const std::string& what, const std::string& code) {
-      if (code.empty()) return;
-      modes += (modes.empty() ? "" : ", ") + what + " (" + code + ")";
-    };
-    add("TCPC", g_code(m_.codes.tcp_on.text));
-    add("a dynamic work offset", g_code(m_.codes.dwo_on.text));
-    add("a tilted plane", g_code(m_.codes.plane_on.text));
-    r.problems.push_back({s.line, "the table is turned and none of " + modes + " is in force: the control moves X Y Z "
-                                      "as machine axes, and where the part's zero lies from the table's centre of rotation "
-                                      "is the setup's, unknown here (this machine writes its 3+2 and five-axis work in the "
-                                      "part's frame)"});
+    r.problems.push_back({s.line, table_turned_problem()});
   }
   out.start = part_point(s, s.start, a0, out.shift);
   out.end = part_point(s, s.end, a1, out.shift);
@@ -295,8 +276,8 @@ bool ProgramReader::read_next(TipSegment& out) {
 // of them in force is then in machine axes about a point clpc does not know: G254 deleted after
 // a B90 C90 index passed, read as if the part's zero were on the centre (helper-49). A machine
 // whose posts transform (kinematics.simultaneous or .indexed = "transform") has its work offset
-// on that centre by its own rule, and is read so. Rotary-only moves (the index itself) and moves
-// are not judged; a move to a place from an unknown one is (the approach before G254).
+// on that centre by its own rule, and is read so. Rotary-only moves (the index itself) are not
+// judged; a move to a place from an unknown one is (the approach before G254).
 bool ProgramReader::turned_without_part_frame(const gcode::Segment& s, const kin::Angles& a0, const kin::Angles& a1) const {
   const KinematicsSettings& k = m_.kinematics;
   if (!k.has_rotaries() || k.simultaneous == Simultaneous::Transform || k.indexed == Indexed::Transform) return false;
@@ -309,6 +290,27 @@ bool ProgramReader::turned_without_part_frame(const gcode::Segment& s, const kin
   for (int i = 0; i < 3; ++i)
     if (std::isfinite(s.end[i]) && !(s.start[i] == s.end[i])) return true;  // X, Y or Z moved (from unknown, too)
   return false;
+}
+
+std::string ProgramReader::table_turned_problem() const {
+  // The code a template turns the mode on with: its last G word (G234 of "G00 G234 H{offset}").
+  auto g_code = [](const std::string& text) {
+    std::string last, word;
+    std::istringstream in(text);
+    while (in >> word)
+      if (word[0] == 'G' && word.find('{') == std::string::npos) last = word;
+    return last;
+  };
+  std::string modes;  // the machine's ways of working in the part's frame
+  auto add = [&](const std::string& what, const std::string& code) {
+    if (!code.empty()) modes += (modes.empty() ? "" : ", ") + what + " (" + code + ")";
+  };
+  add("TCPC", g_code(m_.codes.tcp_on.text));
+  add("a dynamic work offset", g_code(m_.codes.dwo_on.text));
+  add("a tilted plane", g_code(m_.codes.plane_on.text));
+  return "the table is turned and none of " + modes + " is in force: the control moves X Y Z as machine axes, and where "
+         "the part's zero lies from the table's centre of rotation is the setup's, unknown here (this machine writes its "
+         "3+2 and five-axis work in the part's frame)";
 }
 
 std::vector<gcode::Problem> ProgramReader::take_reader_problems() {

@@ -140,6 +140,7 @@ class ProgramReader {
   bool end_said_ = false;  // a program without M30/M02 reported
   bool table_turned_said_ = false;  // a move with the table turned outside the part's frame reported
   bool turned_without_part_frame(const gcode::Segment& s, const kin::Angles& a0, const kin::Angles& a1) const;
+  std::string table_turned_problem() const;
   std::vector<gcode::Problem> problems_;  // of the segments handed over so far
 };
 
