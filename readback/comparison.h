@@ -198,6 +198,7 @@ class Comparison : public ProgramSink {
   // A tap's feed keeps its pitch: over the hole's depth the tap may drift from its thread by
   // less than half an output increment.
   void tap_ok(const TipSegment& s, const ir::CycleSpec& spec);
+  bool coolant_known(ir::CoolantKind kind) const;
   // What the program does at and from a hole's bottom (win_[j]) as the control runs its code:
   // the spindle's part (a tap's reversal, a bore's stop), a feed out, the dwell, the pecks.
   void drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3& top, const Vec3& axis);
@@ -385,7 +386,9 @@ class Comparison : public ProgramSink {
   SourceLoc cl_feed_loc_;
   bool cl_spindle_ = false;  // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
   double cl_rpm_ = 0;         // the CL's speed in rpm (0: none, or a surface speed)
-  bool speed_said_ = false;  // a cut at another speed reported (once until it is right again)
+  bool speed_said_ = false;
+  bool cl_coolant_ = false;    // the CL's coolant is on, with a code the reader knows (M07, M08, M88, M83)
+  bool coolant_said_ = false;  // a cut with the coolant off reported (once until it is on again)  // a cut at another speed reported (once until it is right again)
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since

@@ -313,8 +313,17 @@ class Interp {
           spindle_on_ = false;
           res_.events.push_back({Event::Kind::ToolChange, line, double(tool_)});
           break;
-        case 7: case 8: case 88: case 83: res_.events.push_back({Event::Kind::Coolant, line, double(code)}); break;
-        case 9: case 89: case 84: res_.events.push_back({Event::Kind::Coolant, line, 0}); break;
+        // Each coolant has its on and off (M09 stops mist and flood; Haas M89 and M84 stop
+        // through-spindle coolant and air). Read leniently: a code that may stop more (a Fanuc's
+        // M09) stops only its own.
+        case 7: case 8: case 88: case 83:
+          coolant_ |= code == 88 ? 2 : code == 83 ? 4 : 1;
+          res_.events.push_back({Event::Kind::Coolant, line, double(code)});
+          break;
+        case 9: case 89: case 84:
+          coolant_ &= code == 89 ? ~2 : code == 84 ? ~4 : ~1;
+          res_.events.push_back({Event::Kind::Coolant, line, 0});
+          break;
         // A subprogram call runs blocks the reader does not have (M98 P9000 passed, where G65 was
         // refused): what they move is not known.
         case 97: case 98:
@@ -1105,6 +1114,7 @@ class Interp {
   // Feed per revolution and the spindle speed, for times: with constant surface speed (G96)
   // the speed at the segment's middle diameter, within the G50 clamp.
   void spindle_info(Segment& s) const {
+    s.coolant = coolant_ != 0;
     s.comp = comp_;
     s.per_rev = per_rev_;
     s.spindle = spindle_on_;
@@ -1157,7 +1167,8 @@ class Interp {
   bool cycle_on_ = false;
   bool cycle_return_initial_ = true;
   double initial_z_ = kNaN, cyc_bottom_ = kNaN, cyc_r_ = kNaN, cyc_q_ = 0, cyc_p_ = 0;
-  mutable double pending_dwell_ = 0;  // G04 seconds since the last segment (handed to the next one)
+  mutable double pending_dwell_ = 0;
+  int coolant_ = 0;  // the coolants on: 1 flood or mist (M08, M07), 2 through the spindle (M88), 4 air (M83)  // G04 seconds since the last segment (handed to the next one)
   int work_offset_ = 1;
   int tool_ = 0;
   int pending_tool_ = 0;

@@ -42,6 +42,7 @@ struct Segment {
   double rpm = 0;             // spindle speed during the segment (0: stopped)
   bool spindle = false;       // the spindle turns (M03/M04 in force, no M05, M00, M01 or M06 since)
   int spindle_code = 0;       // the M code that started it turning (3: M03, 4: M04)
+  bool coolant = false;       // a coolant is on (M07, M08, M88, M83 and not its off code since)
   std::array<double, 3> rotary{0, 0, 0};  // A B C at the end (degrees)
   std::array<double, 3> rotary_start{0, 0, 0};
   int work_offset = 1;        // 1 = G54 ... 6 = G59, 7.. = extended

@@ -61,6 +61,8 @@ void Comparison::operation(const ir::Operation& op) {
             cl_comp_ = x.side == ir::CompSide::Off ? 0 : x.side == ir::CompSide::Left ? 1 : 2;
             cancelling_ = cl_comp_ == 0 && was != 0;
             cl_comp_loc_ = loc_;
+          } else if constexpr (std::is_same_v<T, ir::Coolant>) {
+            cl_coolant_ = x.kind != ir::CoolantKind::Off && coolant_known(x.kind);
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
             cl_rpm_ = cl_spindle_ && x.mode == ir::SpindleMode::Rpm ? x.speed : 0;
@@ -222,6 +224,14 @@ void Comparison::spindle_ok(const TipSegment& s) {
       speed_said_ = false;
     }
   }
+  // The coolant: a cut with none on where the CL has it on (M08 made M09 passed; helper-49).
+  if (cut && cl_coolant_ && !s.raw.coolant) {
+    if (!coolant_said_)
+      fail(loc_, s.raw.line, "the program cuts here with the coolant off, where the CL has it on", 0);
+    coolant_said_ = true;
+  } else if (s.raw.coolant) {
+    coolant_said_ = false;
+  }
   if (!cut || !cl_spindle_ || s.raw.spindle) {
     if (s.raw.spindle) spindle_said_ = false;
     return;
@@ -231,6 +241,19 @@ void Comparison::spindle_ok(const TipSegment& s) {
   fail(loc_, s.raw.line, "the program cuts here with the spindle stopped (no M03/M04 since an M05, M19, M00, M01 or tool "
                          "change), where the CL has it turning",
        0);
+}
+
+// Whether the machine turns this coolant on with a code the reader knows (M07, M08, M88, M83),
+// or floods for it: a machine with other codes, or none, is not judged.
+bool Comparison::coolant_known(ir::CoolantKind kind) const {
+  const Codes& c = m_.codes;
+  const CodeTemplate& t = kind == ir::CoolantKind::Mist ? c.coolant_mist
+                          : kind == ir::CoolantKind::Thru ? c.coolant_thru
+                          : kind == ir::CoolantKind::Air  ? c.coolant_air
+                          : kind == ir::CoolantKind::Tap  ? c.coolant_tap
+                                                          : c.coolant_flood;
+  const std::vector<double> m = code_numbers(t.empty() ? c.coolant_flood.text : t.text, 'M');
+  return !m.empty() && std::all_of(m.begin(), m.end(), [](double v) { return v == 7 || v == 8 || v == 88 || v == 83; });
 }
 
 bool Comparison::already_there(const Vec3& p, const Vec3* axis) {

@@ -548,3 +548,20 @@ TEST(Verify, BoresWrittenAsMovesAreFedOutOfEachHole) {
   EXPECT_THAT(c.output, ::testing::Not(HasSubstr("G85")));
   EXPECT_THAT(c.output, HasSubstr("G01 Z-20. F100.\n"));
 }
+
+// A cut with no coolant on where the CL has it on: M08 made M09 passed (helper-49). Flood for
+// mist is coolant still, and a machine whose coolant codes the reader does not know is not judged.
+TEST(Verify, ACutWithTheCoolantOffWhereTheClHasItOnFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nCOOLNT/FLOOD\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,200\n"
+                         "GOTO/0,0,-1\nGOTO/20,0,-1\nRAPID\nGOTO/20,0,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("M08\n"));
+  Compiled off = verify_text(cl, machine("fanuc-mill"), edit(c.output, "M08\n", "M09\n"));
+  EXPECT_FALSE(off.ok);
+  EXPECT_THAT(off.diags, HasSubstr("part.cl:8:1: error: the program cuts here with the coolant off, where the CL has it on"));
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "M08\n", "M07\n")).ok);
+  const Machine other = machine("m51", "[m51]\ninherits = \"fanuc-mill\"\n[m51.codes]\ncoolant_flood = \"M51\"\n");
+  Compiled own = compile_text(cl, other, {.certify = true});
+  EXPECT_TRUE(own.ok) << own.diags;
+}
