@@ -4,10 +4,11 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <sstream>
 
+#include "machine/block_check.h"
 #include "support/text.h"
 #include "support/threads.h"
 
@@ -294,12 +295,12 @@ bool ProgramReader::turned_without_part_frame(const gcode::Segment& s, const kin
 
 std::string ProgramReader::table_turned_problem() const {
   // The code a template turns the mode on with: its last G word (G234 of "G00 G234 H{offset}").
-  auto g_code = [](const std::string& text) {
-    std::string last, word;
-    std::istringstream in(text);
-    while (in >> word)
-      if (word[0] == 'G' && word.find('{') == std::string::npos) last = word;
-    return last;
+  auto g_code = [](const std::string& text) -> std::string {
+    const std::vector<double> g = code_numbers(text, 'G');
+    if (g.empty()) return "";
+    char word[32];
+    std::snprintf(word, sizeof word, "G%g", g.back());
+    return word;
   };
   std::string modes;  // the machine's ways of working in the part's frame
   auto add = [&](const std::string& what, const std::string& code) {
