@@ -148,13 +148,17 @@ void Emitter::render_word(const CodeTemplate::Word& w, const TemplateVars& v, st
     if (!word.empty()) letter = word[0];
     if (letter >= 'a' && letter <= 'z') letter = char(letter - 32);
     if (letter >= 'A' && letter <= 'Z') {
+      // Only a length takes the letter's scale: a dwell written G04 X{seconds} on a diameter
+      // lathe is seconds, not a diameter (X1. for 0.5 s dwelt twice as long).
+      AddressFormat f = m_.format(letter);
+      if (Var(p.var) != Var::X && Var(p.var) != Var::Y && Var(p.var) != Var::Z) f.scale = 1;
       int64_t q;
-      if (!quantize(x, m_.format(letter), q)) {
+      if (!quantize(x, f, q)) {
         d_.error(loc_, std::string("value out of range for address ") + letter + ": " + num_text(x));
         continue;
       }
-      check_dwell(Var(p.var), x, dequantize(q, m_.format(letter)));
-      append_quantized(q, m_.format(letter), word);
+      check_dwell(Var(p.var), x, dequantize(q, f));
+      append_quantized(q, f, word);
     } else {
       word += num_text(x);
     }

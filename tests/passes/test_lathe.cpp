@@ -423,3 +423,17 @@ TEST(Threads, ALatheOfGCodeSystemBIsWrittenAndReadInItsOwnCodes) {
   EXPECT_FALSE(bad.ok);
   EXPECT_THAT(bad.diags, HasSubstr("the block feeds per minute, the CL's FEDRAT"));
 }
+
+// A dwell's X is seconds, whatever the X of a diameter lathe is scaled by: G04 X{seconds}
+// wrote X1. for a 0.5 s dwell (twice as long), and verify refused its own program.
+TEST(LatheMotion, ADwellWrittenWithXIsSecondsOnADiameterLathe) {
+  const std::string toml = "[lathe-x]\ninherits = \"fanuc-lathe\"\n[lathe-x.codes]\ndwell = \"G04 X{seconds}\"\n";
+  const std::string cl =
+      "PARTNO/DWELL\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/15,0,5\n"
+      "GOTO/10,0,1\nGOTO/10,0,-10\nDELAY/0.5\nGOTO/14,0,-10\nEND\nFINI\n";
+  Compiled c = compile_text(cl, machine("lathe-x", toml), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr(" G04 X0.5\n"));
+  EXPECT_THAT(c.output, Not(HasSubstr("G04 X1.")));
+  EXPECT_THAT(c.diags, HasSubstr("certified"));
+}
