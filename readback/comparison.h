@@ -78,6 +78,8 @@ class Comparison : public ProgramSink {
   const TipSegment* peek(size_t i);
 
   void consume(size_t n);
+  void dwell_ok(int gline);
+  double dwell_slack(double seconds) const;
   void spindle_ok(const TipSegment& s);
   // A cut across the tool axis with the cutter compensation the CL has in force (none, left,
   // right): verify takes D as no offset, so the path alone does not show a G41 where the CL has
@@ -386,9 +388,14 @@ class Comparison : public ProgramSink {
   SourceLoc cl_feed_loc_;
   bool cl_spindle_ = false;  // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
   double cl_rpm_ = 0;         // the CL's speed in rpm (0: none, or a surface speed)
-  bool speed_said_ = false;
+  bool speed_said_ = false;    // a cut at another speed reported (once until it is right again)
   bool cl_coolant_ = false;    // the CL's coolant is on, with a code the reader knows (M07, M08, M88, M83)
-  bool coolant_said_ = false;  // a cut with the coolant off reported (once until it is on again)  // a cut at another speed reported (once until it is right again)
+  bool coolant_said_ = false;  // a cut with the coolant off reported (once until it is on again)
+  // Dwells (DELAY) since the last point compared, in seconds: the CL's and the program's G04s
+  // (a cycle's own dwell at a hole's bottom is the cycle's, judged with the hole).
+  double cl_dwell_ = 0, prog_dwell_ = 0;
+  bool cl_dwell_known_ = true;  // false: a dwell in revolutions with no rpm to time it by
+  SourceLoc cl_dwell_loc_;
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since

@@ -362,8 +362,8 @@ class Interp {
 
     if (g04) {
       // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
-      // seconds.
-      double secs = has('P') ? dwell_p(a, line) : has('X') ? a['X'] * m_.format('X').scale : has('U') ? a['U'] : 0;
+      // seconds, whatever X's scale on a diameter lathe.
+      double secs = has('P') ? dwell_p(a, line) : has('X') ? a['X'] : has('U') ? a['U'] : 0;
       res_.events.push_back({Event::Kind::Dwell, line, secs});
       pending_dwell_ += secs;
       return;

@@ -61,6 +61,10 @@ void Comparison::operation(const ir::Operation& op) {
             cl_comp_ = x.side == ir::CompSide::Off ? 0 : x.side == ir::CompSide::Left ? 1 : 2;
             cancelling_ = cl_comp_ == 0 && was != 0;
             cl_comp_loc_ = loc_;
+          } else if constexpr (std::is_same_v<T, ir::Dwell>) {
+            if (x.revolutions && !(cl_rpm_ > 0)) cl_dwell_known_ = false;
+            cl_dwell_ += x.revolutions ? (cl_rpm_ > 0 ? x.value * 60 / cl_rpm_ : 0) : x.value;
+            cl_dwell_loc_ = loc_;
           } else if constexpr (std::is_same_v<T, ir::Coolant>) {
             cl_coolant_ = x.kind != ir::CoolantKind::Off && coolant_known(x.kind);
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
@@ -153,7 +157,10 @@ const TipSegment* Comparison::peek(size_t i) {
 }
 
 void Comparison::consume(size_t n) {
+  int gline = 0;
   for (size_t i = 0; i < n && !win_.empty(); ++i) {
+    prog_dwell_ += win_.front().raw.dwell_before;
+    if (win_.front().raw.dwell_before > 0 || gline == 0) gline = win_.front().raw.line;
     check_limits(win_.front());
     spindle_ok(win_.front());
     comp_ok(win_.front());
@@ -164,6 +171,31 @@ void Comparison::consume(size_t n) {
     }
     win_.pop_front();
   }
+  if (!cycle_on_ && !groove_ && !thread_on_ && !rough_) dwell_ok(gline);
+}
+
+// A G04 dwells what the CL's DELAY asks, before the move after it: G04 X1250. for 1.25 s
+// (1250 s with the point), a dwell written twice as long, or one where the CL has none,
+// passed (helper-52). Compared each time the program has been followed to a CL point, so a
+// G04 written before the move after the DELAY is counted with it.
+void Comparison::dwell_ok(int gline) {
+  if (cl_dwell_known_ && std::abs(prog_dwell_ - cl_dwell_) > dwell_slack(cl_dwell_)) {
+    const std::string cl = cl_dwell_ > 0 ? "the CL's DELAY (line " + std::to_string(cl_dwell_loc_.line) + ") is " +
+                                               fixed_text(cl_dwell_, 3) + " s"
+                                         : "the CL has no DELAY here";
+    fail(loc_, gline, "the program dwells " + fixed_text(prog_dwell_, 3) + " s before this move, " + cl, 0);
+  }
+  cl_dwell_ = prog_dwell_ = 0;
+  cl_dwell_known_ = true;
+}
+
+// Within a rounding of the dwell's word: whole milliseconds where P takes no point, else half
+// an increment of its seconds (P10. for 10.04 s with one decimal), or the rounding the compile
+// allows (feeds.max_rounding); 1.5 ms at least.
+double Comparison::dwell_slack(double seconds) const {
+  const AddressFormat& p = m_.format('P');
+  const double word = p.point == AddressFormat::Point::Never ? 0.0015 : 0.5 * std::pow(10.0, -p.decimals) + 1e-9;
+  return std::max({0.0015, word, m_.feeds.max_rounding * seconds + 1e-9});
 }
 
 // Compared on a mill's cuts across the tool axis: the post starts and ends G41/G42 on the move
@@ -763,12 +795,9 @@ void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3
     wrong("the tool comes out of the hole at rapid traverse" + (code ? " (" + g(code) + ")" : std::string()));
   if (spec.kind == K::SpotDwell || spec.kind == K::BoreDwell) {
     const double dwell = s.raw.dwell + (out ? out->raw.dwell_before : 0.0);
-    // Within a rounding of P: whole milliseconds where P takes no point, else half an increment
-    // of its seconds (P10. for 10.04 s with one decimal); 1.5 ms at least.
-    const AddressFormat& p = m_.format('P');
-    const double slack =
-        p.point == AddressFormat::Point::Never ? 0.0015 : std::max(0.0015, 0.5 * std::pow(10.0, -p.decimals) + 1e-9);
-    if (std::abs(dwell - spec.dwell) > slack)
+    // (A bore-dwell written as moves dwells with a G04 before the move out: the hole's, not a DELAY.)
+    if (out) prog_dwell_ -= out->raw.dwell_before;
+    if (std::abs(dwell - spec.dwell) > dwell_slack(spec.dwell))
       wrong("the tool dwells " + fixed_text(dwell, 3) + " s at the bottom, not " + fixed_text(spec.dwell, 3) + " s");
   }
   if ((spec.kind == K::Peck || spec.kind == K::ChipBreak) && spec.peck > 0) {

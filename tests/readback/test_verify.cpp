@@ -565,3 +565,35 @@ TEST(Verify, ACutWithTheCoolantOffWhereTheClHasItOnFails) {
   Compiled own = compile_text(cl, other, {.certify = true});
   EXPECT_TRUE(own.ok) << own.diags;
 }
+
+// A G04 dwells the CL's DELAY before the move after it: P1250 made P2500, a G04 deleted, one
+// inserted mid-contour, and G04 X1250. (seconds, with the point) for 1.25 s all passed
+// (helper-49, helper-52). A bore-dwell written as moves dwells with a G04 of its own.
+TEST(Verify, ADwellOtherThanTheClsDelayFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,200\n"
+                         "GOTO/0,0,-1\nDELAY/1.25\nGOTO/20,0,-1\nGOTO/20,20,-1\nRAPID\nGOTO/20,20,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr(" G04 P1250\n"));
+  Compiled longer = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P2500"));
+  EXPECT_FALSE(longer.ok);
+  EXPECT_THAT(longer.diags, HasSubstr("part.cl:9:1: error: the program dwells 2.500 s before this move, the CL's DELAY "
+                                      "(line 8) is 1.250 s"));
+  Compiled none = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", ""));
+  EXPECT_FALSE(none.ok);
+  EXPECT_THAT(none.diags, HasSubstr("part.cl:9:1: error: the program dwells 0.000 s before this move, the CL's DELAY"));
+  Compiled inserted = verify_text(cl, machine("fanuc-mill"), edit(c.output, " Y20.\n", " G04 P1000\nY20.\n"));
+  EXPECT_FALSE(inserted.ok);
+  EXPECT_THAT(inserted.diags, HasSubstr("part.cl:10:1: error: the program dwells 1.000 s before this move, the CL has no "
+                                        "DELAY here"));
+  // A P within the millisecond it is written in passes.
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P1251")).ok);
+  const std::string bore = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20\nDELAY/2\n"
+                           "CYCLE/BORE,FEDTO,20,RAPTO,2,MMPM,100,DWELL,0.5\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n"
+                           "RAPID\nGOTO/30,10,50\nFINI\n";
+  const Machine plain = machine("no-g89", "[no-g89]\ninherits = \"fanuc-mill\"\n[no-g89.codes]\ncycle_bore_dwell = \"\"\n");
+  Compiled moves = compile_text(bore, plain, {.certify = true});
+  ASSERT_TRUE(moves.ok) << moves.diags;
+  EXPECT_THAT(moves.output, HasSubstr("G04 P2000\n"));
+  EXPECT_THAT(moves.output, HasSubstr("G04 P500\n"));
+}
