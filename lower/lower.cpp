@@ -320,6 +320,10 @@ void Lowerer::record(const Record& r) {
         close_operation();
         return;
       }
+      if (iequals(r.major, "OFSTNO")) {
+        lower_ofstno(r);
+        return;
+      }
       if (iequals(r.major, "BOX")) return;  // the stock (SolidWorks CAM, CAMWorks): nothing to cut
       // NX's optional skip: the blocks between OPSKIP/ON and OFF are to carry the control's
       // block delete ('/'). clpc writes none: they run whatever the operator's switch says.

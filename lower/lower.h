@@ -117,6 +117,7 @@ class Lowerer : public RecordSink {
   void lower_matrix_frame(const Record& r, ir::FrameSource src);
   void lower_set(const Record& r);
   void lower_rotate(const Record& r);
+  void lower_ofstno(const Record& r);
   void lower_rotabl(const Record& r);
 
   // lower_transform.cpp

@@ -499,4 +499,18 @@ void Lowerer::lower_units(const Record& r) {
   }
 }
 
+// OFSTNO/n (ISO 4343): the offset register what follows is cut with, the tool's length or its
+// radius by the post that reads it. As a comment (an unknown record) the cuts after
+// OFSTNO/24, CUTCOM/LEFT were written G41 D4, certified (helper-51). The loaded tool's own
+// number, which clpc uses for both, asks for nothing; any other register is refused, as it
+// cannot be told which offset it is.
+void Lowerer::lower_ofstno(const Record& r) {
+  ParamReader ps(r, d_);
+  if (ps.size() == 1 && ps[0].is_number() && tool_ >= 0 && ps[0].number == tool_ && loaded_offset_ == tool_) return;
+  d_.error(r.loc, "OFSTNO names an offset register, the tool's length or its radius by the post, other than the loaded "
+                  "tool's own (" + (tool_ >= 0 ? "T" + std::to_string(tool_) : std::string("none is loaded")) +
+                  "): the cuts after it would use the tool's own; give the radius register on the CUTCOM "
+                  "(CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/4,OSETNO,24)");
+}
+
 }  // namespace clpc
