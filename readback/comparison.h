@@ -81,6 +81,7 @@ class Comparison : public ProgramSink {
   void dwell_ok(int gline);
   double dwell_slack(double seconds) const;
   void spindle_ok(const TipSegment& s);
+  void register_ok(const TipSegment& s);
   // A cut across the tool axis with the cutter compensation the CL has in force (none, left,
   // right): verify takes D as no offset, so the path alone does not show a G41 where the CL has
   // no CUTCOM, or none where it has. Said once until they agree again.
@@ -403,6 +404,8 @@ class Comparison : public ProgramSink {
   SourceLoc cl_comp_loc_;     // its CUTCOM
   bool cancelling_ = false;   // CUTCOM/OFF after compensation, and no straight cut across since
   bool comp_said_ = false;    // a cut with other compensation than the CL's reported, and they have not agreed since
+  int cl_comp_reg_ = 0;       // the CUTCOM's register (0: the tool's own)
+  bool register_said_ = false;  // a cut with another D register than the CL's reported
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
   double rotary_increment_ = 0;  // the coarsest rotary axis's output increment, degrees

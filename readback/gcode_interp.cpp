@@ -223,8 +223,10 @@ class Interp {
       else if (is_g(g, 21)) set_units(ir::Units::Mm, line);
       else if (is_g(g, 28)) g28 = true;
       else if (is_g(g, 40)) comp_ = 0;
-      else if (is_g(g, 41)) comp_ = 1;
-      else if (is_g(g, 42)) comp_ = 2;
+      else if (is_g(g, 41) || is_g(g, 42)) {
+        comp_ = is_g(g, 41) ? 1 : 2;
+        if (has('D')) comp_register_ = int(std::round(a['D']));  // (D is modal: G41 alone keeps the last)
+      }
       else if (is_g(g, 43)) length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
       else if (is_g(g, 49)) length_comp_ = false, tcp_ = false, length_register_ = 0;
       else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5))
@@ -1116,6 +1118,7 @@ class Interp {
   void spindle_info(Segment& s) const {
     s.coolant = coolant_ != 0;
     s.comp = comp_;
+    s.comp_register = comp_register_;
     s.per_rev = per_rev_;
     s.spindle = spindle_on_;
     s.spindle_code = spindle_on_ ? spindle_code_ : 0;
@@ -1156,6 +1159,7 @@ class Interp {
   bool tcp_ = false, dwo_ = false;
   std::shared_ptr<const PlaneFrame> tilted_;  // the plane in force
   int comp_ = 0;
+  int comp_register_ = 0;  // the D word of G41/G42 (0: none given)
   bool comp_off_plane_said_ = false;
   int cycle_ = 0;
   int groove_ = 0;

@@ -49,6 +49,7 @@ struct Segment {
   int tool = 0;
   int length_register = 0;    // the tool length offset in force (G43 H; lathe T's offset), 0: none
   int comp = 0;               // cutter compensation in force: 0 none (G40), 1 left (G41), 2 right (G42)
+  int comp_register = 0;      // the D register G41/G42 took (0: none given)
   int line = 0;               // G-code line
   bool from_cycle = false;    // expanded from a canned cycle
   uint8_t cycle = 0;          // that cycle's G code (81 ... 89, 73, 74, 76), 0: none

@@ -597,3 +597,27 @@ TEST(Verify, ADwellOtherThanTheClsDelayFails) {
   EXPECT_THAT(moves.output, HasSubstr("G04 P2000\n"));
   EXPECT_THAT(moves.output, HasSubstr("G04 P500\n"));
 }
+
+// G41/G42 take the radius from the CUTCOM's register, or the tool's own: D3 made D13 passed
+// (helper-49). A machine whose G41 writes no register (a lathe's T word selects it) is not judged.
+TEST(Verify, CompensationFromAnotherRegisterFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/3\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,-10,5\nFEDRAT/MMPM,200\n"
+                         "GOTO/0,-10,-1\nCUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\nCUTCOM/OFF\nGOTO/20,-10,-1\nRAPID\n"
+                         "GOTO/20,-10,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("G41 D3 "));
+  Compiled other = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G41 D3 ", "G41 D13 "));
+  EXPECT_FALSE(other.ok);
+  EXPECT_THAT(other.diags, HasSubstr("part.cl:9:1: error: the program compensates here with register D13, where the CL's "
+                                     "CUTCOM (line 8) takes the radius from register 3 (the tool's own)"));
+  Compiled none = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G41 D3 ", "G41 "));
+  EXPECT_FALSE(none.ok);
+  EXPECT_THAT(none.diags, HasSubstr("with no D register"));
+  std::string own = cl;
+  own.replace(own.find("CUTCOM/LEFT"), 11, "CUTCOM/LEFT,33");
+  Compiled named = compile_text(own, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(named.ok) << named.diags;
+  EXPECT_THAT(named.output, HasSubstr("G41 D33 "));
+  EXPECT_FALSE(verify_text(own, machine("fanuc-mill"), edit(named.output, "G41 D33 ", "G41 D3 ")).ok);
+}
