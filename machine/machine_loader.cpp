@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -316,6 +317,30 @@ class Reader {
   std::set<std::string> used_;
 };
 
+// A register, a tool, a speed or any number that is no position, written in an axis address
+// (G43 Z{offset} H{tool}: the offset number became a Z to move to, certified; helper-52). An
+// axis word may hold a position (a tilted plane's origin), a winding axis's angle, or a
+// dwell's time (G04 X{seconds}). "" when there is none.
+std::string number_in_an_axis_word(const CodeTemplate& t) {
+  for (const CodeTemplate::Word& w : t.words) {
+    if (w.empty() || w[0].var >= 0 || w[0].literal.empty()) continue;
+    const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+    if (std::string_view("XYZABCUVW").find(letter) == std::string_view::npos) continue;
+    for (const CodeTemplate::Piece& p : w) {
+      if (p.var < 0) continue;
+      switch (Var(p.var)) {
+        case Var::X: case Var::Y: case Var::Z: case Var::I: case Var::J: case Var::K: case Var::Angle:
+        case Var::Seconds: case Var::Milliseconds:
+          continue;
+        default:
+          return "placeholder {" + std::string(var_name(Var(p.var))) + "} in the axis address " + letter +
+                 ": the control would move the axis to it; give it its own address (H{offset}, D{register})";
+      }
+    }
+  }
+  return "";
+}
+
 void read_template(Reader& r, std::string_view key, CodeTemplate& out, uint32_t allowed) {
   const toml::node* n = r.node(key);
   if (!n) return;
@@ -337,6 +362,10 @@ void read_template(Reader& r, std::string_view key, CodeTemplate& out, uint32_t 
       if (allowed >> v & 1) ok += (ok.empty() ? "{" : ", {") + std::string(var_name(Var(v))) + "}";
     }
     r.error(*n, key, "placeholder " + names + " cannot be used here" + (ok.empty() ? " (this code takes none)" : " (allowed: " + ok + ")"));
+    return;
+  }
+  if (const std::string why = number_in_an_axis_word(t); !why.empty()) {
+    r.error(*n, key, why);
     return;
   }
   out = std::move(t);
@@ -449,6 +478,33 @@ void check_job_options(Reader& p, const Machine& m) {
     p.error(*n, "preselect", "a lathe's turret indexes the tool it cuts with: there is no next tool to preselect");
 }
 
+// A dwell's time written so the control reads another: without a point P, X and U are in
+// milliseconds (least increments), with one in seconds. G04 X{milliseconds} wrote X1250. for
+// 1.25 s, G04 P{seconds} P1 for 1 s (helper-52). "" when the word reads as written.
+std::string dwell_word_problem(const CodeTemplate& t, const Machine& m) {
+  for (const CodeTemplate::Word& w : t.words) {
+    if (w.size() < 2 || w[0].var >= 0 || w[0].literal.size() != 1 || w[1].var < 0) continue;
+    const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+    const Var v = Var(w[1].var);
+    if ((letter != 'P' && letter != 'X' && letter != 'U') || (v != Var::Seconds && v != Var::Milliseconds)) continue;
+    const AddressFormat& f = m.format(letter);
+    const bool whole = w[1].width > 0;  // {milliseconds:1}: a whole number, no point
+    const std::string word = std::string(1, letter) + "{" + std::string(var_name(v)) + (whole ? ":" + std::to_string(w[1].width) : "") + "}";
+    const std::string fmt = "format." + std::string(1, letter);
+    if (v == Var::Milliseconds && !whole && (f.decimals != 0 || f.point == AddressFormat::Point::Always))
+      return word + " is written " + (f.point == AddressFormat::Point::Always ? "with a point" : "with decimals") +
+             " (" + fmt + "), and the control reads a dwell's " + letter + " with a point in seconds, without one in " +
+             "milliseconds: 1.25 s would be read as 1250 s or 1.25 ms; write " + letter + "{milliseconds:1}, or " +
+             letter + "{seconds} with a point";
+    if (v == Var::Seconds && (whole || !(f.point == AddressFormat::Point::Always ||
+                                          (f.point == AddressFormat::Point::Never && f.decimals == 3))))
+      return word + " may be written without a point (" + (whole ? "a whole number" : fmt) + "), and the control " +
+             "reads a dwell's " + letter + " without a point in milliseconds: 1 s would be read as 1 ms; give " + fmt +
+             " point = \"always\", or write " + letter + "{milliseconds:1}";
+  }
+  return "";
+}
+
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
   // Inverse time with no G93 to write it: every move that turns a rotary would be an error,
@@ -479,6 +535,10 @@ void check_job_codes(Reader& r, const Machine& m) {
                            "tool change and the retract; give the control's cancel (say, \"" +
                            (std::string(name) == "tcp" ? "G49" : "G255") + "\")");
   }
+  if (auto codes = r.sub("codes"))
+    for (auto [code, key] : {std::pair{&m.codes.dwell, "dwell"}, std::pair{&m.codes.cycle_dwell_word, "cycle_dwell_word"}})
+      if (const toml::node* n = codes->find(key))
+        if (const std::string why = dwell_word_problem(*code, m); !why.empty()) codes->error(*n, key, why);
   auto p = r.sub("program");
   if (!p) return;
   if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())

@@ -566,7 +566,8 @@ TEST(CommandLine, EveryWarningNameIsDocumented) {
 TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
   const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/10,0,5\nFEDRAT/MMPM,250\nGOTO/10,0,-2\n"
                          "DELAY/0.4\nGOTO/20,0,-2\nDELAY/1.5\nFINI\n";
-  Compiled c = compile_text(cl, machine("my-mill", "[my-mill]\ninherits = \"fanuc-mill\"\n[my-mill.codes]\ndwell = \"G04 P{seconds}\"\n"));
+  Compiled c = compile_text(cl, machine("my-mill", "[my-mill]\ninherits = \"fanuc-mill\"\n[my-mill.codes]\ndwell = \"G04 P{seconds}\"\n"
+                                                   "[my-mill.format]\nP = { point = \"always\" }\n"));
   EXPECT_FALSE(c.ok);
   EXPECT_THAT(c.diags, HasSubstr("part.cls:8:1: error: the dwell of 0.4 s would be written as 0 s: no dwell at all"));
   EXPECT_THAT(c.diags, HasSubstr("part.cls:10:1: error: the dwell of 1.5 s would be written as 2 s: rounding changes it by "
@@ -574,6 +575,23 @@ TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
   Compiled ok = compile_text(cl, machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(ok.ok) << ok.diags;
   EXPECT_THAT(ok.output, HasSubstr("G04 P400\n"));
+  // A dwell's word the control would read in other units is refused at load: without a point
+  // P is milliseconds (G04 P{seconds} wrote P1 for 1 s), with one seconds (G04 X{milliseconds}
+  // wrote X1250. for 1.25 s; helper-52).
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 P{seconds}\"\n"),
+              HasSubstr("shop.toml:4:9: error: m.codes.dwell: P{seconds} may be written without a point (format.P), and "
+                        "the control reads a dwell's P without a point in milliseconds: 1 s would be read as 1 ms; give "
+                        "format.P point = \"always\", or write P{milliseconds:1}"));
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 X{milliseconds}\"\n"),
+              HasSubstr("shop.toml:4:9: error: m.codes.dwell: X{milliseconds} is written with a point (format.X), and the "
+                        "control reads a dwell's X with a point in seconds, without one in milliseconds"));
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ncycle_dwell_word = \"P{seconds:1}\"\n"),
+              HasSubstr("m.codes.cycle_dwell_word: P{seconds:1} may be written without a point (a whole number)"));
+  EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 X{seconds}\"\n"), "");
+  // A number that is no position in an axis address: the offset number became a Z to move to.
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\nlength_offset = \"G43 Z{offset} H{tool}\"\n"),
+              HasSubstr("shop.toml:4:17: error: m.codes.length_offset: placeholder {offset} in the axis address Z: the "
+                        "control would move the axis to it; give it its own address (H{offset}, D{register})"));
 }
 
 // Formats a control cannot read as meant, refused at load: a scale on a mill's axis (X
