@@ -683,6 +683,13 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                                    " while the arcs' centres and directions stay the CL's; a lathe's X is 1 (radius) or "
                                    "2 (diameter), every other axis 1 (a lathe that views its arcs from -Y says "
                                    "lathe.arcs_seen_from)");
+      // A feed, a speed, a dwell or a register is no length to scale: F with scale 2 fed twice
+      // as fast, and verify caught it only as a failed certificate (helper-52).
+      if (std::string_view("FSPTHDMGOLE").find(k[0]) != std::string_view::npos && scale != 1)
+        if (auto f = s->sub(k))
+          if (const toml::node* n = f->find("scale"))
+            f->error(*n, "scale", num_text(scale) + " on " + k + ", which is no length: the control would read another "
+                                  "feed, speed, time or number than the one meant; a scale is for a lathe's diameter X");
       // Numbers without a point are counted in the control's one least input increment: two
       // axes written so with other decimals (X in 0.001, Y in 0.0001) put one 10 times off.
       const AddressFormat& mine = m.formats[size_t(k[0] - 'A')];
@@ -804,6 +811,17 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                   "a winding axis needs a range of at least two turns (max - min >= 720), found " + num_text(ax.max - ax.min));
         if (ax.max <= ax.min && ax.cyclic == Cyclic::No)
           a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
+        // A modulo axis goes the short way to any angle: limits narrower than a turn were dropped
+        // without a word, and C270 certified on an axis declared 0 to 90 (helper-52).
+        if (ax.cyclic == Cyclic::Modulo && (a.has("min") || a.has("max")) && ax.max - ax.min < 360)
+          a.error(*(a.find("max") ? a.find("max") : a.find("min")), a.find("max") ? "max" : "min",
+                  "a modulo axis (cyclic = \"modulo\") turns to any angle the short way: limits narrower than a turn "
+                  "cannot be kept; an axis that stops within a range is cyclic = \"no\"");
+        for (const RotaryAxis& before : k.rotaries)
+          if (ax.axis.norm() > 0.5 && std::abs(ax.axis.dot(before.axis)) > 1 - 1e-9)
+            a.error(*a.find("axis"), "axis",
+                    "parallel to " + before.name + "'s axis: two rotaries about one direction cannot turn the tool to "
+                    "another; a five-axis machine's two axes are square to each other (or tilted, never parallel)");
         a.length3("center", ax.center);
         double prefer = 0;
         a.number("prefer", prefer);

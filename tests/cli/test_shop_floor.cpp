@@ -654,6 +654,23 @@ TEST(ShopFloor, AxesOfOneNameAndModesThatCannotBeCancelledAreRefused) {
               HasSubstr("error: dwo.codes.dwo_off: machine 'dwo' switches its dynamic work offset on with"));
   // A 3-axis machine that never uses TCPC may leave its codes empty.
   EXPECT_EQ(load_error("[plain]\ninherits = \"fanuc-mill\"\n[plain.codes]\ntcp_off = \"\"\n"), "");
+  // Limits on a modulo axis were dropped (C270 certified on an axis declared 0 to 90), and two
+  // parallel axes loaded, to fail every tilt with a word about limits (helper-52).
+  const std::string ac = "[ac]\ninherits = \"haas-umc750\"\n[ac.kinematics]\nsimultaneous = \"transform\"\n"
+                         "[[ac.kinematics.axes]]\nname = \"A\"\naxis = [1.0, 0.0, 0.0]\nmin = -30.0\nmax = 110.0\n"
+                         "[[ac.kinematics.axes]]\nname = \"C\"\naxis = [0.0, 0.0, 1.0]\ncyclic = \"modulo\"\n";
+  EXPECT_EQ(load_error(ac), "");
+  EXPECT_THAT(load_error(ac + "min = 0.0\nmax = 90.0\n"),
+              HasSubstr("shop.toml:15:7: error: ac.kinematics.axes[1].max: a modulo axis (cyclic = \"modulo\") turns to any "
+                        "angle the short way: limits narrower than a turn cannot be kept; an axis that stops within a "
+                        "range is cyclic = \"no\""));
+  EXPECT_EQ(load_error(ac + "min = 0.0\nmax = 360.0\n"), "");
+  std::string parallel = ac;
+  parallel.replace(parallel.find("axis = [1.0, 0.0, 0.0]"), 22, "axis = [0.0, 0.0, -1.0]");
+  EXPECT_THAT(load_error(parallel), HasSubstr("shop.toml:12:8: error: ac.kinematics.axes[1].axis: parallel to A's axis"));
+  // A scale on what is no length: F with scale 2 fed twice as fast.
+  EXPECT_THAT(load_error("[f2]\ninherits = \"fanuc-mill\"\n[f2.format]\nF = { scale = 2.0 }\n"),
+              HasSubstr("shop.toml:4:15: error: f2.format.F.scale: 2 on F, which is no length"));
 }
 
 // format.N's digits pads the block numbers (N00010); it was read and then ignored.
