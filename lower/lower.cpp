@@ -269,6 +269,7 @@ void Lowerer::record(const Record& r) {
     case MajorId::Multax:
       // MULTAX, MULTAX/ON: tool axes on the GOTOs (read wherever there are six values); OFF: none.
       multax_off_ = r.params.size() == 1 && r.params[0].is("OFF");
+      multax_on_ = !multax_off_;
       return;
     case MajorId::Partno: case MajorId::Machin: case MajorId::Remark:
     case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:

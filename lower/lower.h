@@ -81,6 +81,8 @@ class Lowerer : public RecordSink {
 
   // lower_motion.cpp
   void lower_goto(const Record& r);
+  int goto_stride(const Record& r) const;
+  void goto_point(const Record& r);
   void lower_from(const Record& r);
   void lower_gohome(const Record& r);
   void lower_godlta(const Record& r);
@@ -157,6 +159,7 @@ class Lowerer : public RecordSink {
   ir::Vec3 pos_ = ir::Vec3::Zero();
   bool has_pos_ = false;
   bool multax_off_ = false;  // MULTAX/OFF in force: a GOTO's six values would be two points
+  bool multax_on_ = false;   // MULTAX or MULTAX/ON in force: a GOTO's values are points of six
   bool refused_after_fini_ = false;  // motion after FINI was said: once
   size_t replayed_records_ = 0;  // records CALSUB replayed, for kMaxReplayedRecords
   char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it

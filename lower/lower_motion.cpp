@@ -254,15 +254,77 @@ bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
   return false;
 }
 
+// How many values one point of a GOTO takes (3, or 6 with its tool axis), or 0 with the error
+// said. APT's GOTO carries a list of points (ISO 3592): three values each under MULTAX/OFF,
+// six under MULTAX/ON. A count that reads two ways is refused, not read at a guess: six under
+// MULTAX/OFF whose last three make a unit vector (a CAM system that means a point and its
+// axis has left MULTAX/OFF in force), or a multiple of six above six with no MULTAX said.
+int Lowerer::goto_stride(const Record& r) const {
+  const size_t n = r.params.size();
+  if (n == 3 || n < 6 || !std::all_of(r.params.begin(), r.params.end(), [](const Param& p) { return p.is_number(); }))
+    return 3;  // (read_point says what is wrong)
+  auto unit = [&](size_t i) {
+    const double l = std::hypot(r.params[i].number, r.params[i + 1].number, r.params[i + 2].number);
+    return std::abs(l - 1) <= 0.05;
+  };
+  if (multax_off_) {
+    if (n % 3 != 0) {
+      d_.error(r.params[n - n % 3].loc, "GOTO: " + std::to_string(n) + " values under MULTAX/OFF, which are not whole points of three");
+      return 0;
+    }
+    if (n == 6 && unit(3)) {
+      d_.error(r.params[3].loc, "GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs "
+                                "MULTAX/ON; have the CAM system write MULTAX/ON before points with a tool axis");
+      return 0;
+    }
+    return 3;
+  }
+  if (n == 6) return 6;
+  if (multax_on_) {
+    if (n % 6 != 0) {
+      d_.error(r.params[n - n % 6].loc, "GOTO: " + std::to_string(n) + " values under MULTAX/ON, which are not whole points "
+                                        "of six (x,y,z,i,j,k)");
+      return 0;
+    }
+    return 6;
+  }
+  if (n % 6 == 0) {
+    d_.error(r.params[3].loc, "GOTO: " + std::to_string(n) + " values and no MULTAX said: " + std::to_string(n / 3) +
+                                  " points, or " + std::to_string(n / 6) + " with their tool axes? Have the CAM system "
+                                  "write MULTAX/ON or MULTAX/OFF before it");
+    return 0;
+  }
+  if (n % 3 != 0) {
+    d_.error(r.params[n - n % 3].loc, "GOTO: " + std::to_string(n) + " values, which are not whole points of three");
+    return 0;
+  }
+  return 3;
+}
+
 void Lowerer::lower_goto(const Record& r) {
-  // Under MULTAX/OFF APT writes three values a point: six are two points. A CAM system that
-  // means a point and its tool axis has left MULTAX/OFF in force; the readings differ (a point
-  // dropped, or a tool axis cut as a point near the origin): refused, not read at a guess.
-  if (multax_off_ && r.params.size() == 6) {
-    d_.error(r.params[3].loc, "GOTO: six values under MULTAX/OFF: APT reads two points, a tool axis needs "
-                              "MULTAX/ON; have the CAM system write MULTAX/ON before points with a tool axis");
+  const int stride = goto_stride(r);
+  if (stride == 0) return;
+  const size_t n = r.params.size();
+  if (n <= size_t(stride) || n % size_t(stride) != 0) {
+    goto_point(r);
     return;
   }
+  // Several points in one record: each is a GOTO of its own. RAPID before it is taken for its
+  // first point only, the reading that cannot traverse through the part (the rest are fed).
+  const bool rapid = rapid_next_;
+  for (size_t i = 0; i < n; i += size_t(stride)) {
+    Record one = r;
+    one.params = r.params.subspan(i, size_t(stride));
+    one.loc = r.params[i].loc;
+    if (i > 0 && rapid && i == size_t(stride))
+      d_.warning(one.loc, "RAPID before a GOTO of several points is taken for its first point: the rest are fed (some "
+                          "posts make them all rapid; give each its own RAPID and GOTO if that is meant)",
+                 "rapid-points");
+    goto_point(one);
+  }
+}
+
+void Lowerer::goto_point(const Record& r) {
   ir::Vec3 p, a;
   bool has_axis = false;
   if (!read_point(r, d_, p, a, has_axis)) return;

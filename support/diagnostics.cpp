@@ -49,6 +49,7 @@ const std::vector<WarningName>& warning_names() {
       {"not-supported", "a record none of clpc's machines can act on"},
       {"rapid-arc", "RAPID before an arc, which is cut at the feed rate"},
       {"rapid-cancelled", "FEDRAT between RAPID and its move: the move is fed"},
+      {"rapid-points", "RAPID before a GOTO of several points: only its first point is rapid"},
       {"retract-rotate", "the rotaries jump: the tool retracts, they turn, it re-engages"},
       {"unwind", "a winding rotary would pass its range: the tool retracts, it unwinds, the tool re-engages"},
       {"rotary-index", "a rotary table sent to 0 on a machine without one"},

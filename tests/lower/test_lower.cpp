@@ -27,6 +27,15 @@ std::vector<std::string> instrs(const std::string& cl, const std::vector<std::st
 
 std::string err(const std::string& cl) { return first_error(lower_text(cl).diags); }
 
+// Every warning, "line:col: message" each on a line of its own.
+std::string warn(const std::string& cl) {
+  std::string out;
+  for (const Diagnostic& x : lower_text(cl).diags)
+    if (x.severity == Severity::Warning)
+      out += std::to_string(x.loc.line) + ":" + std::to_string(x.loc.col) + ": " + x.message + "\n";
+  return out;
+}
+
 }  // namespace
 
 TEST(Lower, GotoThreeAndSixValuesToolAxisPersists) {
@@ -51,6 +60,28 @@ TEST(Lower, SixValuesUnderMultaxOffAreRefused) {
             "CAM system write MULTAX/ON before points with a tool axis");
   EXPECT_THAT(instrs("MULTAX/OFF\nGOTO/1,2,3\nMULTAX/ON\nGOTO/10,0,-2,0,0,1\nMULTAX/OFF\nMULTAX\nGOTO/4,5,6,0,0,1\n"),
               ElementsAre("feed (1, 2, 3)", "feed (10, 0, -2) axis (0, 0, 1)", "feed (4, 5, 6) axis (0, 0, 1)"));
+}
+
+// APT's GOTO carries a list of points (ISO 3592): three values each under MULTAX/OFF, six
+// under MULTAX/ON; nine values were refused (helper-51). A count that reads two ways is
+// refused: a multiple of six with no MULTAX said. RAPID is its first point's.
+TEST(Lower, AGotoOfSeveralPointsIsEachPoint) {
+  EXPECT_THAT(instrs("MULTAX/OFF\nRAPID\nGOTO/0,0,0,10,0,0,10,10,0\n"),
+              ElementsAre("rapid (0, 0, 0)", "feed (10, 0, 0)", "feed (10, 10, 0)"));
+  EXPECT_THAT(instrs("GOTO/0,0,0,10,0,0,10,10,0\n"), ElementsAre("feed (0, 0, 0)", "feed (10, 0, 0)", "feed (10, 10, 0)"));
+  EXPECT_THAT(instrs("MULTAX/OFF\nGOTO/0,0,0,10,0,0\n"), ElementsAre("feed (0, 0, 0)", "feed (10, 0, 0)"));
+  EXPECT_THAT(instrs("MULTAX/ON\nGOTO/0,0,0,0,0,1,10,0,0,0,0,1\n"),
+              ElementsAre("feed (0, 0, 0) axis (0, 0, 1)", "feed (10, 0, 0) axis (0, 0, 1)"));
+  EXPECT_EQ(err("GOTO/0,0,0,10,0,0,10,10,0,0,10,0\n"),
+            "1:12: GOTO: 12 values and no MULTAX said: 4 points, or 2 with their tool axes? Have the CAM system write "
+            "MULTAX/ON or MULTAX/OFF before it");
+  EXPECT_EQ(err("MULTAX/ON\nGOTO/0,0,0,0,0,1,10,0,0\n"),
+            "2:18: GOTO: 9 values under MULTAX/ON, which are not whole points of six (x,y,z,i,j,k)");
+  EXPECT_EQ(err("MULTAX/OFF\nGOTO/0,0,0,10,0,0,1\n"),
+            "2:19: GOTO: 7 values under MULTAX/OFF, which are not whole points of three");
+  EXPECT_EQ(err("GOTO/0,0,0,10,0,0,1,2\n"), "1:19: GOTO: 8 values, which are not whole points of three");
+  EXPECT_THAT(warn("MULTAX/OFF\nRAPID\nGOTO/0,0,0,10,0,0\n"),
+              HasSubstr("3:12: RAPID before a GOTO of several points is taken for its first point: the rest are fed"));
 }
 
 TEST(Lower, RapidIsOneShot) {
