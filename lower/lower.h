@@ -161,7 +161,7 @@ class Lowerer : public RecordSink {
   bool multax_off_ = false;  // MULTAX/OFF in force: a GOTO's six values would be two points
   bool multax_on_ = false;   // MULTAX or MULTAX/ON in force: a GOTO's values are points of six
   bool refused_after_fini_ = false;  // motion after FINI was said: once
-  size_t replayed_records_ = 0;  // records CALSUB replayed, for kMaxReplayedRecords
+  size_t replayed_records_ = 0;  // records CALSUB and COPY replayed, for kMaxReplayedRecords
   char comp_plane_ = 0;  // CUTCOM/XYPLAN (ZXPLAN, YZPLAN) alone: the plane of the compensation after it
   bool cut_since_tool_change_ = false;  // a move or an arc since the last tool change (or the start)
   bool last_move_rapid_ = false;        // the last move was a rapid (RAPID, GOHOME)
@@ -256,6 +256,7 @@ class Lowerer : public RecordSink {
   SourceLoc defining_loc_;
   int call_depth_ = 0;
   size_t stored_records_ = 0;
+  bool replay_one_more(SourceLoc at);  // counts a record replayed; false past the limit
   bool keep_stored(const Record& r);  // counts a record kept for replay; false past the limit
 
   // TRACUT and INDEX/COPY (lower/lower_transform.cpp).

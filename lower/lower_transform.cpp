@@ -163,12 +163,16 @@ void Lowerer::lower_transform(const Record& r) {
   const ir::Frame saved = copy_xf_;
   ir::Frame acc = saved;
   std::vector<Param> scratch;
-  for (int k = 0; k < *times; ++k) {
+  bool more = true;
+  for (int k = 0; k < *times && more; ++k) {
     acc = ir::compose(acc, step);
     copy_xf_ = acc;
     update_xf();
     d_.push_context(r.loc, "copied by the COPY at");
-    for (const OwnedRecord& o : body) record(o.view(scratch));
+    for (const OwnedRecord& o : body) {
+      if (!(more = replay_one_more(r.loc))) break;
+      record(o.view(scratch));
+    }
     d_.pop_context();
   }
   copy_xf_ = saved;

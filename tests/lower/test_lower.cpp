@@ -512,8 +512,14 @@ TEST(LowerErrors, Subroutines) {
     for (int c = 0; c < 20; ++c) bomb += "CALSUB/" + std::to_string(k - 1) + "\n";
     bomb += "ENDSUB\n";
   }
-  EXPECT_THAT(err(bomb + "CALSUB/6\n"), ::testing::EndsWith(": subroutine calls replay more than 4194304 records "
-                                                            "(calls inside calls multiply); clpc stops replaying them"));
+  EXPECT_THAT(err(bomb + "CALSUB/6\n"), ::testing::EndsWith(": CALSUB and COPY replay more than 4194304 records "
+                                                            "(calls and copies inside others multiply); clpc stops "
+                                                            "replaying them"));
+  // So do copies inside copies: 16 lines wrote 2.77 GB (helper-51).
+  EXPECT_EQ(err("INDEX/1\nGOTO/1,0,0\nGOTO/0,0,0\nINDEX/1,NOMORE\nINDEX/2\nCOPY/1,TRANSL,0,0.001,0,10000\n"
+                "INDEX/2,NOMORE\nCOPY/2,TRANSL,0.001,0,0,10000\n"),
+            "8:1: CALSUB and COPY replay more than 4194304 records (calls and copies inside others multiply); clpc "
+            "stops replaying them");
 }
 
 // Motion after FINI was ignored with a warning, and the program certified without its cuts (a
