@@ -337,7 +337,7 @@ void Lowerer::lower_coolant(const Record& r) {
     else if (p.is("MIST")) k = ir::CoolantKind::Mist;
     else if (p.is("THRU") || p.is("THROUGH")) k = ir::CoolantKind::Thru;
     else if (p.is("AIR")) k = ir::CoolantKind::Air;
-    else if (p.is("TAP")) k = ir::CoolantKind::Tap;
+    else if (p.is("TAP") || p.is("TAPKUL")) k = ir::CoolantKind::Tap;  // TAPKUL: ISO 4343's word
     else ignored.push_back(&p);
     if (!k) continue;
     if (kind && *kind != *k) {

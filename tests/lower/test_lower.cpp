@@ -321,6 +321,8 @@ TEST(Lower, ABareCoolantOnResumesTheLastKind) {
   EXPECT_THAT(instrs("LOADTL/1\nCOOLNT/THRU\nCOOLNT/OFF\nLOADTL/1\nCOOLNT/ON\nLOADTL/2\nCOOLNT/ON\n"),
               ElementsAre("tool-change T1", "coolant thru", "coolant off", "tool-change T1", "coolant thru",
                           "tool-change T2", "coolant on"));
+  // TAPKUL is ISO 4343's word for tapping coolant: it was passed through, the tap ran dry (helper-51).
+  EXPECT_THAT(instrs("COOLNT/TAPKUL\nCOOLNT/TAP\n"), ElementsAre("coolant tap", "coolant tap"));
 }
 
 TEST(Lower, TextRecords) {
