@@ -201,6 +201,20 @@ void Lowerer::lower_spindle(const Record& r) {
 
 void Lowerer::lower_feed(const Record& r) {
   ParamReader ps(r, d_);
+  // FEDRAT/RAPID: the next move at rapid, as RAPID; for it alone, the reading that cannot
+  // traverse through the part (the moves after it are fed at the feed in force).
+  if (ps.size() == 1 && ps[0].is("RAPID")) {
+    rapid_next_ = true;
+    return;
+  }
+  // FEDRAT/LOCK[,ON|OFF]: the feed locked against the operator's override, by posts that have
+  // it. clpc's machines have no code for it; the feed stays what it is.
+  if (ps.size() >= 1 && ps[0].is("LOCK") &&
+      (ps.size() == 1 || (ps.size() == 2 && (ps[1].is("ON") || ps[1].is("OFF"))))) {
+    d_.warning(r.loc, "FEDRAT/LOCK: clpc's machines have no code to lock the feed override; the feed is unchanged",
+               "not-supported");
+    return;
+  }
   ir::Feed f;
   bool have = false, worded = false;
   double to_program = 1;  // factor from the record's length unit to program units
@@ -208,6 +222,15 @@ void Lowerer::lower_feed(const Record& r) {
   std::string unit_word, mode_word;  // the first unit word (MMPM...), the first mode word (PERMIN...)
   for (size_t i = 0; i < ps.size(); ++i) {
     const Param& p = ps[i];
+    // MAXIPM,n / MAXMMPM,n: the most a post may feed the moves whose feed it computes (inverse
+    // time); clpc computes none, and the machine's own limit holds (limits.max_feed).
+    if ((p.is("MAXIPM") || p.is("MAXMMPM")) && i + 1 < ps.size() && ps[i + 1].is_number()) {
+      d_.warning(p.loc, "FEDRAT: " + upper(p.text) + "," + num_text(ps[i + 1].number) + " is a limit for feeds a post "
+                        "computes; clpc writes the CL's feeds and does not apply it", "ignored-word");
+      ++i;
+      if (ps.size() == 2) return;  // the record says nothing else
+      continue;
+    }
     if (!p.is_number()) worded = true;
     if (p.is_number()) {
       if (have) {

@@ -89,6 +89,19 @@ TEST(Lower, RapidIsOneShot) {
               ElementsAre("rapid (1, 2, 3)", "feed (4, 5, 6)", "rapid (0, 0, 0)"));
 }
 
+// FEDRAT/RAPID, FEDRAT/LOCK and MAXIPM stopped the post (helper-48): none moves anything but
+// RAPID's next move, which is RAPID's reading.
+TEST(Lower, FedratRapidLockAndMaxipm) {
+  EXPECT_THAT(instrs("FEDRAT/MMPM,100\nFEDRAT/RAPID\nGOTO/1,2,3\nGOTO/4,5,6\nFEDRAT/LOCK\nFEDRAT/LOCK,OFF\n"
+                     "FEDRAT/MAXIPM,200\nFEDRAT/MMPM,300,MAXMMPM,3000\nGOTO/0,0,0\n"),
+              ElementsAre("feed-rate 100 /min", "rapid (1, 2, 3)", "feed (4, 5, 6)", "feed-rate 300 /min", "feed (0, 0, 0)"));
+  EXPECT_THAT(warn("FEDRAT/LOCK\nFEDRAT/MAXIPM,200\n"),
+              ::testing::StrEq("1:1: FEDRAT/LOCK: clpc's machines have no code to lock the feed override; the feed is "
+                               "unchanged\n2:8: FEDRAT: MAXIPM,200 is a limit for feeds a post computes; clpc writes the "
+                               "CL's feeds and does not apply it\n"));
+  EXPECT_EQ(err("FEDRAT/LOCK,200\n"), "1:8: FEDRAT: unknown word 'LOCK'");
+}
+
 TEST(Lower, FromGohomeGodlta) {
   // A cut first after FROM starts at the FROM point: the tool is brought there at rapid.
   EXPECT_THAT(instrs("FROM/0,0,100\nGOTO/1,1,1\nGODLTA/1,2,3\nGODLTA/-2\nGOHOME\nGOHOME/5,5,50\n"),
