@@ -1,4 +1,5 @@
 // Motion records: GOTO, FROM, GOHOME, GODLTA, CIRCLE (+ the RAPID one-shot).
+#include <algorithm>
 #include <cmath>
 
 #include "ir/arc_geometry.h"
@@ -393,7 +394,28 @@ void Lowerer::lower_from(const Record& r) {
 void Lowerer::lower_gohome(const Record& r) {
   ir::Vec3 p = from_, a;
   bool has_axis = false;
-  if (r.params.empty()) {
+  const bool by_axis = !r.params.empty() && std::all_of(r.params.begin(), r.params.end(), [](const Param& q) {
+    return q.is("XAXIS") || q.is("YAXIS") || q.is("ZAXIS");
+  });
+  if (by_axis) {
+    // GOHOME/ZAXIS (APT posts): home along the named axes only, the others where the tool is
+    // (it stopped the post). Home is the FROM point, as for GOHOME alone. Z is the tool's way
+    // up only while the tool stands along Z: tilted, the move would not be a retract.
+    if (!has_from_ || !has_pos_) {
+      d_.error(r.loc, std::string("GOHOME/") + std::string(r.params[0].text) + " needs an earlier FROM (home) and a position");
+      return;
+    }
+    if (std::abs(xf_dir(axis_).z() - 1) > 1e-9) {
+      d_.error(r.loc, "GOHOME by axis with the tool tilted: a move along the machine's axes to home would not take the "
+                      "tool up its axis; have the CAM system write the retract as a GOTO");
+      return;
+    }
+    p = pos_;
+    for (const Param& q : r.params) {
+      const int i = q.is("XAXIS") ? 0 : q.is("YAXIS") ? 1 : 2;
+      p[i] = from_[i];
+    }
+  } else if (r.params.empty()) {
     if (!has_from_) {
       d_.error(r.loc, "GOHOME without a point needs an earlier FROM");
       return;

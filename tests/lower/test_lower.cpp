@@ -107,6 +107,14 @@ TEST(Lower, FromGohomeGodlta) {
   EXPECT_THAT(instrs("FROM/0,0,100\nGOTO/1,1,1\nGODLTA/1,2,3\nGODLTA/-2\nGOHOME\nGOHOME/5,5,50\n"),
               ElementsAre("from (0, 0, 100)", "rapid (0, 0, 100)", "feed (1, 1, 1)", "feed (2, 3, 4)", "feed (2, 3, 2)", "rapid (0, 0, 100)",
                           "rapid (5, 5, 50)"));
+  // GOHOME/ZAXIS homes Z alone, to the FROM point's (it stopped the post; helper-45).
+  EXPECT_THAT(instrs("FROM/0,0,100\nGOTO/10,20,1\nGOHOME/ZAXIS\nGOHOME/XAXIS,YAXIS\n"),
+              ElementsAre("from (0, 0, 100)", "rapid (0, 0, 100)", "feed (10, 20, 1)", "rapid (10, 20, 100)",
+                          "rapid (0, 0, 100)"));
+  EXPECT_EQ(err("GOTO/10,20,1\nGOHOME/ZAXIS\n"), "2:1: GOHOME/ZAXIS needs an earlier FROM (home) and a position");
+  EXPECT_EQ(err("FROM/0,0,100\nGOTO/10,20,1,0,0.6,0.8\nGOHOME/ZAXIS\n"),
+            "3:1: GOHOME by axis with the tool tilted: a move along the machine's axes to home would not take the tool "
+            "up its axis; have the CAM system write the retract as a GOTO");
 }
 
 // RETRCT asks the post for a retract clpc does not make: the CL's next move must be that
