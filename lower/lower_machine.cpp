@@ -529,11 +529,25 @@ void Lowerer::lower_units(const Record& r) {
 // cannot be told which offset it is.
 void Lowerer::lower_ofstno(const Record& r) {
   ParamReader ps(r, d_);
-  if (ps.size() == 1 && ps[0].is_number() && tool_ >= 0 && ps[0].number == tool_ && loaded_offset_ == tool_) return;
-  d_.error(r.loc, "OFSTNO names an offset register, the tool's length or its radius by the post, other than the loaded "
-                  "tool's own (" + (tool_ >= 0 ? "T" + std::to_string(tool_) : std::string("none is loaded")) +
-                  "): the cuts after it would use the tool's own; give the radius register on the CUTCOM "
-                  "(CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/4,OSETNO,24)");
+  auto n = ps.integer(0, "the offset register", 0, 9999);
+  if (!n) return;
+  if (ps.size() > 1) {
+    d_.error(ps[1].loc, "OFSTNO: expected OFSTNO/n (one register)");
+    return;
+  }
+  if (tool_ >= 0 && *n == tool_ && loaded_offset_ == tool_) return;
+  const std::string reg = std::to_string(*n);
+  if (tool_ < 0) {
+    d_.error(ps[0].loc, "OFSTNO/" + reg + " before any tool is loaded: an offset register for the tool's length or its "
+                        "radius by the post, which clpc does not read; give the radius register on the CUTCOM "
+                        "(CUTCOM/LEFT," + reg + ") and the length register on the tool change (LOADTL/n,OSETNO," + reg + ")");
+    return;
+  }
+  const std::string t = std::to_string(tool_);
+  d_.error(ps[0].loc, "OFSTNO/" + reg + ": an offset register for the tool's length or its radius by the post, which clpc "
+                      "does not read: it cuts T" + t + " with length register " + std::to_string(loaded_offset_) +
+                      " and radius register " + t + "; give the radius register on the CUTCOM (CUTCOM/LEFT," + reg +
+                      ") and the length register on the tool change (LOADTL/" + t + ",OSETNO," + reg + ")");
 }
 
 }  // namespace clpc

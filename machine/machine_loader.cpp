@@ -499,8 +499,9 @@ std::string dwell_word_problem(const CodeTemplate& t, const Machine& m) {
     if (v == Var::Seconds && (whole || !(f.point == AddressFormat::Point::Always ||
                                           (f.point == AddressFormat::Point::Never && f.decimals == 3))))
       return word + " may be written without a point (" + (whole ? "a whole number" : fmt) + "), and the control " +
-             "reads a dwell's " + letter + " without a point in milliseconds: 1 s would be read as 1 ms; give " + fmt +
-             " point = \"always\", or write " + letter + "{milliseconds:1}";
+             "reads a dwell's " + letter + " without a point in milliseconds: 1 s would be read as 1 ms; write " +
+             letter + "{milliseconds:1}" + (letter == 'P' ? " or X{seconds} (a Fanuc's P takes no point)" : "") +
+             ", or give " + fmt + " point = \"always\" where the control takes one (Haas)";
   }
   return "";
 }
@@ -813,7 +814,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
           a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
         // A modulo axis goes the short way to any angle: limits narrower than a turn were dropped
         // without a word, and C270 certified on an axis declared 0 to 90 (helper-52).
-        if (ax.cyclic == Cyclic::Modulo && (a.has("min") || a.has("max")) && ax.max - ax.min < 360)
+        if (ax.cyclic == Cyclic::Modulo && (a.has("min") || a.has("max")) && ax.max - ax.min < 359)  // (0 to 359.999 is a turn)
           a.error(*(a.find("max") ? a.find("max") : a.find("min")), a.find("max") ? "max" : "min",
                   "a modulo axis (cyclic = \"modulo\") turns to any angle the short way: limits narrower than a turn "
                   "cannot be kept; an axis that stops within a range is cyclic = \"no\"");

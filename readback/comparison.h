@@ -78,8 +78,8 @@ class Comparison : public ProgramSink {
   const TipSegment* peek(size_t i);
 
   void consume(size_t n);
-  void dwell_ok(int gline);
-  double dwell_slack(double seconds) const;
+  void dwell_ok();
+  double dwell_slack() const;
   void spindle_ok(const TipSegment& s);
   void register_ok(const TipSegment& s);
   // A cut across the tool axis with the cutter compensation the CL has in force (none, left,
@@ -396,7 +396,10 @@ class Comparison : public ProgramSink {
   // (a cycle's own dwell at a hole's bottom is the cycle's, judged with the hole).
   double cl_dwell_ = 0, prog_dwell_ = 0;
   bool cl_dwell_known_ = true;  // false: a dwell in revolutions with no rpm to time it by
-  SourceLoc cl_dwell_loc_;
+  SourceLoc cl_dwell_first_, cl_dwell_loc_;  // the first and last DELAY summed
+  bool dwell_in_cut_ = false;   // a G04 summed stands before a feed move
+  int dwell_line_ = 0;          // the G-code line to name: the last G04's move, else the first consumed
+  double g04_seconds_ = 0;      // every G04's time consumed so far (the rest came after the last move)
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since

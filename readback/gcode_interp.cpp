@@ -223,10 +223,7 @@ class Interp {
       else if (is_g(g, 21)) set_units(ir::Units::Mm, line);
       else if (is_g(g, 28)) g28 = true;
       else if (is_g(g, 40)) comp_ = 0;
-      else if (is_g(g, 41) || is_g(g, 42)) {
-        comp_ = is_g(g, 41) ? 1 : 2;
-        if (has('D')) comp_register_ = int(std::round(a['D']));  // (D is modal: G41 alone keeps the last)
-      }
+      else if (is_g(g, 41) || is_g(g, 42)) comp_ = is_g(g, 41) ? 1 : 2;
       else if (is_g(g, 43)) length_comp_ = true, length_register_ = has('H') ? int(std::round(a['H'])) : length_register_;
       else if (is_g(g, 49)) length_comp_ = false, tcp_ = false, length_register_ = 0;
       else if (is_g(g, 234) || is_g(g, 43.4) || is_g(g, 43.5))
@@ -362,6 +359,9 @@ class Interp {
       }
     }
 
+    // A mill's D is modal, in any block: D33 before G41, or D13 mid-contour, is the register
+    // the radius is taken from from then on.
+    if (!lathe && has('D') && !g10) comp_register_ = int(std::round(a['D']));
     if (g04) {
       // P with a point is seconds (Haas), without one milliseconds (Fanuc, Haas); X and U are
       // seconds, whatever X's scale on a diameter lathe.

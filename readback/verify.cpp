@@ -64,6 +64,7 @@ void Comparison::operation(const ir::Operation& op) {
             cl_comp_loc_ = loc_;
           } else if constexpr (std::is_same_v<T, ir::Dwell>) {
             if (x.revolutions && !(cl_rpm_ > 0)) cl_dwell_known_ = false;
+            if (cl_dwell_ == 0) cl_dwell_first_ = loc_;
             cl_dwell_ += x.revolutions ? (cl_rpm_ > 0 ? x.value * 60 / cl_rpm_ : 0) : x.value;
             cl_dwell_loc_ = loc_;
           } else if constexpr (std::is_same_v<T, ir::Coolant>) {
@@ -142,6 +143,10 @@ void Comparison::end() {
     }
     consume(1);
   }
+  // A G04 after the last move belongs to no segment: what the program dwelt in all, less what
+  // came before its moves.
+  prog_dwell_ += std::max(0.0, rd_.totals().dwell_minutes * 60 - g04_seconds_);
+  dwell_ok();
   check_travel();
 }
 
@@ -158,10 +163,12 @@ const TipSegment* Comparison::peek(size_t i) {
 }
 
 void Comparison::consume(size_t n) {
-  int gline = 0;
   for (size_t i = 0; i < n && !win_.empty(); ++i) {
-    prog_dwell_ += win_.front().raw.dwell_before;
-    if (win_.front().raw.dwell_before > 0 || gline == 0) gline = win_.front().raw.line;
+    const gcode::Segment& raw = win_.front().raw;
+    prog_dwell_ += raw.dwell_before;
+    g04_seconds_ += raw.dwell_before;
+    if (raw.dwell_before > 0 || dwell_line_ == 0) dwell_line_ = raw.line;
+    if (raw.dwell_before > 0 && raw.kind != gcode::Segment::Kind::Rapid) dwell_in_cut_ = true;
     check_limits(win_.front());
     spindle_ok(win_.front());
     comp_ok(win_.front());
@@ -172,31 +179,46 @@ void Comparison::consume(size_t n) {
     }
     win_.pop_front();
   }
-  if (!cycle_on_ && !groove_ && !thread_on_ && !rough_) dwell_ok(gline);
 }
 
-// A G04 dwells what the CL's DELAY asks, before the move after it: G04 X1250. for 1.25 s
-// (1250 s with the point), a dwell written twice as long, or one where the CL has none,
-// passed (helper-52). Compared each time the program has been followed to a CL point, so a
-// G04 written before the move after the DELAY is counted with it.
-void Comparison::dwell_ok(int gline) {
-  if (cl_dwell_known_ && std::abs(prog_dwell_ - cl_dwell_) > dwell_slack(cl_dwell_)) {
-    const std::string cl = cl_dwell_ > 0 ? "the CL's DELAY (line " + std::to_string(cl_dwell_loc_.line) + ") is " +
-                                               fixed_text(cl_dwell_, 3) + " s"
-                                         : "the CL has no DELAY here";
-    fail(loc_, gline, "the program dwells " + fixed_text(prog_dwell_, 3) + " s before this move, " + cl, 0);
+// The G04s the program makes dwell what the CL's DELAYs ask: G04 X1250. for 1.25 s (1250 s
+// with the point), a dwell written twice as long, one deleted or one inserted mid-contour
+// passed (helper-52). Compared where the program has been followed to a CL point (a G04 is
+// written before the move after its DELAY, so it is counted with that move), and at the end.
+// Within a cycle, a groove or a thread the dwells are summed, and compared at the first point
+// after it. The program may dwell longer than the CL before a rapid: a machine's own codes
+// dwell there (a G04 in its tool change or start for the spindle or the coolant); never
+// shorter, and never longer before a cut.
+void Comparison::dwell_ok() {
+  if (cycle_on_ || groove_ || thread_on_ || rough_) return;
+  const double slack = dwell_slack();
+  const bool shorter = prog_dwell_ < cl_dwell_ - slack, longer = prog_dwell_ > cl_dwell_ + slack;
+  if (cl_dwell_known_ && (shorter || (longer && dwell_in_cut_))) {
+    std::string cl = "the CL has no DELAY here";
+    if (cl_dwell_ > 0)
+      cl = cl_dwell_first_.line == cl_dwell_loc_.line
+               ? "the CL's DELAY (line " + std::to_string(cl_dwell_loc_.line) + ") is " + fixed_text(cl_dwell_, 3) + " s"
+               : "the CL's DELAYs (lines " + std::to_string(cl_dwell_first_.line) + " to " +
+                     std::to_string(cl_dwell_loc_.line) + ") make " + fixed_text(cl_dwell_, 3) + " s";
+    fail(loc_, dwell_line_, "the program dwells " + fixed_text(prog_dwell_, 3) + " s before this move, " + cl, 0);
   }
   cl_dwell_ = prog_dwell_ = 0;
   cl_dwell_known_ = true;
+  dwell_in_cut_ = false;
+  dwell_line_ = 0;
 }
 
-// Within a rounding of the dwell's word: whole milliseconds where P takes no point, else half
-// an increment of its seconds (P10. for 10.04 s with one decimal), or the rounding the compile
-// allows (feeds.max_rounding); 1.5 ms at least.
-double Comparison::dwell_slack(double seconds) const {
-  const AddressFormat& p = m_.format('P');
-  const double word = p.point == AddressFormat::Point::Never ? 0.0015 : 0.5 * std::pow(10.0, -p.decimals) + 1e-9;
-  return std::max({0.0015, word, m_.feeds.max_rounding * seconds + 1e-9});
+// A dwell's rounding: half an increment of the word it is written in (P, X, U; whole
+// milliseconds where P takes no point), 1.5 ms at least. (The compile writes the time rounded
+// to that word, so no more is lost.)
+double Comparison::dwell_slack() const {
+  double slack = 0.0015;
+  for (char letter : {'P', 'X', 'U'}) {
+    const AddressFormat& f = m_.format(letter);
+    if (letter != 'P' || f.point != AddressFormat::Point::Never)
+      slack = std::max(slack, 0.5 * std::pow(10.0, -f.decimals) + 1e-9);
+  }
+  return slack;
 }
 
 // Compared on a mill's cuts across the tool axis: the post starts and ends G41/G42 on the move
@@ -554,6 +576,7 @@ void Comparison::reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, 
       fail(loc_, s.raw.line, "while the rotaries turn the tool tip leaves the CL line by " + fixed_text(dev, 5) + " at its worst point", dev);
   }
   consume(j + 1);
+  dwell_ok();
 }
 
 void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
@@ -819,7 +842,7 @@ void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3
     const double dwell = s.raw.dwell + (out ? out->raw.dwell_before : 0.0);
     // (A bore-dwell written as moves dwells with a G04 before the move out: the hole's, not a DELAY.)
     if (out) prog_dwell_ -= out->raw.dwell_before;
-    if (std::abs(dwell - spec.dwell) > dwell_slack(spec.dwell))
+    if (std::abs(dwell - spec.dwell) > dwell_slack())
       wrong("the tool dwells " + fixed_text(dwell, 3) + " s at the bottom, not " + fixed_text(spec.dwell, 3) + " s");
   }
   if ((spec.kind == K::Peck || spec.kind == K::ChipBreak) && spec.peck > 0) {

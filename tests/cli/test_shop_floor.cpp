@@ -580,8 +580,9 @@ TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
   // wrote X1250. for 1.25 s; helper-52).
   EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 P{seconds}\"\n"),
               HasSubstr("shop.toml:4:9: error: m.codes.dwell: P{seconds} may be written without a point (format.P), and "
-                        "the control reads a dwell's P without a point in milliseconds: 1 s would be read as 1 ms; give "
-                        "format.P point = \"always\", or write P{milliseconds:1}"));
+                        "the control reads a dwell's P without a point in milliseconds: 1 s would be read as 1 ms; write "
+                        "P{milliseconds:1} or X{seconds} (a Fanuc's P takes no point), or give format.P point = "
+                        "\"always\" where the control takes one (Haas)"));
   EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 X{milliseconds}\"\n"),
               HasSubstr("shop.toml:4:9: error: m.codes.dwell: X{milliseconds} is written with a point (format.X), and the "
                         "control reads a dwell's X with a point in seconds, without one in milliseconds"));
@@ -665,6 +666,7 @@ TEST(ShopFloor, AxesOfOneNameAndModesThatCannotBeCancelledAreRefused) {
                         "angle the short way: limits narrower than a turn cannot be kept; an axis that stops within a "
                         "range is cyclic = \"no\""));
   EXPECT_EQ(load_error(ac + "min = 0.0\nmax = 360.0\n"), "");
+  EXPECT_EQ(load_error(ac + "min = 0.0\nmax = 359.999\n"), "");
   std::string parallel = ac;
   parallel.replace(parallel.find("axis = [1.0, 0.0, 0.0]"), 22, "axis = [0.0, 0.0, -1.0]");
   EXPECT_THAT(load_error(parallel), HasSubstr("shop.toml:12:8: error: ac.kinematics.axes[1].axis: parallel to A's axis"));

@@ -832,15 +832,19 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
                                                                     "selects a work offset (a fixture)"));
   // OFSTNO/24 before CUTCOM/LEFT was a comment and the cut G41 D4 (helper-51): another
   // register than the tool's own is refused; the tool's own asks for nothing.
-  EXPECT_EQ(err("LOADTL/4\nOFSTNO/24\nCUTCOM/LEFT\nGOTO/0,0,0\n"),
-            "2:1: OFSTNO names an offset register, the tool's length or its radius by the post, other than the loaded "
-            "tool's own (T4): the cuts after it would use the tool's own; give the radius register on the CUTCOM "
-            "(CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/4,OSETNO,24)");
-  EXPECT_THAT(err("OFSTNO/4\nLOADTL/4\n"), ::testing::HasSubstr("1:1: OFSTNO names an offset register, the tool's length or "
-                                                                 "its radius by the post, other than the loaded tool's own "
-                                                                 "(none is loaded)"));
+  EXPECT_EQ(err("LOADTL/3\nOFSTNO/24\nCUTCOM/LEFT\nGOTO/0,0,0\n"),
+            "2:8: OFSTNO/24: an offset register for the tool's length or its radius by the post, which clpc does not "
+            "read: it cuts T3 with length register 3 and radius register 3; give the radius register on the CUTCOM "
+            "(CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/3,OSETNO,24)");
+  EXPECT_EQ(err("OFSTNO/4\nLOADTL/4\n"),
+            "1:8: OFSTNO/4 before any tool is loaded: an offset register for the tool's length or its radius by the "
+            "post, which clpc does not read; give the radius register on the CUTCOM (CUTCOM/LEFT,4) and the length "
+            "register on the tool change (LOADTL/n,OSETNO,4)");
   EXPECT_EQ(err("LOADTL/4\nOFSTNO/4\nCUTCOM/LEFT\nGOTO/0,0,0\n"), "");
-  EXPECT_THAT(err("LOADTL/4,OSETNO,14\nOFSTNO/4\n"), ::testing::HasSubstr("2:1: OFSTNO names"));
+  EXPECT_THAT(err("LOADTL/4,OSETNO,14\nOFSTNO/14\n"), HasSubstr("2:8: OFSTNO/14: an offset register for the tool's "
+                                                                  "length or its radius by the post, which clpc does not "
+                                                                  "read: it cuts T4 with length register 14 and radius "
+                                                                  "register 4"));
   EXPECT_THAT(err("SPINDL/RPM,1000,CLW\nSPINDL/ORIENT\nGOTO/0,0,0\n"),
               ::testing::StartsWith("2:8: SPINDL/ORIENT (an oriented spindle stop): clpc's machines have no code for it, and "
                                     "the moves after it would be made with the spindle turning"));

@@ -586,8 +586,23 @@ TEST(Verify, ADwellOtherThanTheClsDelayFails) {
   EXPECT_FALSE(inserted.ok);
   EXPECT_THAT(inserted.diags, HasSubstr("part.cl:10:1: error: the program dwells 1.000 s before this move, the CL has no "
                                         "DELAY here"));
-  // A P within the millisecond it is written in passes.
+  // A P within the millisecond it is written in passes; 5 % off does not (helper-53).
   EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P1251")).ok);
+  EXPECT_FALSE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P1310")).ok);
+  // A machine's own codes may dwell before a rapid (a G04 in its start or tool change for the
+  // spindle or the coolant): never counted against the CL (helper-53).
+  const Machine waits = machine("waits", "[waits]\ninherits = \"fanuc-mill\"\n[waits.codes]\n"
+                                         "tool_change = \"T{tool} M06 G04 P500\"\n");
+  Compiled waited = compile_text("UNITS/MM\nLOADTL/1\n" + cl.substr(cl.find("SPINDL")) , waits, {.certify = true});
+  EXPECT_TRUE(waited.ok) << waited.diags;
+  // A DELAY after the last move: its G04 belongs to no move, and was never compared.
+  const std::string last = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,5\nFEDRAT/MMPM,200\n"
+                           "GOTO/0,0,-1\nRAPID\nGOTO/0,0,50\nDELAY/4\nFINI\n";
+  Compiled ends = compile_text(last, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(ends.ok) << ends.diags;
+  Compiled dropped = verify_text(last, machine("fanuc-mill"), edit(ends.output, " G04 P4000", ""));
+  EXPECT_FALSE(dropped.ok);
+  EXPECT_THAT(dropped.diags, HasSubstr("error: the program dwells 0.000 s before this move, the CL's DELAY (line 10) is 4.000 s"));
   const std::string bore = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20\nDELAY/2\n"
                            "CYCLE/BORE,FEDTO,20,RAPTO,2,MMPM,100,DWELL,0.5\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n"
                            "RAPID\nGOTO/30,10,50\nFINI\n";
@@ -596,6 +611,12 @@ TEST(Verify, ADwellOtherThanTheClsDelayFails) {
   ASSERT_TRUE(moves.ok) << moves.diags;
   EXPECT_THAT(moves.output, HasSubstr("G04 P2000\n"));
   EXPECT_THAT(moves.output, HasSubstr("G04 P500\n"));
+  // The hole's G04 is the hole's: a wrong one is caught there, not taken for a DELAY.
+  std::string longer_bottom = moves.output;
+  longer_bottom.replace(longer_bottom.find("G04 P500\n"), 8, "G04 P5000");
+  Compiled bottom = verify_text(bore, plain, longer_bottom);
+  EXPECT_FALSE(bottom.ok);
+  EXPECT_THAT(bottom.diags, HasSubstr("the tool dwells 5.000 s at the bottom, not 0.500 s"));
 }
 
 // G41/G42 take the radius from the CUTCOM's register, or the tool's own: D3 made D13 passed
@@ -614,10 +635,30 @@ TEST(Verify, CompensationFromAnotherRegisterFails) {
   Compiled none = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G41 D3 ", "G41 "));
   EXPECT_FALSE(none.ok);
   EXPECT_THAT(none.diags, HasSubstr("with no D register"));
+  // D is modal on a mill: given in a block before G41 it holds; changed mid-contour it is caught
+  // (helper-53).
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G41 D3 ", "D3\nG41 ")).ok);
+  Compiled changed = verify_text(cl, machine("fanuc-mill"), edit(c.output, " X20.", " X20. D13"));
+  EXPECT_FALSE(changed.ok);
+  EXPECT_THAT(changed.diags, HasSubstr("part.cl:10:1: error: the program compensates here with register D13"));
   std::string own = cl;
   own.replace(own.find("CUTCOM/LEFT"), 11, "CUTCOM/LEFT,33");
   Compiled named = compile_text(own, machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(named.ok) << named.diags;
   EXPECT_THAT(named.output, HasSubstr("G41 D33 "));
   EXPECT_FALSE(verify_text(own, machine("fanuc-mill"), edit(named.output, "G41 D33 ", "G41 D3 ")).ok);
+}
+
+// A DELAY at the bottom of a groove's last plunge: the groove's last blocks are read after it
+// closes, and its G04 was taken for a dwell where the CL has none (helper-53).
+TEST(Verify, ADwellAtAGroovesLastPlungeIsTheGroovesOwn) {
+  const std::string cl = "MACHIN / TURN, 01\nUNITS / MM\nTURRET / 3\nSPINDL / RPM, 450, CLW\nRAPID\nGOTO / 40, 0, -20\n"
+                         "$$ GRV,2.9872,-0.7794,0.100,0.025,0.000,0.000,0.008,0.000,0\nFEDRAT / 0.1, MMPR\n"
+                         "GOTO / 36, 0, -20\nGOTO / 30, 0, -20\nGOTO / 36, 0, -20\nRAPID\nGOTO / 36, 0, -22\n"
+                         "FEDRAT / 0.1, MMPR\nGOTO / 30, 0, -22\nDELAY / 0.5\nGOTO / 36, 0, -22\n$$ GRV END\nRAPID\n"
+                         "GOTO / 50, 0, 5\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("G04 U0.5\n"));
+  EXPECT_FALSE(verify_text(cl, machine("fanuc-lathe"), edit(c.output, "G04 U0.5\n", "G04 U5.\n")).ok);
 }
