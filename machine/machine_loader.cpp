@@ -539,7 +539,13 @@ void check_job_codes(Reader& r, const Machine& m) {
   if (auto codes = r.sub("codes"))
     for (auto [code, key] : {std::pair{&m.codes.dwell, "dwell"}, std::pair{&m.codes.cycle_dwell_word, "cycle_dwell_word"}})
       if (const toml::node* n = codes->find(key))
-        if (const std::string why = dwell_word_problem(*code, m); !why.empty()) codes->error(*n, key, why);
+        if (const std::string why = dwell_word_problem(*code, m); !why.empty()) {
+          // Said where this machine's file made it so: its own code, else its own format of the
+          // word (an inherited code made wrong by a format given here), else the code.
+          const toml::node* at = r.top().at_path(std::string("codes.") + key).node();
+          if (!at) at = r.top().at_path(std::string("format.") + why[0]).node();  // (the message starts with the word)
+          codes->error(at ? *at : *n, key, why);
+        }
   auto p = r.sub("program");
   if (!p) return;
   if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())
