@@ -589,6 +589,9 @@ TEST(ShopFloor, ADwellThatRoundingWouldChangeIsAnError) {
   EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ncycle_dwell_word = \"P{seconds:1}\"\n"),
               HasSubstr("m.codes.cycle_dwell_word: P{seconds:1} may be written without a point (a whole number)"));
   EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\ndwell = \"G04 X{seconds}\"\n"), "");
+  // Made wrong by this file's format of an inherited code's word: said at the format.
+  EXPECT_THAT(load_error("[h]\ninherits = \"haas-umc750\"\n[h.format]\nP = { decimals = 0, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:5: error: h.codes.dwell: P{seconds} may be written without a point (format.P)"));
   // A number that is no position in an axis address: the offset number became a Z to move to.
   EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.codes]\nlength_offset = \"G43 Z{offset} H{tool}\"\n"),
               HasSubstr("shop.toml:4:17: error: m.codes.length_offset: placeholder {offset} in the axis address Z: the "
