@@ -296,6 +296,9 @@ class RoughCycles : public Pass {
         next = std::max(next, ms[c.roughing_end - 1].index + 1);
         continue;
       }
+      // What stands before the first move (a FEDRAT after the approach) still stands: it was
+      // dropped, and the moves after the cycle had no feed (helper-54).
+      for (size_t k = i; k < ms[0].index; ++k) keep(body[k], out);
       write(body, ms, a, c, out);
       next = ms[c.end - 1].index + 1;
       at_.pos = a;

@@ -156,6 +156,21 @@ TEST(RoughCycles, RoughingAsMovesThatIsG71BecomesG71AndG70) {
                                   "N140 G00 X120. Z50.\n"));
 }
 
+// The FEDRAT given once after the approach, before the first level (NX writes it once per
+// operation): the pass dropped it, and the finishing pass after the cycle was refused with "no
+// feed rate" (helper-54).
+TEST(RoughCycles, AFeedAfterTheApproachStillStandsAfterTheCycle) {
+  std::vector<std::string> all = kG71;
+  all.insert(all.end(), kFinish.begin(), kFinish.end());
+  std::string cl = moves_cl(all);
+  cl.replace(cl.find("FEDRAT / 0.25, MMPR\n"), 20, "");
+  cl.replace(cl.find("GOTO / 26.0, 0.0, 2.0\n"), 22, "GOTO / 26.0, 0.0, 2.0\nFEDRAT / 0.25, MMPR\n");
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N90 G99 G71 P60 Q70 U0.4 W0.1 F0.25\n"));
+  EXPECT_THAT(c.output, HasSubstr("N130 G70 P60 Q70\n"));
+}
+
 TEST(RoughCycles, WithoutAFinishingPassTheLastCutIsTheProfile) {
   // Allowances 0: the levels meet the profile itself; x 22 and 18 at z -25, 14 on the taper.
   const std::vector<std::string> moves = {"R 22 2", "F 22 -25", "F 23 -24", "R 23 2", "R 18 2",   "F 18 -25",
