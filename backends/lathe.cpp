@@ -156,8 +156,8 @@ bool cuts_along_axis(const std::string& kind) {
 // feed along X through the centre to X-50, certified (helper-45). A tool that cuts along the
 // axis (a drill, centre drill, spot drill, tap, reamer) may go 1 mm past it and is never fed
 // across it; other tools 13 mm, or their corner radius and 1 mm (round inserts reach R12; a
-// TLDATA/TURN's nose radius is not read). An arc is judged by its end.
-bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc) {
+// TLDATA/TURN's nose radius is not read). An arc is judged by its end and by its furthest reach.
+bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc, const char* what) {
   const double mm = 1.0 / ir::mm_per_unit(m_.units), x0 = pos_.x() * k_, x1 = x * k_;
   const ir::ToolInfo* t = info_ ? info_->tool(tool_) : nullptr;
   const std::string kind = t ? t->kind : "";
@@ -174,7 +174,7 @@ bool LatheBackend::stays_on_its_side(double x, bool feed, SourceLoc loc) {
     return true;
   }
   if (!feed || x1 * side_ >= -allow) return true;
-  d_.error(loc, "a feed to radius " + num_text(std::round(x1 * 1e4) / 1e4) + ", " +
+  d_.error(loc, std::string(what) + " radius " + num_text(std::round(x1 * 1e4) / 1e4) + ", " +
                     num_text(std::round(std::abs(x1) * 1e4) / 1e4) + " past the spindle axis from the side this tool "
                     "works on: a lathe's tool cuts on one side of it (a facing cut ends its nose radius past it); the CL "
                     "must give X as the radius and Z along the spindle (in NX, the lathe work plane ZM-XM, not XM-YM)");
@@ -286,6 +286,15 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
     return;
   }
   if (!stays_on_its_side(a.end.x(), true, loc)) return;
+  // Judged by its end alone, an arc over the top of a circle centred past the axis went 38 mm
+  // beyond it and was certified (helper-54): its furthest reach to the other side counts too.
+  if (side_ != 0) {
+    ir::Vec3 far = a.center;
+    far.x() -= side_ * (a.end - a.center).norm();
+    if (arcgeo::distance_to_arc(a, far) <= 1e-6 * std::max(1.0, std::abs(far.x())) &&
+        !stays_on_its_side(far.x(), true, loc, "an arc reaching"))
+      return;
+  }
   // G02/G03 are seen from +Y unless the machine says otherwise.
   bool ccw = (a.dir == ir::ArcDir::Ccw) == (a.axis.y() > 0);
   if (m_.lathe.arcs_from_minus_y) ccw = !ccw;

@@ -24,7 +24,7 @@ class LatheBackend : public ProgramWriter {
   void write_rough(const ir::Operation& op, size_t at, SourceLoc loc) override;  // backends/lathe_rough.cpp
 
   void motion_code(Motion mo);
-  bool stays_on_its_side(double x, bool feed, SourceLoc loc);
+  bool stays_on_its_side(double x, bool feed, SourceLoc loc, const char* what = "a feed to");
   int side_ = 0;  // the side of the spindle axis the tool works on: +1, -1, 0 not yet known
   bool in_plane(const ir::Vec3& p, SourceLoc loc);
   SourceLoc off_plane_said_;  // the CL record whose motion off the XZ plane was said

@@ -355,6 +355,15 @@ TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
     }
   Compiled at = compile_text(head + "GOTO/50,0,0\nRAPID\nGOTO/3,0,0\nGOTO/-25,0,0\n", machine("fanuc-lathe"));
   EXPECT_THAT(at.diags, HasSubstr(":10:1: error: a feed to radius -25, 25 past the spindle axis"));
+  // An arc whose end is on the tool's side, over a circle centred past the axis: judged by its
+  // end alone it went 38 past, certified (helper-54). Its furthest reach counts.
+  Compiled over = compile_text(head + "GOTO/10,0,8.2462\nGOTO/1,0,6.2450\nCIRCLE/-18,0,0,0,-1,0,20\nGOTO/1,0,-6.2450\n",
+                               machine("fanuc-lathe"));
+  EXPECT_THAT(over.diags, HasSubstr(":9:1: error: an arc reaching radius -38, 38 past the spindle axis"));
+  // The same circle the short way round, under it, stays on the tool's side.
+  Compiled under = compile_text(head + "GOTO/10,0,8.2462\nGOTO/1,0,6.2450\nCIRCLE/-18,0,0,0,1,0,20\nGOTO/1,0,-6.2450\n",
+                                machine("fanuc-lathe"), {.certify = true});
+  EXPECT_TRUE(under.ok) << under.diags;
   for (const std::string& cl :
        {head + "GOTO/30,0,2\nGOTO/30,0,0\nGOTO/-0.8,0,0\nGOTO/-0.8,0,2\nRAPID\nGOTO/0,0,1\nGOTO/0,0,-1\nGOTO/12,0,-1\n",
         head + "GOTO/60,0,2\nGOTO/60,0,0\nGOTO/-6,0,0\nGOTO/-6,0,2\n",  // a round insert's R6
