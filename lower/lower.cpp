@@ -105,6 +105,14 @@ void Lowerer::record(const Record& r) {
       default: break;
     }
   }
+  if (r.id == MajorId::Mode || r.id == MajorId::Machin || r.id == MajorId::Unknown)
+    if (const Param* w = diameter_word(r); w || says_diameter(r)) {
+      d_.error(w ? w->loc : r.loc, (w ? upper(r.major) + " with " + upper(w->text) : upper(r.major)) +
+                                       " says X is a diameter: clpc reads a lathe's X as the radius (the CL standard; "
+                                       "the machine writes the diameter), so every X would be doubled; have the CAM "
+                                       "system output X as the radius");
+      return;
+    }
   // INDIRV says where the next motion sets off: a motion other than the CIRCLE or contour it
   // decides uses it up (a stale one reversed a later arc).
   switch (r.id) {
@@ -538,6 +546,27 @@ bool reads_as_motion(std::string_view major) {
 }
 
 }  // namespace
+
+// A record that says the CL's X is a diameter (DIAMTR/ON, XDIAM; the word in LATHE/DIAMETER,
+// MODE/TURN,DIAMETER, MACHIN/TURN,1,DIAMETER): passed through or ignored, every X was doubled
+// and certified (helper-54). DIAMTR/OFF, RADIUS say the radius clpc reads.
+namespace {
+bool is_diameter(std::string_view w) {
+  return iequals(w, "DIAMETER") || iequals(w, "DIAMTR") || iequals(w, "XDIAM") || iequals(w, "DIAM");
+}
+}  // namespace
+
+bool says_diameter(const Record& r) {
+  return r.id == MajorId::Unknown && is_diameter(r.major) &&
+         !(r.params.size() == 1 && (r.params[0].is("OFF") || r.params[0].is("RADIUS")));
+}
+
+const Param* diameter_word(const Record& r) {
+  if (r.id == MajorId::Unknown && !iequals(r.major, "LATHE")) return nullptr;
+  for (const Param& p : r.params)
+    if (p.is_word() && is_diameter(p.text)) return &p;
+  return nullptr;
+}
 
 bool motion_word_exact(std::string_view major) {
   for (const MotionWord& w : kMotionWords)

@@ -25,6 +25,8 @@ std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
 bool motion_word(std::string_view major);
 bool motion_word_exact(std::string_view major);  // the exact names of kMotionWords only
+bool says_diameter(const Record& r);          // DIAMTR/ON, XDIAM: X given as a diameter
+const Param* diameter_word(const Record& r);  // the word that says so in LATHE/DIAMETER, MODE/..., MACHIN/...
 std::string_view motion_hint(std::string_view major);
 // The sense of rotation a CIRCLE's axis stands for (lower/lower_motion.cpp).
 ir::ArcDir circle_convention(ir::CamSystem cam, ir::ArcLayout layout);

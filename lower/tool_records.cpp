@@ -116,7 +116,15 @@ ToolGeometry read_tool_geometry(const Record& r, Diagnostics* d) {
     v[n++] = r.params[k].number;
   }
   if (n == 0) {
-    if (d && r.id == MajorId::Cutter) d->error(r.end, "CUTTER: expected the tool diameter");
+    // A record without motion: what it says is not read, and said (CUTTER/DIAMTR,10,RADIUS,2
+    // stopped the post with a caret past the line's end; helper-51). A surface speed that needs
+    // the diameter says so where it does.
+    if (d && r.id == MajorId::Cutter)
+      d->warning(r.params.empty() ? r.end : r.params[0].loc,
+                 "CUTTER: expected the tool diameter first, found " +
+                     (r.params.empty() ? std::string("nothing") : "'" + std::string(r.params[0].name()) + "'") +
+                     ": the tool's geometry is not read",
+                 "tool-geometry");
     g.any = !g.kind.empty();
     return g;
   }

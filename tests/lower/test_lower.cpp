@@ -782,6 +782,12 @@ TEST(Lower, SelectWithoutToolAndCutterOffDoNotStopThePost) {
   EXPECT_EQ(err("LOADTL/1\nCUTTER/DISPLY,ON\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT/OFF\nGOTO/10,0,-1\n"), "");
   EXPECT_THAT(err("LOADTL/1\nGOTO/0,0,5\nGOTO/0,0,-1\nRETRCT\nGOTO/10,0,-1\n"), HasSubstr("4:1: RETRCT asks for a retract"));
   EXPECT_THAT(instrs("LOADTL/1\nSELECT/TOOL,2\nGOTO/0,0,5\n"), ::testing::Contains(HasSubstr("preselect")));
+  // A CUTTER whose first value is a word: not read, said at the word (it stopped the post with a
+  // caret past the line's end; helper-51).
+  EXPECT_EQ(err("CUTTER/DIAMTR,10,RADIUS,2\nLOADTL/1\nGOTO/0,0,5\n"), "");
+  EXPECT_THAT(warn("CUTTER/DIAMTR,10,RADIUS,2\n"),
+              ::testing::StrEq("1:8: CUTTER: expected the tool diameter first, found 'DIAMTR': the tool's geometry is "
+                               "not read\n"));
 }
 
 // The file's unit is its UNITS record's, wherever it stands. A UNITS/INCHES after moves fed in
@@ -841,6 +847,14 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
             "post, which clpc does not read; give the radius register on the CUTCOM (CUTCOM/LEFT,4) and the length "
             "register on the tool change (LOADTL/n,OSETNO,4)");
   EXPECT_EQ(err("LOADTL/4\nOFSTNO/4\nCUTCOM/LEFT\nGOTO/0,0,0\n"), "");
+  // X given as a diameter (helper-54): passed through or ignored, every X was doubled.
+  EXPECT_EQ(err("LATHE/DIAMETER\n"), "1:7: LATHE with DIAMETER says X is a diameter: clpc reads a lathe's X as the "
+                                      "radius (the CL standard; the machine writes the diameter), so every X would be "
+                                      "doubled; have the CAM system output X as the radius");
+  EXPECT_THAT(err("MODE/TURN,DIAMETER\n"), ::testing::StartsWith("1:11: MODE with DIAMETER says X is a diameter"));
+  EXPECT_THAT(err("MACHIN/TURN,1,XDIAM\n"), ::testing::StartsWith("1:15: MACHIN with XDIAM says X is a diameter"));
+  EXPECT_THAT(err("DIAMTR/ON\n"), ::testing::StartsWith("1:1: DIAMTR says X is a diameter"));
+  EXPECT_EQ(err("DIAMTR/OFF\nMODE/TURN\nLATHE/RADIUS\nCUTTER/DIAMTR,10\n"), "");
   EXPECT_THAT(err("LOADTL/4,OSETNO,14\nOFSTNO/14\n"), HasSubstr("2:8: OFSTNO/14: an offset register for the tool's "
                                                                   "length or its radius by the post, which clpc does not "
                                                                   "read: it cuts T4 with length register 14 and radius "
