@@ -99,6 +99,8 @@ class ProgramWriter : public Backend {
   // A cut (a feed move, an arc, a hole) with the spindle stopped: a warning (-Wspindle-stopped).
   void warn_spindle_stopped(SourceLoc loc, const char* what);
   virtual bool tcp_in_force() const { return false; }
+  // The spindle's rpm a dwell in revolutions is timed by (0: none known).
+  virtual double dwell_rpm() const { return spindle_ == ir::SpindleDir::Off ? 0 : spindle_rpm_; }
   // A mill's cycles and compensation: G17 first where the control may be in another plane.
   void xy_plane_code();
   // Motion blocks are absolute: restores G90 after a template left the control incremental.

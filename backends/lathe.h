@@ -37,6 +37,8 @@ class LatheBackend : public ProgramWriter {
   bool write_lead(double lead, double length, SourceLoc loc);
   void fix_spindle_speed(double radius, SourceLoc loc);
   void restore_surface_speed(SourceLoc loc);
+  double surface_rpm(double radius) const;
+  double dwell_rpm() const override;
   bool speed_on_centre(const ir::Move& mv, SourceLoc loc);  // a drill on the spindle's axis
 
   std::optional<ir::ThreadMark> thread_;  // the THREAD in force

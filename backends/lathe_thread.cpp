@@ -64,17 +64,31 @@ bool LatheBackend::write_lead(double lead, double length, SourceLoc loc) {
 // first cut's radius (within the clamp), and the surface speed comes back after THREAD/OFF.
 void LatheBackend::fix_spindle_speed(double radius, SourceLoc loc) {
   if (!surface_ || rpm_fixed_ || spindle_ == ir::SpindleDir::Off) return;
-  const double surface = m_.units == ir::Units::Inch ? surface_->speed / 0.3048 * 12 : surface_->speed * 1000;
-  const double r = std::abs(radius * k_);
-  double rpm = r > 1e-9 ? surface / (2 * kPi * r) : surface_clamp_;
-  if (surface_clamp_ > 0 && rpm > surface_clamp_) rpm = surface_clamp_;
-  rpm = std::max(1.0, std::floor(rpm));
+  const double rpm = std::max(1.0, std::floor(surface_rpm(radius)));
   e_.begin(loc);
   e_.code(m_.codes.spindle_rpm_mode);
   e_.word('S', rpm);
   e_.code(spindle_ == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
   e_.end();
   rpm_fixed_ = true;
+}
+
+// The rpm the control turns at under the surface speed in force, at `radius` (CL units), within
+// its clamp.
+double LatheBackend::surface_rpm(double radius) const {
+  const double surface = m_.units == ir::Units::Inch ? surface_->speed / 0.3048 * 12 : surface_->speed * 1000;
+  const double r = std::abs(radius * k_);
+  double rpm = r > 1e-9 ? surface / (2 * kPi * r) : surface_clamp_;
+  if (surface_clamp_ > 0 && rpm > surface_clamp_) rpm = surface_clamp_;
+  return rpm;
+}
+
+// A dwell in revolutions under constant surface speed lasts as long as the spindle takes to
+// make them at the speed the control holds where the tool stands (NX's groove-bottom dwell
+// under SMM was refused; helper-54).
+double LatheBackend::dwell_rpm() const {
+  if (surface_ && !rpm_fixed_ && spindle_ != ir::SpindleDir::Off) return surface_rpm(pos_.x());
+  return ProgramWriter::dwell_rpm();
 }
 
 void LatheBackend::restore_surface_speed(SourceLoc loc) {

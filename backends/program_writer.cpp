@@ -717,15 +717,16 @@ void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
   double seconds = d.value;
   if (d.revolutions) {
     // A dwell of so many turns lasts as long as the spindle takes to make them at the speed in
-    // force; controls dwell in seconds (or ms), so it is written as that time. Without a fixed
-    // speed (stopped, or constant surface speed on a lathe) no time is known.
-    if (spindle_ == ir::SpindleDir::Off || !(spindle_rpm_ > 0)) {
+    // force (under constant surface speed, the one it holds where the tool stands); controls
+    // dwell in seconds (or ms), so it is written as that time.
+    const double rpm = dwell_rpm();
+    if (!(rpm > 0)) {
       d_.error(loc, std::string("DELAY/REV: a dwell of ") + num_text(d.value) + " revolutions needs the spindle turning at a " +
-                        (spindle_ == ir::SpindleDir::Off ? "set speed, and it is stopped here" : "fixed rpm (not constant surface speed)") +
+                        (spindle_ == ir::SpindleDir::Off ? "set speed, and it is stopped here" : "known rpm") +
                         "; give the dwell in seconds");
       return;
     }
-    seconds = d.value * 60 / spindle_rpm_;
+    seconds = d.value * 60 / rpm;
   }
   e_.begin(loc);
   e_.code(m_.codes.dwell, TemplateVars().with(Var::Seconds, seconds).with(Var::Milliseconds, seconds * 1000));

@@ -446,3 +446,19 @@ TEST(LatheMotion, ADwellWrittenWithXIsSecondsOnADiameterLathe) {
   EXPECT_THAT(c.output, Not(HasSubstr("G04 X1.")));
   EXPECT_THAT(c.diags, HasSubstr("certified"));
 }
+
+// DELAY/REV under constant surface speed: the control holds 100 m/min at the groove's bottom,
+// 32 mm across: 994.7 rpm, so 3 turns take 0.181 s. It was refused (helper-54).
+TEST(LatheMotion, ADwellInRevolutionsUnderSurfaceSpeed) {
+  const std::string cl = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nSPINDL/SMM,100,MAXRPM,1500,CLW\nFEDRAT/MMPR,0.1\nRAPID\n"
+                         "GOTO/20,0,-15\nGOTO/16,0,-15\nDELAY/REV,3\nGOTO/20,0,-15\nRAPID\nGOTO/30,0,5\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr(" G04 U0.181\n"));
+  // Near the axis the clamp holds: 1500 rpm, 0.12 s.
+  std::string near = cl;
+  near.replace(near.find("GOTO/16,0,-15"), 13, "GOTO/5,0,-15");
+  Compiled clamped = compile_text(near, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(clamped.ok) << clamped.diags;
+  EXPECT_THAT(clamped.output, HasSubstr(" G04 U0.12\n"));
+}
