@@ -237,6 +237,11 @@ bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
                               std::to_string(tool_) + ", the tool loaded (TOOLNO describes a tool; a post that changes "
                               "tools on it would cut them with T" + std::to_string(toolno_named_) + ")",
                  "toolno");
+    else if (tool_ < 0 && info_.tools.empty())  // (a file that loads none: its first cut is refused; this says which record meant one)
+      d_.warning(toolno_loc_, "TOOLNO names tool " + std::to_string(toolno_named_) + ", and no LOADTL or TURRET follows it "
+                              "before the move at line " + std::to_string(loc.line) + ": no tool is loaded (TOOLNO "
+                              "describes a tool; LOADTL/" + std::to_string(toolno_named_) + " loads it)",
+                 "toolno");
     toolno_named_ = -1;
   }
   if (tool_ >= 0 || info_.tools.empty()) return true;

@@ -1334,4 +1334,15 @@ TEST(CamSystems, AToolnoWithNoLoadAfterItSaysWhichToolCuts) {
   EXPECT_THAT(loaded.diags, Not(HasSubstr("TOOLNO")));
   Compiled same = compile_text(head + "TOOLNO/3\nRAPID\nGOTO/50,0,10\n", machine("fanuc-mill"), {.certify = true});
   EXPECT_THAT(same.diags, Not(HasSubstr("TOOLNO")));
+  // A file that loads no tool at all: its first cut is refused, and the TOOLNO that meant one is
+  // named (helper-51). One that loads it later after a start point is CATIA's way: no word.
+  Compiled none = compile_text("UNITS/MM\nTOOLNO/5,10\nCUTTER/10\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,100\nRAPID\n"
+                               "GOTO/0,0,5\nGOTO/0,0,-1\n", machine("fanuc-mill"));
+  EXPECT_FALSE(none.ok);
+  EXPECT_THAT(none.diags, HasSubstr("part.cls:2:1: warning: TOOLNO names tool 5, and no LOADTL or TURRET follows it before "
+                                    "the move at line 7: no tool is loaded (TOOLNO describes a tool; LOADTL/5 loads it)"));
+  Compiled later = compile_text("UNITS/MM\nTOOLNO/5,10\nRAPID\nGOTO/0,0,50\nLOADTL/5\nSPINDL/RPM,1000,CLW\n"
+                                "FEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n", machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(later.ok) << later.diags;
+  EXPECT_THAT(later.diags, Not(HasSubstr("TOOLNO")));
 }
