@@ -17,7 +17,8 @@ bool expand_hole(const ir::Hole& h, const ir::CycleSpec& c, const ExpandContext&
                      " cycle cannot be written as plain moves: the machine needs the canned cycle for it, " +
                      (x.lathe ? std::string("and a lathe writes every drilling cycle as moves (its G83/G84 are "
                                             "live-tool cycles clpc does not post)")
-                              : "and the machine has none (" + std::string(key) + " is empty)"));
+                      : x.why_moves ? std::string("but ") + x.why_moves
+                                    : "and the machine has none (" + std::string(key) + " is empty)"));
     return false;
   }
   const ir::Vec3 a = h.axis;

@@ -19,6 +19,7 @@ struct ExpandContext {
   double spindle_rpm;      // for BoreStop's restart (0: unknown)
   ir::SpindleDir spindle_dir;
   bool lathe = false;      // a lathe expands every cycle (why a tap cannot be written, said)
+  const char* why_moves = nullptr;  // why a machine with the cycle writes this hole as moves
 };
 
 // Appends the moves for hole `h` of cycle `c`. False (and an error) for cycles that cannot

@@ -813,6 +813,16 @@ class Kinematics : public Pass {
     std::vector<ir::Instr> moves;
     ExpandContext x{ctx_->machine.cycles.peck_clearance * ctx_->from_output(), feed_.value, feed_.mode, feed_known_,
                     ctx_->machine.cycles.return_initial, spindle_.speed, spindle_.dir};
+    // (The machine may have the cycle: the tilt is why it cannot be used. helper-52 was told
+    // codes.cycle_tap is empty on a head-head machine that has G84.)
+    const Codes& k = ctx_->machine.codes;
+    const CodeTemplate& code = c.kind == ir::CycleKind::FineBore   ? k.cycle_fine_bore
+                               : c.kind == ir::CycleKind::BackBore ? k.cycle_back_bore
+                               : c.left_hand                       ? k.cycle_tap_left
+                                                                   : k.cycle_tap;
+    if (!code.empty())
+      x.why_moves = "this hole cannot take one: its axis is not the machine's Z here (a tilting head, or tool centre "
+                    "point control), along which a canned cycle drills";
     if (!expand_hole(h, c, x, loc, moves, *d_)) return;
     for (ir::Instr& in : moves) {
       if (auto* m = std::get_if<ir::Move>(&in.op)) motion(*m, in.loc, out);

@@ -369,6 +369,13 @@ TEST(KinematicsPass, HeadTableMachineFromToml) {
   Compiled c = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/1000\nFEDRAT/100\nGOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.5,0,0.866\n", m);
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("B30."));
+  // A tap along the tilted head: the machine has G84, the hole cannot take it (it was said that
+  // codes.cycle_tap is empty; helper-52).
+  Compiled tap = compile_text("UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/10,0,20,0.5,0,0.866\n"
+                              "CYCLE/TAP,DEPTH,7,PITCH,1,CLEAR,1\nGOTO/10,0,0,0.5,0,0.866\nCYCLE/OFF\n", m);
+  EXPECT_FALSE(tap.ok);
+  EXPECT_THAT(tap.diags, HasSubstr(":7:1: error: a tap cycle cannot be written as plain moves: the machine needs the canned "
+                                   "cycle for it, but this hole cannot take one: its axis is not the machine's Z here"));
 }
 
 namespace {
