@@ -855,6 +855,12 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     if (lim >= 0) k.retract_on_limit = lim == 1;
     s->length("retract_distance", k.retract_distance);
     s->length("pivot", k.pivot);
+    // The pivot is the head's: on a machine whose rotaries all turn the table it changed nothing,
+    // without a word (helper-52).
+    if (const toml::node* n = s->find("pivot"); n && k.pivot != 0 &&
+        std::none_of(k.rotaries.begin(), k.rotaries.end(), [](const RotaryAxis& a) { return !a.table; }))
+      s->error(*n, "pivot", "a pivot is the distance from a tilting head's axes to the tool: this machine has no head "
+                            "axis (side = \"head\"), so it would change nothing");
     if (auto t = s->sub("travel")) {
       for (int i = 0; i < 3; ++i) {
         const char* key = i == 0 ? "x" : i == 1 ? "y" : "z";

@@ -673,6 +673,10 @@ TEST(ShopFloor, AxesOfOneNameAndModesThatCannotBeCancelledAreRefused) {
   std::string parallel = ac;
   parallel.replace(parallel.find("axis = [1.0, 0.0, 0.0]"), 22, "axis = [0.0, 0.0, -1.0]");
   EXPECT_THAT(load_error(parallel), HasSubstr("shop.toml:12:8: error: ac.kinematics.axes[1].axis: parallel to A's axis"));
+  // A pivot on a machine with no head axis changed nothing, without a word (helper-52).
+  EXPECT_THAT(load_error("[tt]\ninherits = \"haas-umc750\"\n[tt.kinematics]\npivot = 150.0\n"),
+              HasSubstr("shop.toml:4:9: error: tt.kinematics.pivot: a pivot is the distance from a tilting head's axes to "
+                        "the tool: this machine has no head axis (side = \"head\"), so it would change nothing"));
   // A scale on what is no length: F with scale 2 fed twice as fast.
   EXPECT_THAT(load_error("[f2]\ninherits = \"fanuc-mill\"\n[f2.format]\nF = { scale = 2.0 }\n"),
               HasSubstr("shop.toml:4:15: error: f2.format.F.scale: 2 on F, which is no length"));
