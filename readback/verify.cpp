@@ -191,6 +191,10 @@ void Comparison::consume(size_t n) {
 // shorter, and never longer before a cut.
 void Comparison::dwell_ok() {
   if (cycle_on_ || groove_ || thread_on_ || rough_) return;
+  if (prog_dwell_ == 0 && cl_dwell_ == 0 && cl_dwell_known_) {  // (almost every point)
+    dwell_line_ = 0;
+    return;
+  }
   const double slack = dwell_slack();
   const bool shorter = prog_dwell_ < cl_dwell_ - slack, longer = prog_dwell_ > cl_dwell_ + slack;
   if (cl_dwell_known_ && (shorter || (longer && dwell_in_cut_))) {
