@@ -116,10 +116,7 @@ void ProgramWriter::after_template(const CodeTemplate& t) {
     // rotary axes move only if the template names them.
     e_.forget_linear();
     for (const CodeTemplate::Word& w : t.words)
-      if (!w.empty() && w[0].var < 0 && !w[0].literal.empty()) {
-        char l = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
-        if (l == 'A' || l == 'B' || l == 'C') e_.forget(l);
-      }
+      if (const char l = CodeTemplate::letter(w); l == 'A' || l == 'B' || l == 'C') e_.forget(l);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "machine/code_template.h"
 
+#include <cctype>
+
 namespace clpc {
 
 std::string_view var_name(Var v) {
@@ -35,10 +37,14 @@ uint32_t CodeTemplate::vars_used() const {
   return m;
 }
 
+char CodeTemplate::letter(const Word& w) {
+  if (w.empty() || w[0].var >= 0 || w[0].literal.empty()) return 0;
+  return char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+}
+
 bool CodeTemplate::has_g_code() const {
   for (const Word& w : words)
-    if (!w.empty() && w[0].var < 0 && !w[0].literal.empty() && (w[0].literal[0] == 'G' || w[0].literal[0] == 'g'))
-      return true;
+    if (letter(w) == 'G') return true;
   return false;
 }
 

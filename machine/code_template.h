@@ -46,6 +46,9 @@ struct CodeTemplate {
   bool uses(Var v) const { return (vars_used() >> unsigned(v)) & 1u; }
   // True if any literal word starts with G (the block may change modal state).
   bool has_g_code() const;
+  // The address a word is written in, in capitals (G43 Z{offset}: 'Z'); 0 when the word starts
+  // with a placeholder.
+  static char letter(const Word& w);
 };
 
 // Parses `text`; on failure returns false with a message in `error`.

@@ -323,9 +323,8 @@ class Reader {
 // dwell's time (G04 X{seconds}). "" when there is none.
 std::string number_in_an_axis_word(const CodeTemplate& t) {
   for (const CodeTemplate::Word& w : t.words) {
-    if (w.empty() || w[0].var >= 0 || w[0].literal.empty()) continue;
-    const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
-    if (std::string_view("XYZABCUVW").find(letter) == std::string_view::npos) continue;
+    const char letter = CodeTemplate::letter(w);
+    if (letter == 0 || std::string_view("XYZABCUVW").find(letter) == std::string_view::npos) continue;
     for (const CodeTemplate::Piece& p : w) {
       if (p.var < 0) continue;
       switch (Var(p.var)) {
@@ -483,8 +482,8 @@ void check_job_options(Reader& p, const Machine& m) {
 // 1.25 s, G04 P{seconds} P1 for 1 s (helper-52). "" when the word reads as written.
 std::string dwell_word_problem(const CodeTemplate& t, const Machine& m) {
   for (const CodeTemplate::Word& w : t.words) {
-    if (w.size() < 2 || w[0].var >= 0 || w[0].literal.size() != 1 || w[1].var < 0) continue;
-    const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+    const char letter = CodeTemplate::letter(w);
+    if (letter == 0 || w.size() < 2 || w[0].literal.size() != 1 || w[1].var < 0) continue;
     const Var v = Var(w[1].var);
     if ((letter != 'P' && letter != 'X' && letter != 'U') || (v != Var::Seconds && v != Var::Milliseconds)) continue;
     const AddressFormat& f = m.format(letter);

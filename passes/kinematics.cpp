@@ -55,9 +55,8 @@ class Kinematics : public Pass {
     singular_ = find_singular_direction();
     // The address each angle of codes.plane_on is written with (I J K in "I{i} J{j} K{k}").
     for (const CodeTemplate::Word& w : ctx.machine.codes.plane_on.words) {
-      if (w.size() < 2 || w[0].var >= 0 || w[0].literal.empty()) continue;
-      const char letter = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
-      if (letter < 'A' || letter > 'Z') continue;
+      const char letter = CodeTemplate::letter(w);
+      if (w.size() < 2 || letter < 'A' || letter > 'Z') continue;
       for (const CodeTemplate::Piece& piece : w)
         if (piece.var >= int(Var::I) && piece.var <= int(Var::K))
           plane_angle_step_[size_t(piece.var - int(Var::I))] = std::pow(10.0, -ctx.machine.format(letter).decimals);

@@ -65,6 +65,7 @@ class Comparison : public ProgramSink {
     for (const RotaryAxis& r : m.kinematics.rotaries)
       if (r.name.size() == 1) rotary_increment_ = std::max(rotary_increment_, std::abs(dequantize(1, m.format(r.name[0]))));
     table_ = !info.offsets.empty();
+    dwell_slack_ = dwell_slack(m);
   }
 
   void operation(const ir::Operation& op) override;
@@ -79,7 +80,7 @@ class Comparison : public ProgramSink {
 
   void consume(size_t n);
   void dwell_ok();
-  double dwell_slack() const;
+  static double dwell_slack(const Machine& m);
   void spindle_ok(const TipSegment& s);
   void register_ok(const TipSegment& s);
   // A cut across the tool axis with the cutter compensation the CL has in force (none, left,
@@ -412,6 +413,7 @@ class Comparison : public ProgramSink {
   bool have_cl_feed_ = false;
   double increment_ = 0;      // one output increment of Z
   double rotary_increment_ = 0;  // the coarsest rotary axis's output increment, degrees
+  double dwell_slack_ = 0;       // a dwell's rounding in this machine's words (dwell_slack)
   Vec3 hole_point_ = Vec3::Zero(), hole_axis_ = Vec3::UnitZ(), hole_bottom_ = Vec3::Zero();
   bool have_hole_ = false;
   struct Bow {

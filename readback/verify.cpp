@@ -195,7 +195,7 @@ void Comparison::dwell_ok() {
     dwell_line_ = 0;
     return;
   }
-  const double slack = dwell_slack();
+  const double slack = dwell_slack_;
   const bool shorter = prog_dwell_ < cl_dwell_ - slack, longer = prog_dwell_ > cl_dwell_ + slack;
   if (cl_dwell_known_ && (shorter || (longer && dwell_in_cut_))) {
     std::string cl = "the CL has no DELAY here";
@@ -215,10 +215,10 @@ void Comparison::dwell_ok() {
 // A dwell's rounding: half an increment of the word it is written in (P, X, U; whole
 // milliseconds where P takes no point), 1.5 ms at least. (The compile writes the time rounded
 // to that word, so no more is lost.)
-double Comparison::dwell_slack() const {
+double Comparison::dwell_slack(const Machine& m) {
   double slack = 0.0015;
   for (char letter : {'P', 'X', 'U'}) {
-    const AddressFormat& f = m_.format(letter);
+    const AddressFormat& f = m.format(letter);
     if (letter != 'P' || f.point != AddressFormat::Point::Never)
       slack = std::max(slack, 0.5 * std::pow(10.0, -f.decimals) + 1e-9);
   }
@@ -846,7 +846,7 @@ void Comparison::drills_as_asked(size_t j, const ir::CycleSpec& spec, const Vec3
     const double dwell = s.raw.dwell + (out ? out->raw.dwell_before : 0.0);
     // (A bore-dwell written as moves dwells with a G04 before the move out: the hole's, not a DELAY.)
     if (out) prog_dwell_ -= out->raw.dwell_before;
-    if (std::abs(dwell - spec.dwell) > dwell_slack())
+    if (std::abs(dwell - spec.dwell) > dwell_slack_)
       wrong("the tool dwells " + fixed_text(dwell, 3) + " s at the bottom, not " + fixed_text(spec.dwell, 3) + " s");
   }
   if ((spec.kind == K::Peck || spec.kind == K::ChipBreak) && spec.peck > 0) {
