@@ -275,15 +275,34 @@ class Comparison : public ProgramSink {
   bool offsets_written() const { return m_.is_lathe() || m_.codes.length_offset.uses(Var::Offset); }
 
   // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
-  // it) is the cut made at rapid traverse; a rapid the post adds (a retract, a positioning
-  // move) leaves the path.
+  // it) is the cut made at rapid traverse. One that leaves the path (a retract, a positioning
+  // move) is the post's own where the tool comes from no CL point of its own (the first move
+  // after a tool change), or where the program comes back to the last point before it cuts on
+  // (a retract to unwind or to change branch, RotaryContinuity). Anywhere else the CL's cut
+  // from the last point is not made: a G00 through the stock and a feed back up to the point
+  // passed (helper-57), and so did a retract, re-tilt and plunge in place of an operation's
+  // first cut.
   template <class OnPath>
-  void no_rapid_cut(size_t j, OnPath on_path) {
+  void no_rapid_cut(size_t j, OnPath on_path, const Vec3& to) {
+    size_t back = 0;  // past the last segment that comes back to the last point
+    for (size_t k = 0; k < j && k < win_.size(); ++k)
+      if (have_prev_ && finite(win_[k].end) && (win_[k].end - prev_).norm() <= tol_) back = k + 1;
     for (size_t i = 0; i < j && i < win_.size(); ++i) {
       const TipSegment& s = win_[i];
-      if (s.raw.kind != gcode::Segment::Kind::Rapid || s.raw.from_cycle || !finite(s.start) || !finite(s.end)) continue;
-      if ((s.end - s.start).norm() > tol_ && on_path(s.start) <= tol_ && on_path(s.end) <= tol_) {
+      if (s.raw.kind != gcode::Segment::Kind::Rapid || s.raw.from_cycle) continue;
+      // (A move in machine coordinates, G53 or G28, goes where no part position is known.)
+      const bool placed = finite(s.start) && finite(s.end);
+      const double off = placed ? std::max(on_path(s.start), on_path(s.end)) : kInf;
+      if (placed && (s.end - s.start).norm() > tol_ && off <= tol_) {
         fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
+        return;
+      }
+      if (off > tol_ && have_prev_ && cut_from_point_ && i >= back) {
+        fail(loc_, s.raw.line,
+             "the program leaves the CL's cut from " + xyz(prev_) + " to " + xyz(to) + " at rapid traverse (G00), " +
+                 (placed ? fixed_text(off, 4) + " off its path" : std::string("in machine coordinates")) +
+                 ": that cut is not made",
+             placed ? off : 0);
         return;
       }
     }
@@ -381,6 +400,9 @@ class Comparison : public ProgramSink {
   SourceLoc loc_;
   Vec3 prev_ = Vec3::Zero();  // the last CL point
   bool have_prev_ = false;
+  // prev_ is a CL point the tool has been followed to with the tool now in the spindle (not
+  // the last tool's: after a tool change the post positions the new tool as it must).
+  bool cut_from_point_ = false;
   Vec3 at_ = Vec3::Zero();    // where the program has taken the tool (the last segment passed)
   Vec3 at_axis_ = Vec3::Zero();  // the tool axis there
   bool have_at_ = false;

@@ -54,6 +54,11 @@ void Comparison::operation(const ir::Operation& op) {
             want_h_ = x.length_offset > 0 ? x.length_offset : x.tool;
             want_tool_loc_ = loc_;
             tool_reported_ = false;
+            cut_from_point_ = false;
+          } else if constexpr (std::is_same_v<T, ir::Insert>) {
+            // A block of the user's that may move the axes (G53 Z0.): the CL's next cut starts
+            // where it leaves the tool, which the post positions as after a tool change.
+            if (may_move_axes(op.str(x.text))) cut_from_point_ = false;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
           } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
@@ -581,6 +586,7 @@ void Comparison::reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, 
   }
   consume(j + 1);
   dwell_ok();
+  cut_from_point_ = true;
 }
 
 void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
@@ -591,8 +597,9 @@ void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
   double nearest;
   size_t at;
   if (already_there(p, &axis)) {
+    cut_from_point_ = true;
   } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) {
-    if (!rapid) no_rapid_cut(*j, on_path);
+    if (!rapid) no_rapid_cut(*j, on_path, p);
     reached(*j, p, axis, rapid, passed_);
   } else {
     missed(p, nearest, at, "CL point");
@@ -710,7 +717,7 @@ void Comparison::arc(const ir::Arc& a0) {
       have_hole_ = false;
       return;
     }
-    no_rapid_cut(*j, on_arc);
+    no_rapid_cut(*j, on_arc, a.end);
     size_t k = 0;
     for (size_t s = 0; s <= *j; ++s) {
       const TipSegment& g = win_[s];

@@ -662,3 +662,41 @@ TEST(Verify, ADwellAtAGroovesLastPlungeIsTheGroovesOwn) {
   EXPECT_THAT(c.output, HasSubstr("G04 U0.5\n"));
   EXPECT_FALSE(verify_text(cl, machine("fanuc-lathe"), edit(c.output, "G04 U0.5\n", "G04 U5.\n")).ok);
 }
+
+// A G00 that leaves a CL cut (through the stock) followed by a feed back to the cut's end was
+// passed: rapids were taken for the post's own positioning anywhere (helper-57). They are only
+// where the tool comes from no point of this tool's, or where the program comes back to the
+// last point before it cuts on (RotaryContinuity's retract and re-engage).
+TEST(Verify, ARapidThatLeavesACutFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,300\n"
+                         "GOTO/0,0,-2\nGOTO/50,0,-2\nGOTO/50,50,-2\nRAPID\nGOTO/50,50,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  Compiled detour = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 G00 X25. Z-30.\nN85 G01 X50. Z-2.\n"));
+  EXPECT_FALSE(detour.ok);
+  EXPECT_THAT(first_error(detour.diags),
+              HasSubstr("part.cl:8:1: error: the program leaves the CL's cut from (0.0000, 0.0000, -2.0000) to (50.0000, 0.0000, "
+                        "-2.0000) at rapid traverse (G00), 28.0000 off its path: that cut is not made [G-code line 14]"));
+  // Out and back to the point the cut starts from, then the cut: the cut is made.
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N76 G00 Z10.\nN78 G01 Z-2.\nN80 X50.\n")).ok);
+  // Up in machine coordinates and down over the cut's end: the same cut not made.
+  Compiled up = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N76 G53 G00 Z0.\nN78 X50.\nN80 G01 Z-2.\n"));
+  EXPECT_FALSE(up.ok);
+  EXPECT_THAT(first_error(up.diags), HasSubstr("part.cl:8:1: error: the program leaves the CL's cut from (0.0000, 0.0000, -2.0000) to "
+                                              "(50.0000, 0.0000, -2.0000) at rapid traverse (G00), in machine coordinates: that "
+                                              "cut is not made"));
+}
+
+// An operation whose first move is a cut from where the last one left the tool, at another
+// tilt: the post retracts, re-tilts and plunges over the cut's end, so the cut is not made
+// (certified before; helper-57). The certificate refuses it.
+TEST(Verify, AReTiltInPlaceOfAnOperationsFirstCutIsRefused) {
+  const std::string cl =
+      "TOOL PATH/OP1,TOOL,EM\nTLDATA/MILL,0.5,0,4,0\nUNITS/INCHES\nLOAD/TOOL,1\nSPINDL/RPM,3000,CLW\nRAPID\n"
+      "GOTO/1,1,3,0.5,0,0.8660254\nFEDRAT/IPM,20\nGOTO/1,1,0,0.5,0,0.8660254\nGOTO/2,1,0,0.5,0,0.8660254\nEND-OF-PATH\n"
+      "TOOL PATH/OP2,TOOL,EM\nFEDRAT/IPM,20\nGOTO/2,2,0,0,0,1\nGOTO/3,2,0,0,0,1\nRAPID\nGOTO/3,2,3,0,0,1\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  EXPECT_FALSE(c.ok);
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:14:1: error: the program leaves the CL's cut from (2.0000, 1.0000, 0.0000) to (2.0000, "
+                                 "2.0000, 0.0000) at rapid traverse (G00), in machine coordinates: that cut is not made"));
+}
