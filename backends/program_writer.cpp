@@ -737,6 +737,11 @@ void ProgramWriter::write_dwell(const ir::Dwell& d, SourceLoc loc) {
 std::string ProgramWriter::unkept_code(std::string_view text) const {
   const bool lathe = m_.is_lathe();
   auto is = [](double g, double want) { return std::abs(g - want) < 1e-6; };
+  // #5221=100. moved G54's X by 100 mm, certified, where G10 L2 P1 X100. was refused (helper-57).
+  if (const std::string var = system_variable_set(text); !var.empty())
+    return "sets the control's system variable " + var + " (work and tool offsets and modal state live there), so " +
+           "the program's positions or offsets after it could mean other places: the frames (SET, CAMERA, MSYS) " +
+           "and the tool records give them; the program's own variables are #1 to #999";
   for (double g : code_numbers(text, 'G')) {
     const std::string code = "G" + num_text(g);
     if (is(g, 41) || is(g, 42))

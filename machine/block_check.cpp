@@ -137,6 +137,45 @@ std::string axis_words(std::string_view t) {
   return dwell ? std::string() : letters;
 }
 
+std::string system_variable_set(std::string_view t) {
+  auto blank = [&](size_t& i) {
+    while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
+  };
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (t[i] == '(') {
+      const size_t close = t.find(')', i);
+      if (close == std::string_view::npos) break;
+      i = close;
+      continue;
+    }
+    // A '#' read as a value (X#101, #1=#5221) is preceded by a letter, '=', an operator or '['.
+    if (t[i] != '#') continue;
+    size_t before = i;
+    while (before > 0 && (t[before - 1] == ' ' || t[before - 1] == '\t')) --before;
+    if (before > 0 && !digit(t[before - 1]) && t[before - 1] != '.' && t[before - 1] != ')') continue;
+    size_t j = i + 1;
+    std::string name;
+    if (j < t.size() && t[j] == '[') {
+      const size_t close = t.find(']', j);
+      if (close == std::string_view::npos) break;
+      name = "#[" + std::string(t.substr(j + 1, close - j - 1)) + "]";
+      j = close + 1;
+    } else {
+      const size_t start = j;
+      while (j < t.size() && digit(t[j])) ++j;
+      if (j == start) continue;
+      name = "#" + std::string(t.substr(start, j - start));
+    }
+    blank(j);
+    if (j >= t.size() || t[j] != '=' || (j + 1 < t.size() && t[j + 1] == '=')) continue;
+    if (name[1] == '[') return name;
+    long n = 0;
+    for (char c : name.substr(1)) n = std::min(n * 10 + (c - '0'), 100000L);
+    if (n >= 1000) return name;
+  }
+  return "";
+}
+
 std::vector<double> code_numbers(std::string_view t, char letter) {
   std::vector<double> out;
   for (size_t i = 0; i < t.size(); ++i) {

@@ -19,6 +19,11 @@ bool is_control_block(std::string_view text, std::string& why);
 // comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.
 std::string axis_words(std::string_view block);
 
+// The system variable a macro statement in the block sets ("#5221" for `#5221=100.`, "#[...]"
+// for one set through an expression, whose number cannot be told), or "". Variables from #1000
+// up are the control's own (work and tool offsets, modal state); #1-#999 are the program's.
+std::string system_variable_set(std::string_view block);
+
 // The numbers of the address words with `letter` (G or M) in a control block, outside comments,
 // in the order met (G68.2 -> 68.2).
 std::vector<double> code_numbers(std::string_view block, char letter);

@@ -956,6 +956,11 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
                                "(SET, CAMERA, MSYS) give them"},
       {"INSERT/H05", "the block 'H05' (INSERT, PREFUN or AUXFUN) changes the tool length register (H), which the post "
                      "selects from LOADTL: every Z after it would be off"},
+      // A work offset written through its system variable (helper-57): G54's X moved 100 mm.
+      {"INSERT/#5221 = 100.", "the block '#5221 = 100.' (INSERT, PREFUN or AUXFUN) sets the control's system variable "
+                              "#5221 (work and tool offsets and modal state live there), so the program's positions or "
+                              "offsets after it could mean other places: the frames (SET, CAMERA, MSYS) and the tool "
+                              "records give them; the program's own variables are #1 to #999"},
       {"INSERT/M97 P65", "the block 'M97 P65' (INSERT, PREFUN or AUXFUN) calls a local subprogram (M97, Haas): the "
                          "control jumps to the N number it names, and the post writes no subprograms"},
       {"AUXFUN/30", "the block 'M30' (INSERT, PREFUN or AUXFUN) ends the program (M30): the blocks after it would never "
