@@ -422,7 +422,7 @@ class Comparison : public ProgramSink {
   SourceLoc cl_dwell_first_, cl_dwell_loc_;  // the first and last DELAY summed
   bool dwell_in_cut_ = false;   // a G04 summed stands before a feed move
   int dwell_line_ = 0;          // the G-code line to name: the last G04's move, else the first consumed
-  double g04_seconds_ = 0;      // every G04's time consumed so far (the rest came after the last move)
+  double dwell_consumed_ = 0;   // every dwell consumed so far, G04 or a cycle's (the rest came after the last move)
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known
   bool direction_said_ = false;  // a cut with the spindle turning the other way was reported
   bool spindle_said_ = false;  // a cut with the spindle stopped reported, and it has not turned since

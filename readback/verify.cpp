@@ -149,8 +149,9 @@ void Comparison::end() {
     consume(1);
   }
   // A G04 after the last move belongs to no segment: what the program dwelt in all, less what
-  // came before its moves.
-  prog_dwell_ += std::max(0.0, rd_.totals().dwell_minutes * 60 - g04_seconds_);
+  // came before its moves and at its holes' bottoms (the cycles' P counted as the missing
+  // G04's: a DELAY after the last move deleted passed; helper-55).
+  prog_dwell_ += std::max(0.0, rd_.totals().dwell_minutes * 60 - dwell_consumed_);
   dwell_ok();
   check_travel();
 }
@@ -171,7 +172,7 @@ void Comparison::consume(size_t n) {
   for (size_t i = 0; i < n && !win_.empty(); ++i) {
     const gcode::Segment& raw = win_.front().raw;
     prog_dwell_ += raw.dwell_before;
-    g04_seconds_ += raw.dwell_before;
+    dwell_consumed_ += raw.dwell_before + raw.dwell;
     if (raw.dwell_before > 0 || dwell_line_ == 0) dwell_line_ = raw.line;
     if (raw.dwell_before > 0 && raw.kind != gcode::Segment::Kind::Rapid) dwell_in_cut_ = true;
     check_limits(win_.front());

@@ -700,3 +700,16 @@ TEST(Verify, AReTiltInPlaceOfAnOperationsFirstCutIsRefused) {
   EXPECT_THAT(c.diags, HasSubstr("part.cls:14:1: error: the program leaves the CL's cut from (2.0000, 1.0000, 0.0000) to (2.0000, "
                                  "2.0000, 0.0000) at rapid traverse (G00), in machine coordinates: that cut is not made"));
 }
+
+// A DELAY after the last move, its G04 deleted, passed where the program drills with a dwell
+// at the bottom: the holes' dwells were counted as the missing G04 (helper-55).
+TEST(Verify, ADelayAfterTheLastMoveIsNotMadeByTheHolesDwells) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20\n"
+                         "CYCLE/DRILL,FEDTO,5,RAPTO,2,MMPM,100,DWELL,2\nGOTO/10,10,0\nGOTO/30,10,0\nCYCLE/OFF\n"
+                         "RAPID\nGOTO/30,10,50\nDELAY/4\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  Compiled gone = verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P4000\n", ""));
+  EXPECT_FALSE(gone.ok);
+  EXPECT_THAT(first_error(gone.diags), HasSubstr("error: the program dwells 0.000 s before this move, the CL's DELAY (line 12) is 4.000 s"));
+}
