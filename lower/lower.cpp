@@ -561,10 +561,12 @@ bool says_diameter(const Record& r) {
          !(r.params.size() == 1 && (r.params[0].is("OFF") || r.params[0].is("RADIUS")));
 }
 
+// (The word followed by OFF turns it off: LATHE/DIAMETER,OFF was refused; helper-55.)
 const Param* diameter_word(const Record& r) {
   if (r.id == MajorId::Unknown && !iequals(r.major, "LATHE")) return nullptr;
-  for (const Param& p : r.params)
-    if (p.is_word() && is_diameter(p.text)) return &p;
+  for (size_t i = 0; i < r.params.size(); ++i)
+    if (r.params[i].is_word() && is_diameter(r.params[i].text) && !(i + 1 < r.params.size() && r.params[i + 1].is("OFF")))
+      return &r.params[i];
   return nullptr;
 }
 

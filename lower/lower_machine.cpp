@@ -529,6 +529,12 @@ void Lowerer::lower_units(const Record& r) {
 // cannot be told which offset it is.
 void Lowerer::lower_ofstno(const Record& r) {
   ParamReader ps(r, d_);
+  static const char* const kWhat = "an offset register for the tool's length or its radius by the post, which clpc does not read";
+  if (ps.size() >= 1 && ps[0].is("OFF")) {
+    d_.error(ps[0].loc, std::string("OFSTNO/OFF: cancels ") + kWhat + "; clpc applies the tool's length offset from "
+                        "LOADTL and its radius offset from CUTCOM (CUTCOM/OFF cancels it)");
+    return;
+  }
   auto n = ps.integer(0, "the offset register", 0, 9999);
   if (!n) return;
   if (ps.size() > 1) {
@@ -537,17 +543,23 @@ void Lowerer::lower_ofstno(const Record& r) {
   }
   if (tool_ >= 0 && *n == tool_ && loaded_offset_ == tool_) return;
   const std::string reg = std::to_string(*n);
+  // What to write instead: only what the file does not say already, and never register 0,
+  // which is no offset at all (helper-55).
+  auto instead = [&](bool radius, bool length, const std::string& t) {
+    if (*n == 0) return std::string("; register 0 is no offset at all: remove the OFSTNO");
+    std::string s;
+    if (radius) s += "the radius register on the CUTCOM (CUTCOM/LEFT," + reg + ")";
+    if (length) s += std::string(s.empty() ? "" : " and ") + "the length register on the tool change (LOADTL/" + t + ",OSETNO," + reg + ")";
+    return "; if it is " + std::string(radius && length ? "either" : radius ? "the radius" : "the length") + ", give " + s;
+  };
   if (tool_ < 0) {
-    d_.error(ps[0].loc, "OFSTNO/" + reg + " before any tool is loaded: an offset register for the tool's length or its "
-                        "radius by the post, which clpc does not read; give the radius register on the CUTCOM "
-                        "(CUTCOM/LEFT," + reg + ") and the length register on the tool change (LOADTL/n,OSETNO," + reg + ")");
+    d_.error(ps[0].loc, "OFSTNO/" + reg + " before any tool is loaded: " + kWhat + instead(true, true, "n"));
     return;
   }
   const std::string t = std::to_string(tool_);
-  d_.error(ps[0].loc, "OFSTNO/" + reg + ": an offset register for the tool's length or its radius by the post, which clpc "
-                      "does not read: it cuts T" + t + " with length register " + std::to_string(loaded_offset_) +
-                      " and radius register " + t + "; give the radius register on the CUTCOM (CUTCOM/LEFT," + reg +
-                      ") and the length register on the tool change (LOADTL/" + t + ",OSETNO," + reg + ")");
+  d_.error(ps[0].loc, "OFSTNO/" + reg + ": " + kWhat + ": it cuts T" + t + " with length register " +
+                      std::to_string(loaded_offset_) + " and radius register " + t +
+                      instead(*n != tool_, *n != loaded_offset_, t));
 }
 
 }  // namespace clpc

@@ -840,12 +840,12 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   // register than the tool's own is refused; the tool's own asks for nothing.
   EXPECT_EQ(err("LOADTL/3\nOFSTNO/24\nCUTCOM/LEFT\nGOTO/0,0,0\n"),
             "2:8: OFSTNO/24: an offset register for the tool's length or its radius by the post, which clpc does not "
-            "read: it cuts T3 with length register 3 and radius register 3; give the radius register on the CUTCOM "
-            "(CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/3,OSETNO,24)");
+            "read: it cuts T3 with length register 3 and radius register 3; if it is either, give the radius register "
+            "on the CUTCOM (CUTCOM/LEFT,24) and the length register on the tool change (LOADTL/3,OSETNO,24)");
   EXPECT_EQ(err("OFSTNO/4\nLOADTL/4\n"),
             "1:8: OFSTNO/4 before any tool is loaded: an offset register for the tool's length or its radius by the "
-            "post, which clpc does not read; give the radius register on the CUTCOM (CUTCOM/LEFT,4) and the length "
-            "register on the tool change (LOADTL/n,OSETNO,4)");
+            "post, which clpc does not read; if it is either, give the radius register on the CUTCOM (CUTCOM/LEFT,4) "
+            "and the length register on the tool change (LOADTL/n,OSETNO,4)");
   EXPECT_EQ(err("LOADTL/4\nOFSTNO/4\nCUTCOM/LEFT\nGOTO/0,0,0\n"), "");
   // X given as a diameter (helper-54): passed through or ignored, every X was doubled.
   EXPECT_EQ(err("LATHE/DIAMETER\n"), "1:7: LATHE with DIAMETER says X is a diameter: clpc reads a lathe's X as the "
@@ -854,11 +854,18 @@ TEST(Lower, FixtureOrientAndACornerRadiusBeyondTheRadius) {
   EXPECT_THAT(err("MODE/TURN,DIAMETER\n"), ::testing::StartsWith("1:11: MODE with DIAMETER says X is a diameter"));
   EXPECT_THAT(err("MACHIN/TURN,1,XDIAM\n"), ::testing::StartsWith("1:15: MACHIN with XDIAM says X is a diameter"));
   EXPECT_THAT(err("DIAMTR/ON\n"), ::testing::StartsWith("1:1: DIAMTR says X is a diameter"));
-  EXPECT_EQ(err("DIAMTR/OFF\nMODE/TURN\nLATHE/RADIUS\nCUTTER/DIAMTR,10\n"), "");
+  EXPECT_EQ(err("DIAMTR/OFF\nMODE/TURN\nLATHE/RADIUS\nCUTTER/DIAMTR,10\nLATHE/DIAMETER,OFF\nMODE/TURN,DIAMETER,OFF\n"), "");
+  // The advice names only what the file does not say already, and never register 0 (helper-55).
   EXPECT_THAT(err("LOADTL/4,OSETNO,14\nOFSTNO/14\n"), HasSubstr("2:8: OFSTNO/14: an offset register for the tool's "
                                                                   "length or its radius by the post, which clpc does not "
                                                                   "read: it cuts T4 with length register 14 and radius "
-                                                                  "register 4"));
+                                                                  "register 4; if it is the radius, give the radius "
+                                                                  "register on the CUTCOM (CUTCOM/LEFT,14)"));
+  EXPECT_THAT(err("LOADTL/4\nOFSTNO/0\n"), HasSubstr("radius register 4; register 0 is no offset at all: remove the OFSTNO"));
+  EXPECT_THAT(err("LOADTL/4\nOFSTNO/OFF\n"), HasSubstr("2:8: OFSTNO/OFF: cancels an offset register for the tool's length "
+                                                         "or its radius by the post, which clpc does not read; clpc applies "
+                                                         "the tool's length offset from LOADTL and its radius offset from "
+                                                         "CUTCOM (CUTCOM/OFF cancels it)"));
   EXPECT_THAT(err("SPINDL/RPM,1000,CLW\nSPINDL/ORIENT\nGOTO/0,0,0\n"),
               ::testing::StartsWith("2:8: SPINDL/ORIENT (an oriented spindle stop): clpc's machines have no code for it, and "
                                     "the moves after it would be made with the spindle turning"));
