@@ -819,7 +819,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
           a.error(*(a.find("max") ? a.find("max") : a.find("name")), "max", "must be more than min (" + num_text(ax.min) + ")");
         // A modulo axis goes the short way to any angle: limits narrower than a turn were dropped
         // without a word, and C270 certified on an axis declared 0 to 90 (helper-52).
-        if (ax.cyclic == Cyclic::Modulo && (a.has("min") || a.has("max")) && ax.max - ax.min < 359)  // (0 to 359.999 is a turn)
+        if (ax.cyclic == Cyclic::Modulo && (a.has("min") || a.has("max")) && ax.max - ax.min < 359.99)  // (0 to 359.99 is a turn; 0 to 359 let C359.6 through, helper-55)
           a.error(*(a.find("max") ? a.find("max") : a.find("min")), a.find("max") ? "max" : "min",
                   "a modulo axis (cyclic = \"modulo\") turns to any angle the short way: limits narrower than a turn "
                   "cannot be kept; an axis that stops within a range is cyclic = \"no\"");

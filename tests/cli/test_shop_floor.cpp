@@ -670,6 +670,8 @@ TEST(ShopFloor, AxesOfOneNameAndModesThatCannotBeCancelledAreRefused) {
                         "range is cyclic = \"no\""));
   EXPECT_EQ(load_error(ac + "min = 0.0\nmax = 360.0\n"), "");
   EXPECT_EQ(load_error(ac + "min = 0.0\nmax = 359.999\n"), "");
+  // A degree short of a turn is no turn: C359.6 was written past max = 359 (helper-55).
+  EXPECT_THAT(load_error(ac + "min = 0.0\nmax = 359.0\n"), HasSubstr("shop.toml:15:7: error: ac.kinematics.axes[1].max: a modulo axis"));
   std::string parallel = ac;
   parallel.replace(parallel.find("axis = [1.0, 0.0, 0.0]"), 22, "axis = [0.0, 0.0, -1.0]");
   EXPECT_THAT(load_error(parallel), HasSubstr("shop.toml:12:8: error: ac.kinematics.axes[1].axis: parallel to A's axis"));
