@@ -18,6 +18,7 @@ void Lowerer::record(const Record& r) {
       keep_stored(r))
     blocks_[recording_index_].push_back(OwnedRecord::of(r));
   if (r.kind == Record::Kind::Comment) {
+    if (!finished_) catia_axes_.comment(r.text, r.loc, d_);
     // Creo brackets explicit groove motion with "$$ GRV ..." and "$$ GRV END": kept for the
     // groove-cycles pass. Other comments carry nothing clpc uses.
     std::string_view t = r.text;
@@ -33,6 +34,7 @@ void Lowerer::record(const Record& r) {
     }
     return;
   }
+  catia_axes_.statement();
   if (finished_) {
     // Motion after FINI (a second program in the file, or a FINI inside an operation) would be
     // lost: it was ignored with a warning and the program certified without its cuts. Refused

@@ -12,6 +12,7 @@
 #include "grammar/record.h"
 #include "support/diagnostics.h"
 #include "ir/ir.h"
+#include "lower/catia_axis_system.h"
 #include "lower/prescan.h"
 
 namespace clpc {
@@ -241,6 +242,7 @@ class Lowerer : public RecordSink {
   std::string cycle_name_;
   std::optional<ir::CycleSpec> last_cycle_;  // for CYCLE/ON
   bool finished_ = false;  // FINI seen
+  CatiaAxisSystems catia_axes_;
   bool warned_after_fini_ = false;
 
   // Subroutines: DEFSUB bodies are kept as owned copies of their records and replayed.

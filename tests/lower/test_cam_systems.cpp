@@ -1351,3 +1351,29 @@ TEST(CamSystems, AToolnoWithNoLoadAfterItSaysWhichToolCuts) {
   ASSERT_TRUE(later.ok) << later.diags;
   EXPECT_THAT(later.diags, Not(HasSubstr("TOOLNO")));
 }
+
+// CATIA writes a Machining Axis Change as another "$$*CATIA0" block: its points are in the new
+// axis system. Read as a comment, the cut ran in the first frame, certified (helper-56). A
+// later block with the first's matrix (karlo_DEMO3) changes nothing.
+TEST(CamSystems, ACatiaAxisSystemOtherThanTheFirstIsRefused) {
+  const std::string head = "$$     CATIA APT VERSION 1.0\n$$*CATIA0\n$$ Manufacturing Program.1\n"
+                           "$$     1.00000     0.00000     0.00000     0.00000\n$$     0.00000     1.00000     0.00000     0.00000\n"
+                           "$$     0.00000     0.00000     1.00000     0.00000\nUNITS/MM\nLOADTL/1\nSPINDL/ 3000.0000,RPM,CLW\n"
+                           "RAPID\nGOTO  /    0.00000,    0.00000,   50.00000\n";
+  const std::string cut = "RAPID\nGOTO  /    0.00000,    0.00000,    5.00000\nFEDRAT/  300.0000,MMPM\n"
+                          "GOTO  /    0.00000,    0.00000,   -2.00000\nGOTO  /   20.00000,    0.00000,   -2.00000\n";
+  Compiled turned = compile_text(head + "$$*CATIA0\n$$ Axis System.2\n$$     0.00000     0.00000    -1.00000    50.00000\n"
+                                        "$$     0.00000     1.00000     0.00000     0.00000\n"
+                                        "$$     1.00000     0.00000     0.00000   -20.00000\n" + cut,
+                                 machine("haas-umc750"));
+  EXPECT_FALSE(turned.ok);
+  EXPECT_THAT(turned.diags, HasSubstr("part.cls:12:1: error: CATIA changes the machining axis system here (its matrix is not "
+                                      "the file's first): the points after it are in the new axis system, which clpc does "
+                                      "not put into the first; post each axis system's operations from a file of its own, "
+                                      "or give them one machining axis system in CATIA"));
+  Compiled same = compile_text(head + "$$*CATIA0\n$$ MSYS/\n$$     1.00000     0.00000     0.00000     0.00000\n"
+                                      "$$     0.00000     1.00000     0.00000     0.00000\n"
+                                      "$$     0.00000     0.00000     1.00000     0.00000\n" + cut,
+                               machine("haas-umc750"), {.certify = true});
+  EXPECT_TRUE(same.ok) << same.diags;
+}
