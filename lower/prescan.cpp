@@ -91,6 +91,7 @@ class TableBuilder : public RecordSink {
         if (tool.name.empty() && first_in_op) tool.name = op_name_;
         if (pending_.any) { attach(tool, pending_); pending_ = {}; }
         if (t.length > 0) load_lengths_.emplace_back(size_t(&tool - info_.tools.data()), t.length);
+        load_motion_ = r.motion_skipped;
         break;
       }
       case MajorId::Tldata: case MajorId::Cutter: {
@@ -134,15 +135,15 @@ class TableBuilder : public RecordSink {
       case MajorId::Partno:
         if (info_.part_name.empty()) info_.part_name = unquote(r.text);
         break;
-      case MajorId::Tprint:  // CATIA: the name of the tool the next LOADTL loads, or the one just loaded
+      // CATIA: the name of the tool the next LOADTL loads (it stands before it in every
+      // corpus file), or of the one just loaded while it has none and nothing has moved since.
+      // (Given to the tool in the spindle, T2's name went to T1's... T3's to T2; helper-56.)
+      case MajorId::Tprint:
         if (!r.text.empty()) {
           std::string name(r.text.substr(0, r.text.find(',')));
-          if (explicit_ >= 0) {
-            ir::ToolInfo& t = slot(explicit_, r.loc);
-            if (t.name.empty() || t.name == op_name_) t.name = name;
-          } else {
-            pending_name_ = name;
-          }
+          ir::ToolInfo* t = explicit_ >= 0 ? &slot(explicit_, r.loc) : nullptr;
+          if (t && (t->name.empty() || t->name == op_name_) && r.motion_skipped == load_motion_) t->name = name;
+          else pending_name_ = name;
         }
         break;
       case MajorId::Machin: case MajorId::Mode:
@@ -316,6 +317,7 @@ class TableBuilder : public RecordSink {
   ToolGeometry pending_;
   std::optional<ir::Frame> msys0_;
   std::string pending_name_;  // TPRINT before its LOADTL
+  uint32_t load_motion_ = 0;  // motion records before the last load (Record::motion_skipped)
   bool mixed_ = false;        // the file says mill and lathe
   std::optional<ir::Units> units_, feed_units_;
   SourceLoc feed_word_loc_[2];  // the first feed in mm, in inches

@@ -1377,3 +1377,20 @@ TEST(CamSystems, ACatiaAxisSystemOtherThanTheFirstIsRefused) {
                                machine("haas-umc750"), {.certify = true});
   EXPECT_TRUE(same.ok) << same.diags;
 }
+
+// CATIA's TPRINT names the tool the LOADTL after it loads: given to the tool in the spindle
+// while it had none, T2's name went to T1's... T3's to T2 (helper-56). After a load, with
+// nothing moved since, it names the tool just loaded.
+TEST(CamSystems, ATprintNamesTheToolItsLoadtlLoads) {
+  auto job = [](int t, const std::string& name) {
+    return "TPRINT/" + name + "\nLOADTL/" + std::to_string(t) + "\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,50\n";
+  };
+  Compiled c = compile_text("UNITS/MM\n" + job(1, "T1 End Mill D 10") + job(2, "T2 Drill D 8") + job(3, "T3 Ball Mill D 6") + "FINI\n",
+                            machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(T1 - T1 END MILL D 10)\n(T2 - T2 DRILL D 8)\n(T3 - T3 BALL MILL D 6)\n"));
+  Compiled after = compile_text("UNITS/MM\nLOADTL/1\nRAPID\nGOTO/0,0,50\nLOADTL/3\nTPRINT/T3 Ball\nRAPID\nGOTO/0,0,50\nFINI\n",
+                                machine("fanuc-mill"));
+  ASSERT_TRUE(after.ok) << after.diags;
+  EXPECT_THAT(after.output, HasSubstr("(T1)\n(T3 - T3 BALL)\n"));
+}
