@@ -824,11 +824,15 @@ void Lowerer::open_operation(std::string name, SourceLoc loc) {
   op_.loc = loc;
   op_.continued = false;
   op_open_ = true;
+  op_implicit_ = false;
+  op_loaded_ = false;
   op_tool_name_.clear();
 }
 
 void Lowerer::ensure_operation(SourceLoc loc) {
-  if (!op_open_) open_operation(std::string(), loc);
+  if (op_open_) return;
+  open_operation(std::string(), loc);
+  op_implicit_ = true;
 }
 
 void Lowerer::flush_chunk() {

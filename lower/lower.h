@@ -152,6 +152,10 @@ class Lowerer : public RecordSink {
 
   ir::Operation op_;
   bool op_open_ = false;
+  // The open operation was begun by no operation record (TOOL PATH, FEATNO, OPFEATSTART...):
+  // a file of CATIA, Fusion or a generic APT post, where a tool load begins the next one.
+  bool op_implicit_ = false;
+  bool op_loaded_ = false;  // a tool was loaded in the open operation
   bool tool_path_open_ = false;   // an NX TOOL PATH not yet closed by END-OF-PATH
   SourceLoc tool_path_loc_;
   std::string tool_path_name_;

@@ -17,6 +17,13 @@ void Lowerer::lower_tool_change(const Record& r) {
   }
   ToolRecord t = read_tool_record(r, &d_);
   if (t.number < 0) return;
+  // In a file with no operation records each load begins an operation (CATIA loads the tool
+  // again at each of its operations): one five-axis move put the whole file under TCPC, its
+  // arcs cut as lines and a vertical tap refused (helper-56). Not within a cycle, a contour or
+  // a thread, which run on across it.
+  if (!t.preselect && op_open_ && op_implicit_ && op_loaded_ && !cycle_open_ && !rough_open_ && !thread_open_ &&
+      !pending_arc_ && !arc_open_)
+    close_operation();
   ensure_operation(r.loc);
   if (t.preselect) {
     push(r.loc, ir::ToolPreselect{t.number});
@@ -68,6 +75,7 @@ void Lowerer::lower_tool_change(const Record& r) {
   tool_ = t.number;
   forget_the_last_tools_state();
   push(r.loc, tc);
+  op_loaded_ = true;
   if (reloaded_in_cut) {
     from_gap_ = r.loc;
     from_gap_what_ = "after the reload of T" + std::to_string(t.number) + " with another length register at line " +

@@ -79,6 +79,7 @@ class Comparison : public ProgramSink {
   const TipSegment* peek(size_t i);
 
   void consume(size_t n);
+  void finish_cycle_motion();
   void dwell_ok();
   static double dwell_slack(const Machine& m);
   void spindle_ok(const TipSegment& s);

@@ -49,6 +49,7 @@ void Comparison::operation(const ir::Operation& op) {
             std::string why;  // the compile reports a machine without the axis
             indexing_.apply(m_.kinematics, x, why);
           } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
+            finish_cycle_motion();
             if (!rep_.operations.empty()) rep_.operations.back().tool = x.tool;
             want_tool_ = x.tool;
             want_h_ = x.length_offset > 0 ? x.length_offset : x.tool;
@@ -75,6 +76,7 @@ void Comparison::operation(const ir::Operation& op) {
           } else if constexpr (std::is_same_v<T, ir::Coolant>) {
             cl_coolant_ = x.kind != ir::CoolantKind::Off && coolant_known(x.kind);
           } else if constexpr (std::is_same_v<T, ir::Spindle>) {
+            finish_cycle_motion();
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
             cl_rpm_ = cl_spindle_ && x.mode == ir::SpindleMode::Rpm ? x.speed : 0;
             // The M code the machine starts this direction with (M03 clockwise on the built-ins).
@@ -166,6 +168,19 @@ const TipSegment* Comparison::peek(size_t i) {
     take_reader_problems();
   }
   return &win_[i];
+}
+
+// The last cycle's own motion out of its last hole (a tap's feed out, the return), judged
+// with the cycle's spindle before the CL changes it: left for the next CL point, a tap at
+// S200 was judged against the next tool's S6000 (helper-56).
+void Comparison::finish_cycle_motion() {
+  if (cycle_on_ || groove_) return;
+  size_t n = 0;
+  while (const TipSegment* s = peek(n)) {
+    if (!s->raw.from_cycle) break;
+    ++n;
+  }
+  consume(n);
 }
 
 void Comparison::consume(size_t n) {

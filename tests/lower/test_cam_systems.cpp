@@ -764,9 +764,8 @@ TEST(CamSystems, EachCreoCutterIsItsOwnLoadsAndASecondDiameterIsSaid) {
             "part.cls:7:1: warning: tool 1 is given the diameter 20 here, but 10 where it was first loaded (line 3): "
             "the program's tool list keeps 10; give each cutter a number of its own [-Wtool-geometry]\n"
             "part.cls:4:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, "
-            "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n"
-            "part.cls:9:1: error: a cutting speed (SPINDL/SFM, SMM) on a mill turns into rpm at the cutter's diameter, "
             "and tool 1 is given two (10, and 20 at line 7): give the speed in RPM, or each cutter a number of its own\n");
+  // (Each load begins an operation in a file with none: the post stops at the first's error.)
   // A file whose CUTTER follows its LOADTL writes them all so: T1 reloaded, then T2's own 6 mm.
   const std::string after = "UNITS/MM\nLOADTL/1\nCUTTER/10\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nLOADTL/1\n"
                             "CUTTER/10\nRAPID\nGOTO/0,0,20\nLOADTL/2\nCUTTER/6\nSPINDL/200,SMM,CLW\nRAPID\nGOTO/0,0,20\nFINI\n";
@@ -1393,4 +1392,19 @@ TEST(CamSystems, ATprintNamesTheToolItsLoadtlLoads) {
                                 machine("fanuc-mill"));
   ASSERT_TRUE(after.ok) << after.diags;
   EXPECT_THAT(after.output, HasSubstr("(T1)\n(T3 - T3 BALL)\n"));
+}
+
+// A file with no operation records (CATIA, Fusion, a generic APT post) was one operation: one
+// five-axis move put it all under TCPC, the 3-axis arcs cut as lines and a vertical tap
+// refused (helper-56). Each tool load begins an operation. (Verify judged the tap's feed out
+// with the next tool's spindle speed.)
+TEST(CamSystems, EachLoadBeginsAnOperationInAFileWithNone) {
+  const std::string cl = "UNITS/MM\nLOADTL/3\nSPINDL/RPM,200,CLW\nRAPID\nGOTO/-30,-30,15\n"
+                         "CYCLE/TAP,FEDTO,10,MMPM,300,RAPTO,5\nGOTO/-30,-30,0\nCYCLE/OFF\n"
+                         "LOADTL/4\nSPINDL/RPM,6000,CLW\nRAPID\nGOTO/0,-50,30,0,0,1\nFEDRAT/MMPM,800\n"
+                         "GOTO/0,-45,-5,0,-0.5,0.866025\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 G94 G98 G84 X-1.1811 Y-1.1811 Z-0.3937 R0.1969 F11.811\nN55 G80\n"));
+  EXPECT_THAT(c.output, HasSubstr("N75 G54 G00 G234 H04\n"));
 }
