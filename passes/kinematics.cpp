@@ -819,9 +819,15 @@ class Kinematics : public Pass {
                                : c.kind == ir::CycleKind::BackBore ? k.cycle_back_bore
                                : c.left_hand                       ? k.cycle_tap_left
                                                                    : k.cycle_tap;
+    // (In a simultaneous operation the axes follow the tool under TCPC or the transform,
+    // whatever the hole's axis: the vertical tap of a five-axis operation was said to be tilted;
+    // helper-55.)
     if (!code.empty())
-      x.why_moves = "this hole cannot take one: its axis is not the machine's Z here (a tilting head, or tool centre "
-                    "point control), along which a canned cycle drills";
+      x.why_moves = !mode_indexed_
+                        ? "this hole is in a simultaneous five-axis operation (its tool axis changes), where the axes "
+                          "follow the tool and no canned cycle runs: give the hole an operation of its own"
+                        : "this hole cannot take one: its axis is not the machine's Z here (a tilting head, or tool "
+                          "centre point control), along which a canned cycle drills";
     if (!expand_hole(h, c, x, loc, moves, *d_)) return;
     for (ir::Instr& in : moves) {
       if (auto* m = std::get_if<ir::Move>(&in.op)) motion(*m, in.loc, out);

@@ -376,6 +376,16 @@ TEST(KinematicsPass, HeadTableMachineFromToml) {
   EXPECT_FALSE(tap.ok);
   EXPECT_THAT(tap.diags, HasSubstr(":7:1: error: a tap cycle cannot be written as plain moves: the machine needs the canned "
                                    "cycle for it, but this hole cannot take one: its axis is not the machine's Z here"));
+  // A vertical tap in a simultaneous operation of a table-table machine: it is the operation,
+  // not the hole's axis, that keeps the cycle out (helper-55).
+  Compiled simultaneous = compile_text("UNITS/MM\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,500,CLW\nFEDRAT/MMPM,100\nRAPID\n"
+                                       "GOTO/10,0,50,0,0,1\nGOTO/10,0,40,0.5,0,0.8660254\nGOTO/10,0,20,0,0,1\n"
+                                       "CYCLE/TAP,DEPTH,7,PITCH,1,CLEAR,1\nGOTO/10,0,0,0,0,1\nCYCLE/OFF\n",
+                                       machine("haas-umc750"));
+  EXPECT_THAT(simultaneous.diags, HasSubstr(":11:1: error: a tap cycle cannot be written as plain moves: the machine needs the "
+                                            "canned cycle for it, but this hole is in a simultaneous five-axis operation (its "
+                                            "tool axis changes), where the axes follow the tool and no canned cycle runs: give "
+                                            "the hole an operation of its own"));
 }
 
 namespace {
