@@ -530,8 +530,28 @@ class Kinematics : public Pass {
     m.has_rotary = true;
     m.rotary = a;
     if (k_.inverse_time && simultaneous && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
-        feed_.mode == ir::FeedMode::PerMinute && have_prev_)
+        feed_.mode == ir::FeedMode::PerMinute && have_prev_) {
       m.inverse_time = inverse_time(prev_tip_, tip, a);
+      // The tip standing still while the rotaries turn, and no rate to time them by: F1e9
+      // was written, the rotaries whipped round at their fastest against the part (helper-57).
+      if (m.inverse_time >= kNoTime && !rotary_time_reported_) {
+        rotary_time_reported_ = true;
+        d_->error(loc, "the rotaries turn at feed about the tool tip, which stands still: the CL's feed gives the move "
+                       "no time, and machine '" + ctx_->machine.name + "' gives its rotary axes no rate (degrees per "
+                       "minute) to time it by; set kinematics.axes[].rate, or kinematics.max_inverse_time");
+      }
+    }
+    // A feed per revolution on a move that turns the rotaries without TCPC: the control reads F
+    // over all its axes, G93 and degrees per minute take a feed per minute; G95 F0.1 was written
+    // and the tip ran at five times the CL's feed (helper-57).
+    if ((k_.inverse_time || k_.degrees_per_minute) && simultaneous && !tcp(true) && rotates &&
+        m.kind == ir::MoveKind::Feed && feed_known_ && feed_.mode == ir::FeedMode::PerRev && !per_rev_reported_) {
+      per_rev_reported_ = true;
+      d_->error(loc, "a feed per revolution on a move that turns the rotaries without tool centre point control: the "
+                     "control reads F over all its axes at once, and the feed that keeps the tip at the CL's (" +
+                     std::string(ctx_->machine.kinematics.inverse_time ? "G93" : "degrees per minute") +
+                     ") is one per minute; give five-axis moves a feed per minute (FEDRAT/MMPM, IPM)");
+    }
     if (k_.degrees_per_minute && simultaneous && !tcp(true) && rotates && m.kind == ir::MoveKind::Feed && feed_known_ &&
         feed_.mode == ir::FeedMode::PerMinute && have_prev_)
       m.combined_feed = combined_feed(prev_tip_, tip, a);
@@ -557,6 +577,7 @@ class Kinematics : public Pass {
 
   // F in G93: the move takes as long as the CL feed along the CL path says, and no less than
   // the machine's axes allow; capped at the machine's maximum.
+  static constexpr double kNoTime = 1e9;  // F of a move the CL and the machine give no time
   double inverse_time(const Vec3& from, const Vec3& to, const kin::Angles& a) const {
     double minutes = (to - from).norm() / feed_.value;
     const double out_per_prog = 1 / ctx_->from_output();
@@ -566,7 +587,7 @@ class Kinematics : public Pass {
     }
     for (size_t i = 0; i < k_.rotaries.size(); ++i)
       if (k_.rotaries[i].rate > 0) minutes = std::max(minutes, std::abs(kin::travel(k_.rotaries[i], cur_[i], a[i])) / k_.rotaries[i].rate);
-    double f = minutes > 0 ? 1 / minutes : 1e9;
+    double f = minutes > 0 ? 1 / minutes : kNoTime;
     if (k_.max_inverse_time > 0) f = std::min(f, k_.max_inverse_time);
     return f;
   }
@@ -861,6 +882,8 @@ class Kinematics : public Pass {
   size_t free_ = 1;               // that axis
   SourceLoc bow_reported_;        // the record a bow beyond the tolerance was reported at
   bool feed_mode_reported_ = false;  // a rotary feed with no feed mode (once: it is the machine's)
+  bool rotary_time_reported_ = false;  // a turn about a still tip with no rate to time it
+  bool per_rev_reported_ = false;      // a feed per revolution on a rotary move without TCPC
   mutable ir::Mat3 table_ = ir::Mat3::Identity();
   mutable kin::Angles table_for_{0, 0};
   mutable bool table_known_ = false;

@@ -309,6 +309,25 @@ TEST(KinematicsPass, InverseTimeWhereTheMachineAsksForIt) {
   EXPECT_THAT(p.output, HasSubstr("N40 G93 X-0.0829 Z0.3854 B15. F1000.\nN45 X-0.0977 Z0.3834 B20. F1000.\n"));
 }
 
+// On an inverse-time machine without TCPC: a feed per revolution on a rotary move was written
+// G95 F0.1, the tip at five times the CL's feed; a turn about a still tip with no rate to time
+// it F1000000000. (helper-57). Both refused, once, at the move.
+TEST(KinematicsPass, InverseTimeRefusesAFeedPerRevAndATurnItCannotTime) {
+  const Machine m = machine("inv-umc", "[inv-umc]\ninherits = \"haas-umc750\"\n[inv-umc.kinematics]\nsimultaneous = \"transform\"\n"
+                                       "inverse_time = true\n");
+  const std::string head = "UNITS/MM\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\n";
+  Compiled per_rev = compile_text(head + "FEDRAT/MMPR,0.1\nGOTO/0,0,10,0,0,1\nGOTO/0,1,10,0,0.0871557,0.9961947\nFINI\n", m);
+  EXPECT_FALSE(per_rev.ok);
+  EXPECT_THAT(per_rev.diags, HasSubstr(":9:1: error: a feed per revolution on a move that turns the rotaries without tool "
+                                       "centre point control: the control reads F over all its axes at once, and the feed "
+                                       "that keeps the tip at the CL's (G93) is one per minute; give five-axis moves a feed "
+                                       "per minute (FEDRAT/MMPM, IPM)"));
+  Compiled still = compile_text(head + "FEDRAT/MMPM,3\nGOTO/0,0,0,0,0,1\nGOTO/0,0,0,0,0.0174524,0.9998477\nFINI\n", m);
+  EXPECT_FALSE(still.ok);
+  EXPECT_THAT(still.diags, HasSubstr(":9:1: error: the rotaries turn at feed about the tool tip, which stands still: the CL's "
+                                     "feed gives the move no time, and machine 'inv-umc' gives its rotary axes no rate"));
+}
+
 TEST(KinematicsPass, TransformModeSplitsMovesWhereTheTipWouldLeaveTheSegment) {
   std::string extra = "[tr-umc]\ninherits = \"haas-umc750\"\n[tr-umc.kinematics]\nsimultaneous = \"transform\"\ndegrees_per_minute = true\n";
   // A 40 degree swing of B about a point 100 mm off the rotary centre.
