@@ -71,6 +71,7 @@ void LatheBackend::fix_spindle_speed(double radius, SourceLoc loc) {
   e_.code(spindle_ == ir::SpindleDir::Cw ? m_.codes.spindle_cw : m_.codes.spindle_ccw);
   e_.end();
   rpm_fixed_ = true;
+  fixed_rpm_ = rpm;
 }
 
 // The rpm the control turns at under the surface speed in force, at `radius` (CL units), within
@@ -85,9 +86,10 @@ double LatheBackend::surface_rpm(double radius) const {
 
 // A dwell in revolutions under constant surface speed lasts as long as the spindle takes to
 // make them at the speed the control holds where the tool stands (NX's groove-bottom dwell
-// under SMM was refused; helper-54).
+// under SMM was refused; helper-54). Where the speed is fixed for a thread or a drill on
+// centre, at that speed (it fell to the S of no SPINDL/RPM, 0, and was refused; helper-55).
 double LatheBackend::dwell_rpm() const {
-  if (surface_ && !rpm_fixed_ && spindle_ != ir::SpindleDir::Off) return surface_rpm(pos_.x());
+  if (surface_ && spindle_ != ir::SpindleDir::Off) return rpm_fixed_ ? fixed_rpm_ : surface_rpm(pos_.x());
   return ProgramWriter::dwell_rpm();
 }
 

@@ -461,4 +461,12 @@ TEST(LatheMotion, ADwellInRevolutionsUnderSurfaceSpeed) {
   Compiled clamped = compile_text(near, machine("fanuc-lathe"), {.certify = true});
   ASSERT_TRUE(clamped.ok) << clamped.diags;
   EXPECT_THAT(clamped.output, HasSubstr(" G04 U0.12\n"));
+  // Drilling on centre the speed is fixed (G97 S1909 for 60 m/min on the 10 mm drill): 3 turns
+  // take 0.094 s. It was refused, the dwell timed at the S of no SPINDL/RPM (helper-55).
+  const std::string drill = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,1\nTLDATA/DRILL,10,0,50\nSPINDL/SMM,60,MAXRPM,3000,CLW\n"
+                            "FEDRAT/MMPR,0.1\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-20\nDELAY/REV,3\nGOTO/0,0,5\nRAPID\nGOTO/50,0,50\nFINI\n";
+  Compiled fixed = compile_text(drill, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(fixed.ok) << fixed.diags;
+  EXPECT_THAT(fixed.output, HasSubstr(" G97 S1909 M03\n"));
+  EXPECT_THAT(fixed.output, HasSubstr(" G04 U0.094\n"));
 }
