@@ -240,7 +240,9 @@ bool Lowerer::tool_ready(SourceLoc loc, ir::MoveKind kind) {
     else if (tool_ < 0 && info_.tools.empty())  // (a file that loads none: its first cut is refused; this says which record meant one)
       d_.warning(toolno_loc_, "TOOLNO names tool " + std::to_string(toolno_named_) + ", and no LOADTL or TURRET follows it "
                               "before the move at line " + std::to_string(loc.line) + ": no tool is loaded (TOOLNO "
-                              "describes a tool; LOADTL/" + std::to_string(toolno_named_) + " loads it)",
+                              "describes a tool; LOADTL/" + std::to_string(toolno_named_) + " or TURRET/" +
+                              std::to_string(toolno_named_) + " loads it): a mill refuses the cut, a lathe's program "
+                              "writes no T word and cuts with the tool and offset the turret holds",
                  "toolno");
     toolno_named_ = -1;
   }

@@ -1344,7 +1344,9 @@ TEST(CamSystems, AToolnoWithNoLoadAfterItSaysWhichToolCuts) {
                                "GOTO/0,0,5\nGOTO/0,0,-1\n", machine("fanuc-mill"));
   EXPECT_FALSE(none.ok);
   EXPECT_THAT(none.diags, HasSubstr("part.cls:2:1: warning: TOOLNO names tool 5, and no LOADTL or TURRET follows it before "
-                                    "the move at line 7: no tool is loaded (TOOLNO describes a tool; LOADTL/5 loads it)"));
+                                    "the move at line 7: no tool is loaded (TOOLNO describes a tool; LOADTL/5 or TURRET/5 loads it): a mill "
+                                    "refuses the cut, a lathe's program writes no T word and cuts with the tool and offset "
+                                    "the turret holds"));
   Compiled later = compile_text("UNITS/MM\nTOOLNO/5,10\nRAPID\nGOTO/0,0,50\nLOADTL/5\nSPINDL/RPM,1000,CLW\n"
                                 "FEDRAT/MMPM,100\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n", machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(later.ok) << later.diags;
