@@ -233,14 +233,19 @@ void Comparison::dwell_ok() {
   dwell_line_ = 0;
 }
 
-// A dwell's rounding: half an increment of the word it is written in (P, X, U; whole
+// A dwell's rounding: half an increment of the word codes.dwell writes it in (P, X, U; whole
 // milliseconds where P takes no point), 1.5 ms at least. (The compile writes the time rounded
-// to that word, so no more is lost.)
+// to that word, so no more is lost. Taken from every dwell letter, a mill's unused format.U of
+// one decimal let any dwell be 50 ms off; helper-55.)
 double Comparison::dwell_slack(const Machine& m) {
   double slack = 0.0015;
-  for (char letter : {'P', 'X', 'U'}) {
+  for (const CodeTemplate::Word& w : m.codes.dwell.words) {
+    const char letter = CodeTemplate::letter(w);
+    bool time = false;
+    for (const CodeTemplate::Piece& p : w) time = time || p.var == int(Var::Seconds) || p.var == int(Var::Milliseconds);
+    if (!time || letter == 0) continue;
     const AddressFormat& f = m.format(letter);
-    if (letter != 'P' || f.point != AddressFormat::Point::Never)
+    if (f.point != AddressFormat::Point::Never || f.decimals > 0)
       slack = std::max(slack, 0.5 * std::pow(10.0, -f.decimals) + 1e-9);
   }
   return slack;

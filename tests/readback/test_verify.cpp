@@ -589,6 +589,9 @@ TEST(Verify, ADwellOtherThanTheClsDelayFails) {
   // A P within the millisecond it is written in passes; 5 % off does not (helper-53).
   EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P1251")).ok);
   EXPECT_FALSE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "G04 P1250", "G04 P1310")).ok);
+  // The slack is the dwell word's own: a mill's unused U of one decimal let P1300 pass (helper-55).
+  const Machine coarse_u = machine("coarse-u", "[coarse-u]\ninherits = \"fanuc-mill\"\n[coarse-u.format]\nU = { decimals = 1 }\n");
+  EXPECT_FALSE(verify_text(cl, coarse_u, edit(c.output, "G04 P1250", "G04 P1300")).ok);
   // A machine's own codes may dwell before a rapid (a G04 in its start or tool change for the
   // spindle or the coolant): never counted against the CL (helper-53).
   const Machine waits = machine("waits", "[waits]\ninherits = \"fanuc-mill\"\n[waits.codes]\n"
