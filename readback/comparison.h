@@ -315,6 +315,7 @@ class Comparison : public ProgramSink {
   // --- CL records --------------------------------------------------------------------------
 
   void point(const Vec3& p, const Vec3& axis, bool rapid);
+  void rapid_stays_above(size_t j, const Vec3& p, const Vec3& axis);
 
   // Which way a CL arc turns, by the CL's own word (lowering's `hint`), and whether the move
   // entering it agrees: a tangent move (at least 20 output increments long in the arc's plane,
@@ -404,6 +405,8 @@ class Comparison : public ProgramSink {
   // prev_ is a CL point the tool has been followed to with the tool now in the spindle (not
   // the last tool's: after a tool change the post positions the new tool as it must).
   bool cut_from_point_ = false;
+  Vec3 prev_axis_ = Vec3::UnitZ();  // the tool axis at prev_, where point() or arc() set it
+  bool prev_axis_known_ = false;
   Vec3 at_ = Vec3::Zero();    // where the program has taken the tool (the last segment passed)
   Vec3 at_axis_ = Vec3::Zero();  // the tool axis there
   bool have_at_ = false;

@@ -87,6 +87,7 @@ void Comparison::operation(const ir::Operation& op) {
             Vec3 p = model(x.point), a = model_dir(x.axis);
             if (x.kind == ir::MoveKind::From) {
               prev_ = p;
+              prev_axis_known_ = false;
               have_prev_ = true;
             } else if (rough_) {
               rough_profile_.push_back({x.kind == ir::MoveKind::Rapid ? stock::Step::Kind::Rapid : stock::Step::Kind::Feed, p,
@@ -94,6 +95,7 @@ void Comparison::operation(const ir::Operation& op) {
             } else if (thread_on_) {
               thread_point(p, x.kind == ir::MoveKind::Rapid);
             } else if (cycle_on_ && !groove_) {
+              prev_axis_known_ = false;
               hole(x.point, x.axis);
             } else if (groove_) {
               groove_point(p, x.kind == ir::MoveKind::Rapid);
@@ -621,6 +623,7 @@ void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
     cut_from_point_ = true;
   } else if (auto j = reach(p, on_path, nearest, at, passed_, &axis)) {
     if (!rapid) no_rapid_cut(*j, on_path, p);
+    else rapid_stays_above(*j, p, axis);
     reached(*j, p, axis, rapid, passed_);
   } else {
     missed(p, nearest, at, "CL point");
@@ -629,6 +632,32 @@ void Comparison::point(const Vec3& p, const Vec3& axis, bool rapid) {
   prev_ = p;
   have_prev_ = true;
   have_hole_ = false;
+  prev_axis_ = axis;
+  prev_axis_known_ = true;
+}
+
+// A mill's rapids on the way to a CL rapid point, along the tool axis both CL points share, go
+// no lower than the lower of the two (no lower than the point itself after a tool change,
+// whose start is the post's): a rapid split goes up first or down last, a retract goes up. A
+// G00 down into the stock and across, a dive in the new tool's approach, passed (helper-60).
+void Comparison::rapid_stays_above(size_t j, const Vec3& p, const Vec3& axis) {
+  if (m_.is_lathe() || !have_prev_ || !prev_axis_known_ || axis.norm() == 0 ||
+      kin::angle_between(prev_axis_.normalized(), axis.normalized()) > axis_tol_)
+    return;
+  const Vec3 ax = axis.normalized();
+  const double floor = cut_from_point_ ? std::min(prev_.dot(ax), p.dot(ax)) : p.dot(ax);
+  for (size_t i = 0; i < j && i < win_.size(); ++i) {
+    const TipSegment& s = win_[i];
+    if (s.raw.kind != gcode::Segment::Kind::Rapid || s.raw.from_cycle || !finite(s.end)) continue;
+    const double below = floor - s.end.dot(ax);
+    if (below > tol_) {
+      fail(loc_, s.raw.line,
+           "the program's rapid goes " + fixed_text(below, 4) + " lower along the tool axis than the CL's rapid " +
+               (cut_from_point_ ? "from " + xyz(prev_) + " " : std::string()) + "to " + xyz(p) + ", to " + xyz(s.end),
+           below);
+      return;
+    }
+  }
 }
 
 ir::ArcDir Comparison::arc_sense(const ir::Arc& a) {
@@ -657,6 +686,7 @@ void Comparison::arc(const ir::Arc& a0) {
     // Lowering gives every CL arc a sense; only an arc a pass made has none.
     fail(loc_, 0, "verify cannot tell which way this CL arc turns", kInf);
     prev_ = a.end;
+    prev_axis_known_ = false;
     have_prev_ = true;
     return;
   }
@@ -734,6 +764,8 @@ void Comparison::arc(const ir::Arc& a0) {
       deviate(worst, loc_, worst_line);
       consume(*j + 1);
       prev_ = a.end;
+      prev_axis_known_ = false;
+    prev_axis_known_ = false;
       have_prev_ = true;
       have_hole_ = false;
       return;
@@ -763,6 +795,7 @@ void Comparison::arc(const ir::Arc& a0) {
   }
   incoming_ = arcgeo::tangent_at(a, 1.0) * (1e6 * increment_);  // leaves along its tangent
   prev_ = a.end;
+  prev_axis_known_ = false;
   have_prev_ = true;
   have_hole_ = false;
 }
