@@ -741,7 +741,7 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
   if (const std::string var = system_variable_set(text); !var.empty())
     return "sets the control's system variable " + var + " (work and tool offsets and modal state live there), so " +
            "the program's positions or offsets after it could mean other places: the frames (SET, CAMERA, MSYS) " +
-           "and the tool records give them; the program's own variables are #1 to #999";
+           "and the tool records give them; the program's own variables (#1 to #999), alarms, counters and timers (#3000 to #3999) are written";
   for (double g : code_numbers(text, 'G')) {
     const std::string code = "G" + num_text(g);
     if (is(g, 41) || is(g, 42))

@@ -38,13 +38,13 @@ void CatiaAxisSystems::comment(std::string_view text, SourceLoc loc, Diagnostics
   }
   if (rows_ == kNone) return;
   if (!read_row(text, &reading_[size_t(rows_) * 4])) {
-    // Its name lines come before the rows; anything after a row, or a third name, ends it.
-    if (rows_ > 0 || ++other_lines_ > 2) rows_ = kNone;
+    // Its name lines come before the rows; anything after a row, or a fifth name, ends it.
+    if (rows_ > 0 || ++other_lines_ > 4) rows_ = kNone;
     return;
   }
   if (++rows_ < 3) return;
   rows_ = kNone;
-  if (!have_first_) {
+  if (!have_first_ || !locked_) {
     first_ = reading_;
     have_first_ = true;
     return;
@@ -52,7 +52,7 @@ void CatiaAxisSystems::comment(std::string_view text, SourceLoc loc, Diagnostics
   double worst = 0;
   for (size_t i = 0; i < 12; ++i) worst = std::max(worst, std::abs(reading_[i] - first_[i]));
   if (worst > 1e-4)
-    d.error(at_, "CATIA changes the machining axis system here (its matrix is not the file's first): the points after "
+    d.error(at_, "CATIA changes the machining axis system here (its matrix is not that of the cuts before it): the points after "
                  "it are in the new axis system, which clpc does not put into the first; post each axis system's "
                  "operations from a file of its own, or give them one machining axis system in CATIA");
 }

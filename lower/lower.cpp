@@ -34,7 +34,7 @@ void Lowerer::record(const Record& r) {
     }
     return;
   }
-  catia_axes_.statement();
+  catia_axes_.statement(moves_the_tool(r));
   if (finished_) {
     // Motion after FINI (a second program in the file, or a FINI inside an operation) would be
     // lost: it was ignored with a warning and the program certified without its cuts. Refused

@@ -137,6 +137,15 @@ std::string axis_words(std::string_view t) {
   return dwell ? std::string() : letters;
 }
 
+bool moves_axes_by_itself(std::string_view block) {
+  if (!axis_words(block).empty()) return true;
+  for (double g : code_numbers(block, 'G'))
+    if ((g > 26.5 && g < 30.5) || std::abs(g - 53) < 1e-6 || std::abs(g - 65) < 1e-6 || std::abs(g - 66) < 1e-6 ||
+        std::abs(g - 66.1) < 1e-6)
+      return true;
+  return false;
+}
+
 std::string system_variable_set(std::string_view t) {
   auto blank = [&](size_t& i) {
     while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
@@ -171,7 +180,10 @@ std::string system_variable_set(std::string_view t) {
     if (name[1] == '[') return name;
     long n = 0;
     for (char c : name.substr(1)) n = std::min(n * 10 + (c - '0'), 100000L);
-    if (n >= 1000) return name;
+    // Tool offsets (#2000-#2999, #10000 up), modal state and positions (#4000-#5999, with the
+    // work offsets from #5201), extended work offsets (#7000-#7999). A message stop, an alarm,
+    // a counter or a timer (#3000-#3999) changes no position (#3006=1 was refused; helper-58).
+    if ((n >= 2000 && n < 3000) || (n >= 4000 && n < 6000) || (n >= 7000 && n < 8000) || n >= 10000) return name;
   }
   return "";
 }

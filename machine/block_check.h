@@ -19,9 +19,11 @@ bool is_control_block(std::string_view text, std::string& why);
 // comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.
 std::string axis_words(std::string_view block);
 
-// The system variable a macro statement in the block sets ("#5221" for `#5221=100.`, "#[...]"
-// for one set through an expression, whose number cannot be told), or "". Variables from #1000
-// up are the control's own (work and tool offsets, modal state); #1-#999 are the program's.
+// The system variable holding offsets or positions that a macro statement in the block sets
+// ("#5221" for `#5221=100.`, "#[...]" for one set through an expression, whose number cannot
+// be told), or "": tool offsets (#2000-#2999, #10000 up), modal state, positions and work
+// offsets (#4000-#5999, #7000-#7999). #1-#999 are the program's; #1000-#1999, #3000-#3999
+// (signals, alarms, message stops, counters, timers) and #6000-#6999 move nothing.
 std::string system_variable_set(std::string_view block);
 
 // The numbers of the address words with `letter` (G or M) in a control block, outside comments,
@@ -33,6 +35,12 @@ std::vector<double> code_numbers(std::string_view block, char letter);
 // coordinates (G53), a macro call (G65, G66, G66.1), which may do anything, or an M code other
 // than the stops, spindle, coolant, orient, rigid tap and override codes (M60 changes pallets).
 bool may_move_axes(std::string_view block);
+
+// Whether the block itself moves the axes: an axis word, a return to a reference point
+// (G27-G30), a move in machine coordinates (G53) or a macro call (G65, G66, G66.1). (An M code
+// that may move them, which may_move_axes also fears, moves nothing the CL's next move does
+// not undo: the post writes that move whole.)
+bool moves_axes_by_itself(std::string_view block);
 
 // Whether the block takes Z alone up to its home and nothing else (G53 Z0., G91 G28 Z0., G30
 // Z0.): no other axis word, no macro call, no M code that may move axes. X and Y then stand

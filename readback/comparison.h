@@ -298,6 +298,17 @@ class Comparison : public ProgramSink {
         fail(loc_, s.raw.line, "this CL feed move is made at rapid traverse (G00)", 0);
         return;
       }
+      // Out and back goes up, along the tool axis: a G00 down into the stock and back up to the
+      // point passed (helper-58).
+      const bool dives = i < back && have_prev_ && finite(s.end) && s.axis.norm() > 0 && !s.rotates &&
+                         (s.end - prev_).dot(s.axis.normalized()) < -tol_;
+      if (dives) {
+        fail(loc_, s.raw.line,
+             "the program leaves the CL's cut at " + xyz(prev_) + " at rapid traverse (G00) " +
+                 fixed_text(-(s.end - prev_).dot(s.axis.normalized()), 4) + " down along the tool axis",
+             off);
+        return;
+      }
       if (off > tol_ && have_prev_ && cut_from_point_ && i >= back) {
         fail(loc_, s.raw.line,
              "the program leaves the CL's cut from " + xyz(prev_) + " to " + xyz(to) + " at rapid traverse (G00), " +

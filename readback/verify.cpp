@@ -50,16 +50,21 @@ void Comparison::operation(const ir::Operation& op) {
             indexing_.apply(m_.kinematics, x, why);
           } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
             finish_cycle_motion();
+            // (The tool in the spindle loaded again writes no change: it stays in the cut. CATIA
+            // loads it at every operation; taken for a change, a retract in place of a cut passed;
+            // helper-58.)
+            if (x.tool != want_tool_ || (x.length_offset > 0 ? x.length_offset : x.tool) != want_h_) cut_from_point_ = false;
             if (!rep_.operations.empty()) rep_.operations.back().tool = x.tool;
             want_tool_ = x.tool;
             want_h_ = x.length_offset > 0 ? x.length_offset : x.tool;
             want_tool_loc_ = loc_;
             tool_reported_ = false;
-            cut_from_point_ = false;
           } else if constexpr (std::is_same_v<T, ir::Insert>) {
             // A block of the user's that may move the axes (G53 Z0.): the CL's next cut starts
             // where it leaves the tool, which the post positions as after a tool change.
-            if (may_move_axes(op.str(x.text))) cut_from_point_ = false;
+            // (Not any M code may_move_axes fears: after INSERT/M88 the post writes the CL's move
+            // whole, and a retract in its place passed; helper-58.)
+            if (moves_axes_by_itself(op.str(x.text))) cut_from_point_ = false;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
           } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
@@ -132,8 +137,14 @@ void Comparison::operation(const ir::Operation& op) {
             if (x.begin) begin_groove();
             else end_groove();
           } else if constexpr (std::is_same_v<T, ir::CycleOff>) {
-            if (groove_) end_groove();
-            else cycle_on_ = false;
+            if (groove_) {
+              end_groove();
+            } else {
+              cycle_on_ = false;
+              // The cycle left the tool at its return, not at the last hole's CL point (a cycle
+              // written as moves returns with a plain G00; helper-58).
+              cut_from_point_ = false;
+            }
           }
         },
         in.op);

@@ -363,7 +363,7 @@ TEST(CamSystems, SpeedCodesInInsertsAndDwellsInRevolutions) {
   // never reaches the program, not even in an INSERT's comment.
   Compiled moved = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1200,CLW\nRAPID\nGOTO/0,0,10\nINSERT/G00 Z-30. (DOWN)\n"
                                 "INSERT/G04 X1.5\nINSERT/G0X10.Y5.\nINSERT/G04X1.5\nINSERT/IF[#1GT0]GOTO10\n"
-                                "INSERT/#1=SIN[#2]\nINSERT/G04 P500 (50% FEED)\nRAPID\nGOTO/0,0,20\nFINI\n",
+                                "INSERT/#1=SIN[#2]\nINSERT/G04 P500 (50% FEED)\nINSERT/#3006=1\nRAPID\nGOTO/0,0,20\nFINI\n",
                                 machine("fanuc-mill"));
   ASSERT_TRUE(moved.ok) << moved.diags;
   EXPECT_EQ(messages(moved.diags),
@@ -374,7 +374,7 @@ TEST(CamSystems, SpeedCodesInInsertsAndDwellsInRevolutions) {
             "part.cls:12:1: warning: INSERT 'G04 P500 (50% FEED)' is no block the control reads ('%' is the tape mark, "
             "which ends the program where the control loads it): written as a comment (program.inserts = \"raw\" writes "
             "it as it is) [-Winsert]\n");
-  EXPECT_THAT(moved.output, HasSubstr("\nG04X1.5\nIF[#1GT0]GOTO10\n#1=SIN[#2]\n(G04 P500 50 FEED)\n"));
+  EXPECT_THAT(moved.output, HasSubstr("\nG04X1.5\nIF[#1GT0]GOTO10\n#1=SIN[#2]\n(G04 P500 50 FEED)\n#3006=1\n"));
   // With the spindle stopped no time is known: refused where it stands.
   Compiled stopped = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/OFF\nDELAY/REV,5\nFINI\n", machine("fanuc-mill"));
   EXPECT_FALSE(stopped.ok);
@@ -959,7 +959,8 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
       {"INSERT/#5221 = 100.", "the block '#5221 = 100.' (INSERT, PREFUN or AUXFUN) sets the control's system variable "
                               "#5221 (work and tool offsets and modal state live there), so the program's positions or "
                               "offsets after it could mean other places: the frames (SET, CAMERA, MSYS) and the tool "
-                              "records give them; the program's own variables are #1 to #999"},
+                              "records give them; the program's own variables (#1 to #999), alarms, counters and timers (#3000 to "
+                              "#3999) are written"},
       {"INSERT/M97 P65", "the block 'M97 P65' (INSERT, PREFUN or AUXFUN) calls a local subprogram (M97, Haas): the "
                          "control jumps to the N number it names, and the post writes no subprograms"},
       {"AUXFUN/30", "the block 'M30' (INSERT, PREFUN or AUXFUN) ends the program (M30): the blocks after it would never "
@@ -1369,7 +1370,7 @@ TEST(CamSystems, ACatiaAxisSystemOtherThanTheFirstIsRefused) {
                                  machine("haas-umc750"));
   EXPECT_FALSE(turned.ok);
   EXPECT_THAT(turned.diags, HasSubstr("part.cls:12:1: error: CATIA changes the machining axis system here (its matrix is not "
-                                      "the file's first): the points after it are in the new axis system, which clpc does "
+                                      "that of the cuts before it): the points after it are in the new axis system, which clpc does "
                                       "not put into the first; post each axis system's operations from a file of its own, "
                                       "or give them one machining axis system in CATIA"));
   Compiled same = compile_text(head + "$$*CATIA0\n$$ MSYS/\n$$     1.00000     0.00000     0.00000     0.00000\n"
@@ -1377,6 +1378,12 @@ TEST(CamSystems, ACatiaAxisSystemOtherThanTheFirstIsRefused) {
                                       "$$     0.00000     0.00000     1.00000     0.00000\n" + cut,
                                machine("haas-umc750"), {.certify = true});
   EXPECT_TRUE(same.ok) << same.diags;
+  // Another block before any motion replaces the first: nothing was cut in it (helper-58).
+  Compiled before = compile_text("$$*CATIA0\n$$ A\n$$ B\n$$ C\n$$     0.00000     0.00000    -1.00000    50.00000\n"
+                                 "$$     0.00000     1.00000     0.00000     0.00000\n$$     1.00000     0.00000     0.00000   -20.00000\n" +
+                                     head + cut,
+                                 machine("haas-umc750"));
+  EXPECT_TRUE(before.ok) << before.diags;
 }
 
 // CATIA's TPRINT names the tool the LOADTL after it loads: given to the tool in the spindle

@@ -716,3 +716,20 @@ TEST(Verify, ADelayAfterTheLastMoveIsNotMadeByTheHolesDwells) {
   EXPECT_FALSE(gone.ok);
   EXPECT_THAT(first_error(gone.diags), HasSubstr("error: the program dwells 0.000 s before this move, the CL's DELAY (line 12) is 4.000 s"));
 }
+
+// Between two CL rapids a G00 down into the stock and across, and a dive in a new tool's
+// approach, passed (helper-60). An out-and-back excursion down into the cut too (helper-58).
+TEST(Verify, ARapidBelowTheClsRapidFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,300\n"
+                         "GOTO/0,0,-2\nGOTO/50,0,-2\nRAPID\nGOTO/50,0,50\nRAPID\nGOTO/80,5,50\nGOTO/80,5,-2\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("N100 X80. Y5.\n"));
+  Compiled dive = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N100 X80. Y5.\n", "N96 Z-30.\nN98 X80. Y5.\nN100 Z50.\n"));
+  EXPECT_FALSE(dive.ok);
+  EXPECT_THAT(first_error(dive.diags), HasSubstr("part.cl:12:1: error: the program's rapid goes 80.0000 lower along the tool axis "
+                                                 "than the CL's rapid from (50.0000, 0.0000, 50.0000) to (80.0000, 5.0000, 50.0000), "
+                                                 "to (50.0000, 0.0000, -30.0000)"));
+  Compiled back = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\nN82 G00 Z-30.\nN84 Z-2.\n"));
+  EXPECT_FALSE(back.ok);
+}
