@@ -191,9 +191,8 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     return;
   }
   if (!in_plane(mv.point, loc)) return;
+  if (mv.kind == ir::MoveKind::Feed && !tool_loaded_for_cut(loc)) return;
   if (mv.kind == ir::MoveKind::Feed) warn_spindle_stopped(loc, "cutting move");
-  // (No tool loaded is no error here, unlike on a mill: nothing cancels the offset of the tool
-  // the turret holds, which a program without T cuts with; the mill's start block has G49.)
   if (thread_ && mv.kind == ir::MoveKind::Feed && is_thread_cut(pos_, mv.point)) {
     write_thread_move(mv, loc);
     return;
@@ -260,6 +259,7 @@ void LatheBackend::end_drill_speed(SourceLoc loc) {
 }
 
 void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
+  if (!tool_loaded_for_cut(loc)) return;
   warn_spindle_stopped(loc, "arc");
   end_drill_speed(loc);
   if (a.dir == ir::ArcDir::Unknown) {
@@ -334,6 +334,7 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
 // input increments (their formats have no point); P is always the X amount and Q the Z
 // amount, as radius values, whichever of them is the peck.
 void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, SourceLoc loc) {
+  if (!tool_loaded_for_cut(loc)) return;
   end_drill_speed(loc);
   const ir::GrooveSpec& s = op.grooves.at(g.spec);
   const CodeTemplate& code = s.face ? m_.codes.groove_face : m_.codes.groove_radial;

@@ -38,6 +38,7 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
     d_.error(loc, "internal: CYCLE/ROUGH's profile does not end in its chunk");
     return;
   }
+  if (!tool_loaded_for_cut(loc)) return;
   const char* name = m.facing ? "G72" : "G71";
   const CodeTemplate& code = m.facing ? m_.codes.rough_face : m_.codes.rough_turn;
   if (code.empty() || (m.finish && m_.codes.rough_finish.empty())) {

@@ -117,6 +117,7 @@ void LatheBackend::write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) {
 }
 
 void LatheBackend::write_thread_move(const ir::Move& mv, SourceLoc loc) {
+  if (!tool_loaded_for_cut(loc)) return;
   if (m_.codes.thread.empty()) {
     d_.error(loc, "machine '" + m_.name + "' has no thread cutting code (codes.thread, e.g. G32)");
     return;
@@ -146,6 +147,7 @@ void LatheBackend::write_thread_move(const ir::Move& mv, SourceLoc loc) {
 }
 
 void LatheBackend::write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc) {
+  if (!tool_loaded_for_cut(loc)) return;
   end_drill_speed(loc);
   const CodeTemplate& code = t.multi ? m_.codes.thread_multi : m_.codes.thread_box;
   if (code.empty()) {

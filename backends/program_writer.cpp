@@ -475,14 +475,19 @@ void ProgramWriter::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   e_.end();
 }
 
-// No tool change before the first cut on a mill: its start block cancels length compensation
-// (G49), so no tool length offset is in force and the gauge line, not the tip, would go to the
-// CL's points. Said once.
+// No tool change before the first cut: a mill's start block cancels length compensation (G49),
+// so no tool length offset is in force and the gauge line, not the tip, would go to the CL's
+// points; a lathe's program would have no T word, and cut with the station and offset the last
+// program left (it was certified so; helper-59). Said once.
 bool ProgramWriter::tool_loaded_for_cut(SourceLoc loc) {
   if (tool_ >= 0) return true;
   if (!no_tool_reported_)
-    d_.error(loc, "cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, TURRET), so no "
-                  "tool length offset is in force; add LOADTL/n before it, or have the CAM system write its tool change");
+    d_.error(loc, std::string("cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, "
+                              "TURRET), so ") +
+                      (m_.is_lathe() ? "the program would select no turret station and no offset (no T word) and cut "
+                                       "with whatever the last program left; add TURRET/n or LOADTL/n before it"
+                                     : "no tool length offset is in force; add LOADTL/n before it") +
+                      ", or have the CAM system write its tool change");
   no_tool_reported_ = true;
   return false;
 }

@@ -558,8 +558,16 @@ void Comparison::missed(const Vec3& p, double nearest, size_t nearest_at, const 
 }
 
 void Comparison::tool_ok(const TipSegment& s) {
-  if (want_tool_ <= 0 || tool_reported_ || s.raw.tool <= 0) return;
+  if (want_tool_ <= 0 || tool_reported_) return;
   auto cl = [&] { return " (the CL loads tool " + std::to_string(want_tool_) + " at line " + std::to_string(want_tool_loc_.line) + ")"; };
+  // No T word at all: the station and offset the last program left (a lathe's T0202 deleted
+  // passed; helper-59). (A machine with no tool change cuts with the tool the operator loads.)
+  if (s.raw.tool <= 0) {
+    if (s.raw.kind == gcode::Segment::Kind::Rapid || m_.codes.tool_change.empty()) return;
+    fail(loc_, s.raw.line, "this is cut with no tool selected (no T word)" + cl(), 0);
+    tool_reported_ = true;
+    return;
+  }
   if (s.raw.tool != want_tool_) {
     fail(loc_, s.raw.line, "this is cut with tool " + std::to_string(s.raw.tool) + cl(), 0);
     tool_reported_ = true;

@@ -43,7 +43,11 @@ inline const std::vector<CorpusCase>& corpus_cases() {
       {"nist/b_turn_1.ncl.1", "fanuc-lathe", "", ""},
       {"nist/b_turn_groove2.ncl.1", "fanuc-lathe", "", ""},
       {"nist/b_turn_innr.ncl.4", "fanuc-lathe", "", ""},
-      {"nist/basic_turning_cycle.ncl", "fanuc-lathe", "", ""},
+      {"nist/basic_turning_cycle.ncl", "fanuc-lathe",
+       ":4:1: error: cutting with no tool loaded: the CL loads none before this move (LOADTL, LOAD/TOOL, TURRET), so the "
+       "program would select no turret station and no offset (no T word)",
+       "a fragment of turning passes with no tool: posted, it cut with the station and offset the last program left", "",
+       true},
       {"nist/casting_drill_tap.ncl.1", "haas-umc750", "", "3+2 drilling and tapping"},
       {"nist/dwnhole.ncl.3", "a-rotary-5x", "", "ten flutes at ten A positions (ROTATE/AAXIS): a continuous A about X"},
       {"nist/helical.ncl.1", "haas-umc750", "", "UNITS/INCHES, but its numbers are millimetres (a 10-inch cutter at 5 rpm)",

@@ -733,3 +733,21 @@ TEST(Verify, ARapidBelowTheClsRapidFails) {
   Compiled back = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\nN82 G00 Z-30.\nN84 Z-2.\n"));
   EXPECT_FALSE(back.ok);
 }
+
+// A lathe program with no T word cuts with the station and offset the last program left: a CL
+// with no tool is refused like a mill's, and a T0101 deleted from a program fails (helper-59).
+TEST(Verify, ALatheCutWithNoToolSelectedFails) {
+  const std::string cut = "SPINDL/RPM,1000,CLW\nFEDRAT/MMPR,0.2\nRAPID\nGOTO/22,0,2\nGOTO/10,0,2\nGOTO/10,0,-20\nGOTO/22,0,-20\nFINI\n";
+  Compiled bare = compile_text("UNITS/MM\n" + cut, machine("fanuc-lathe"));
+  EXPECT_FALSE(bare.ok);
+  EXPECT_THAT(bare.diags, HasSubstr("part.cls:6:1: error: cutting with no tool loaded: the CL loads none before this move "
+                                    "(LOADTL, LOAD/TOOL, TURRET), so the program would select no turret station and no "
+                                    "offset (no T word) and cut with whatever the last program left"));
+  const std::string cl = "UNITS/MM\nTURRET/1\n" + cut;
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr("N30 T0101 (T1)\n"));
+  Compiled gone = verify_text(cl, machine("fanuc-lathe"), edit(c.output, "N30 T0101 (T1)\n", ""));
+  EXPECT_FALSE(gone.ok);
+  EXPECT_THAT(first_error(gone.diags), HasSubstr("error: this is cut with no tool selected (no T word) (the CL loads tool 1 at line 2)"));
+}
