@@ -116,7 +116,7 @@ enum class SpindleDir : uint8_t { Cw, Ccw, Off };
 enum class SpindleMode : uint8_t { Rpm, SurfaceSpeed };
 
 struct Spindle {
-  double speed = 0;  // rpm, or surface speed in m/min (mm programs) / ft/min (inch)
+  double speed = 0;  // rpm, or surface speed in m/min (SFM is converted when it is read)
   SpindleMode mode = SpindleMode::Rpm;
   SpindleDir dir = SpindleDir::Cw;
   double max_rpm = 0;  // clamp for surface speed (0 = none given)

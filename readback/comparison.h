@@ -427,6 +427,8 @@ class Comparison : public ProgramSink {
   SourceLoc cl_feed_loc_;
   bool cl_spindle_ = false;  // the CL's spindle turns (a SPINDL, no SPINDL/OFF since)
   double cl_rpm_ = 0;         // the CL's speed in rpm (0: none, or a surface speed)
+  double cl_surface_ = 0;     // the CL's surface speed, output units per minute (0: none)
+  double cl_clamp_ = 0;       // its MAXRPM (0: none given)
   bool speed_said_ = false;    // a cut at another speed reported (once until it is right again)
   bool cl_coolant_ = false;    // the CL's coolant is on, with a code the reader knows (M07, M08, M88, M83)
   bool coolant_said_ = false;  // a cut with the coolant off reported (once until it is on again)

@@ -84,6 +84,18 @@ void Comparison::operation(const ir::Operation& op) {
             finish_cycle_motion();
             cl_spindle_ = x.dir != ir::SpindleDir::Off;
             cl_rpm_ = cl_spindle_ && x.mode == ir::SpindleMode::Rpm ? x.speed : 0;
+            // A surface speed per minute in output units (m/min in the IR), as high as the
+            // machine's S may write it (S37 for 120 ft/min, 36.6 m/min), and its clamp.
+            if (cl_spindle_ && x.mode == ir::SpindleMode::SurfaceSpeed) {
+              const bool inch_out = m_.units == ir::Units::Inch;
+              double s_word = x.speed;                                // m/min
+              if (inch_out) s_word /= 0.3048;                         // ft/min
+              s_word += 0.5 * std::abs(dequantize(1, m_.format('S')));
+              cl_surface_ = s_word * (inch_out ? 12 : 1000);
+            } else {
+              cl_surface_ = 0;
+            }
+            cl_clamp_ = cl_surface_ > 0 ? x.max_rpm : 0;
             // The M code the machine starts this direction with (M03 clockwise on the built-ins).
             const std::vector<double> m =
                 code_numbers(x.dir == ir::SpindleDir::Ccw ? m_.codes.spindle_ccw.text : m_.codes.spindle_cw.text, 'M');
@@ -329,8 +341,31 @@ void Comparison::spindle_ok(const TipSegment& s) {
     return;
   }
   if (s.raw.spindle && s.raw.spindle_code == cl_spindle_code_) direction_said_ = false;
+  // A lathe never turns faster than the CL asks where it cuts: its rpm, or its surface speed at
+  // the cut's radius within its clamp. A G50 clamp deleted, G96 S raised, G97 S1000 made S3000
+  // passed (helper-59, helper-60). (Slower is left: a thread or a drill on centre runs at the
+  // speed fixed where it starts; threads and cycles are their own.)
+  if (cut && cl_spindle_ && s.raw.spindle && m_.is_lathe() && !s.raw.thread && !s.raw.from_cycle &&
+      (cl_rpm_ > 0 || cl_surface_ > 0)) {
+    double want = cl_rpm_;
+    if (cl_surface_ > 0) {
+      const double r = std::abs((s.start.x() + s.end.x()) / 2);
+      want = r > 1e-9 ? cl_surface_ / (2 * arcgeo::kPi * r) : kInf;
+      if (cl_clamp_ > 0) want = std::min(want, cl_clamp_);
+    }
+    const double slack = 0.01 * want + std::abs(dequantize(1, m_.format('S')));
+    if (std::isfinite(want) && s.raw.rpm > want + slack) {
+      if (!speed_said_)
+        fail(loc_, s.raw.line, "the program turns the spindle at " + fixed_text(s.raw.rpm, 0) + " rpm here, faster than the CL's " +
+                                   (cl_surface_ > 0 ? "surface speed" + std::string(cl_clamp_ > 0 ? " within its clamp" : "") +
+                                                          " makes it at this radius (" + fixed_text(want, 0) + " rpm)"
+                                                    : "speed (" + fixed_text(want, 0) + " rpm)"),
+             0);
+      speed_said_ = true;
+    }
+  }
   // The speed: a mill's S is the CL's rpm, rounded to S's increment. S5000 made S500 or S50000,
-  // and a drill's S0, passed (helper-49). (A lathe's S may be a surface speed: not compared.)
+  // and a drill's S0, passed (helper-49).
   if (cut && cl_spindle_ && s.raw.spindle && cl_rpm_ > 0 && !m_.is_lathe()) {
     const double slack = 0.5 * std::abs(dequantize(1, m_.format('S'))) + 1e-9 * cl_rpm_;
     if (std::abs(s.raw.rpm - cl_rpm_) > slack) {

@@ -751,3 +751,26 @@ TEST(Verify, ALatheCutWithNoToolSelectedFails) {
   EXPECT_FALSE(gone.ok);
   EXPECT_THAT(first_error(gone.diags), HasSubstr("error: this is cut with no tool selected (no T word) (the CL loads tool 1 at line 2)"));
 }
+
+// A lathe never turns faster than the CL asks where it cuts: a G50 clamp deleted (the spindle
+// runs up facing to the centre), G96 S raised, G97 S1000 made S3000 passed (helper-59, helper-60).
+TEST(Verify, ALatheSpindleFasterThanTheClsFails) {
+  const std::string face = "UNITS/MM\nTURRET/1\nSPINDL/SMM,200,MAXRPM,1500,CLW\nFEDRAT/MMPR,0.1\nRAPID\nGOTO/22,0,0.5\n"
+                           "GOTO/22,0,0\nGOTO/0,0,0\nRAPID\nGOTO/0,0,5\nFINI\n";
+  Compiled c = compile_text(face, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  ASSERT_THAT(c.output, HasSubstr(" G50 S1500\n"));
+  Compiled unclamped = verify_text(face, machine("fanuc-lathe"), edit(c.output, " G50 S1500\n", " G50 S3000\n"));
+  EXPECT_FALSE(unclamped.ok);
+  EXPECT_THAT(first_error(unclamped.diags), HasSubstr("error: the program turns the spindle at "));
+  EXPECT_THAT(first_error(unclamped.diags), HasSubstr("faster than the CL's surface speed within its clamp makes it at this radius"));
+  EXPECT_FALSE(verify_text(face, machine("fanuc-lathe"), edit(c.output, " G96 S200 ", " G96 S250 ")).ok);
+  const std::string rpm = "UNITS/MM\nTURRET/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPR,0.1\nRAPID\nGOTO/22,0,2\nGOTO/20,0,2\n"
+                          "GOTO/20,0,-10\nRAPID\nGOTO/30,0,5\nFINI\n";
+  Compiled r = compile_text(rpm, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(r.ok) << r.diags;
+  Compiled faster = verify_text(rpm, machine("fanuc-lathe"), edit(r.output, " G97 S1000 ", " G97 S3000 "));
+  EXPECT_FALSE(faster.ok);
+  EXPECT_THAT(first_error(faster.diags), HasSubstr("error: the program turns the spindle at 3000 rpm here, faster than the CL's "
+                                                   "speed (1000 rpm)"));
+}
