@@ -185,8 +185,16 @@ void ProgramReader::take_events() {
   for (const gcode::Event& e : r.events) {
     switch (e.kind) {
       case gcode::Event::Kind::OffsetSet:
+        // Where the CL sets no work offset the registers are the operator's: a G10 L2 P1 X100.
+        // moved G54 and the whole part was cut elsewhere, passed (helper-60).
+        if (!use_offsets_) {
+          r.problems.push_back({e.line, "G10 sets work offset register " + std::to_string(e.reg) +
+                                            ", which the operator sets up: the CL gives it no value, so the part's "
+                                            "zero would move"});
+          break;
+        }
         known_registers_.insert(e.reg);
-        if (use_offsets_) offsets_[e.reg] = e.v;
+        offsets_[e.reg] = e.v;
         break;
       case gcode::Event::Kind::ToolChange:
         timer_.stop();

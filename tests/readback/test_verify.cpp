@@ -774,3 +774,16 @@ TEST(Verify, ALatheSpindleFasterThanTheClsFails) {
   EXPECT_THAT(first_error(faster.diags), HasSubstr("error: the program turns the spindle at 3000 rpm here, faster than the CL's "
                                                    "speed (1000 rpm)"));
 }
+
+// Where the CL sets no work offset the registers are the operator's: a G10 L2 P1 inserted moved
+// G54, and the whole part was cut elsewhere, passed (helper-60).
+TEST(Verify, AWorkOffsetTheClDoesNotSetFails) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,300\n"
+                         "GOTO/0,0,-2\nGOTO/50,0,-2\nRAPID\nGOTO/50,0,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  Compiled moved = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N30 T1 M06", "N25 G10 L2 P1 X100. Y50. Z-20.\nN30 T1 M06"));
+  EXPECT_FALSE(moved.ok);
+  EXPECT_THAT(moved.diags, HasSubstr("G10 sets work offset register 1, which the operator sets up: the CL gives it no value, so "
+                                     "the part's zero would move"));
+}
