@@ -62,11 +62,14 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
     return;
   }
   if (s.mode == ir::SpindleMode::SurfaceSpeed) {
-    // The programmer's MAXRPM, never above the machine's limit.
-    double clamp = s.max_rpm;
+    // The programmer's MAXRPM, never above the machine's limit. One given before holds until
+    // another is (the part's or the chuck's limit): a later SPINDL/SMM without one raised
+    // G50 S1500 to the machine's S3000 (helper-59).
+    if (s.max_rpm > 0) cl_max_rpm_ = s.max_rpm;
+    double clamp = cl_max_rpm_;
     if (m_.spindle_limit() > 0 && (clamp <= 0 || clamp > m_.spindle_limit())) clamp = m_.spindle_limit();
-    if (s.max_rpm > clamp)
-      d_.warning(loc, "MAXRPM " + num_text(s.max_rpm) + " is above machine '" + m_.name + "''s spindle limit: clamped at " +
+    if (cl_max_rpm_ > clamp)
+      d_.warning(loc, "MAXRPM " + num_text(cl_max_rpm_) + " is above machine '" + m_.name + "''s spindle limit: clamped at " +
                           num_text(clamp) + " rpm",
                  "spindle-clamp");
     if (clamp <= 0) {
@@ -89,7 +92,7 @@ void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
       spindle_ = s.dir;
       return;
     }
-    if (!(s.max_rpm > 0))
+    if (!(cl_max_rpm_ > 0))
       d_.warning(loc, "constant surface speed without MAXRPM: clamped at the machine's limit of " + num_text(clamp) +
                           " rpm (give SPINDL/...,MAXRPM,n for the part's or the chuck's limit)",
                  "spindle-clamp");

@@ -46,6 +46,7 @@ class LatheBackend : public ProgramWriter {
   double surface_clamp_ = 0;              // its G50 clamp (rpm)
   bool rpm_fixed_ = false;                // G97 written for a thread or a drill under surface_
   double fixed_rpm_ = 0;                  // its S
+  double cl_max_rpm_ = 0;                 // the last MAXRPM the CL gave (0: none yet)
   bool drill_fixed_ = false;              // that G97 is a drill's on the axis (speed_on_centre)
   void end_drill_speed(SourceLoc loc);    // G96 back after a drill, before anything else cuts
   SourceLoc thread_loc_;                  // its THREAD record

@@ -470,3 +470,14 @@ TEST(LatheMotion, ADwellInRevolutionsUnderSurfaceSpeed) {
   EXPECT_THAT(fixed.output, HasSubstr(" G97 S1909 M03\n"));
   EXPECT_THAT(fixed.output, HasSubstr(" G04 U0.094\n"));
 }
+
+// A MAXRPM holds until another is given: a later SPINDL/SMM without one raised G50 S1500 to the
+// machine's S3000 with only a warning (helper-59).
+TEST(LatheMotion, AClampHoldsUntilAnotherIsGiven) {
+  const std::string cl = "UNITS/MM\nMACHIN/TURN\nLOAD/TOOL,2\nSPINDL/SMM,200,CLW,MAXRPM,1500\nRAPID\nGOTO/22,0,2\n"
+                         "FEDRAT/MMPR,0.1\nGOTO/10,0,2\nSPINDL/SMM,150,CLW\nGOTO/10,0,-20\nGOTO/22,0,-20\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N80 G50 S1500\nN90 G96 S150 M03\n"));
+  EXPECT_THAT(c.output, Not(HasSubstr("S3000")));
+}
