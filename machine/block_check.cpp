@@ -114,10 +114,8 @@ std::string axis_words(std::string_view t) {
   bool dwell = false;
   for (size_t i = 0; i < t.size(); ++i) {
     const char c = t[i];
-    if (c == '(') {
-      const size_t close = t.find(')', i);
-      if (close == std::string_view::npos) break;
-      i = close;
+    if (c == '(') {  // a comment: on past its ')' (the rest of the block, unclosed)
+      if ((i = t.find(')', i)) == std::string_view::npos) break;
       continue;
     }
     // A letter after a letter is part of a word (GOTO, SIN, LT); after a digit or a point it
@@ -151,10 +149,8 @@ std::string system_variable_set(std::string_view t) {
     while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
   };
   for (size_t i = 0; i < t.size(); ++i) {
-    if (t[i] == '(') {
-      const size_t close = t.find(')', i);
-      if (close == std::string_view::npos) break;
-      i = close;
+    if (t[i] == '(') {  // a comment: on past its ')' (the rest of the block, unclosed)
+      if ((i = t.find(')', i)) == std::string_view::npos) break;
       continue;
     }
     // A '#' read as a value (X#101, #1=#5221) is preceded by a letter, '=', an operator or '['.
@@ -191,10 +187,8 @@ std::string system_variable_set(std::string_view t) {
 std::vector<double> code_numbers(std::string_view t, char letter) {
   std::vector<double> out;
   for (size_t i = 0; i < t.size(); ++i) {
-    if (t[i] == '(') {
-      const size_t close = t.find(')', i);
-      if (close == std::string_view::npos) break;
-      i = close;
+    if (t[i] == '(') {  // a comment: on past its ')' (the rest of the block, unclosed)
+      if ((i = t.find(')', i)) == std::string_view::npos) break;
       continue;
     }
     if (t[i] != letter || (i > 0 && upper_letter(t[i - 1]))) continue;
