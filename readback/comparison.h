@@ -278,8 +278,9 @@ class Comparison : public ProgramSink {
   // A rapid passed over on the way to a CL feed that runs along the CL path (both its ends on
   // it) is the cut made at rapid traverse. One that leaves the path (a retract, a positioning
   // move) is the post's own where the tool comes from no CL point of its own (the first move
-  // after a tool change), or where the program comes back to the last point before it cuts on
-  // (a retract to unwind or to change branch, RotaryContinuity). Anywhere else the CL's cut
+  // after a tool change), or where the program goes up the tool axis and comes back to the
+  // last point before it cuts on (a retract to unwind or to change branch, RotaryContinuity;
+  // down into the stock and back passed, helper-58). Anywhere else the CL's cut
   // from the last point is not made: a G00 through the stock and a feed back up to the point
   // passed (helper-57), and so did a retract, re-tilt and plunge in place of an operation's
   // first cut.
@@ -300,13 +301,12 @@ class Comparison : public ProgramSink {
       }
       // Out and back goes up, along the tool axis: a G00 down into the stock and back up to the
       // point passed (helper-58).
-      const bool dives = i < back && have_prev_ && finite(s.end) && s.axis.norm() > 0 && !s.rotates &&
-                         (s.end - prev_).dot(s.axis.normalized()) < -tol_;
-      if (dives) {
+      const double down = finite(s.end) && s.axis.norm() > 0 ? -(s.end - prev_).dot(s.axis.normalized()) : 0;
+      if (i < back && have_prev_ && !s.rotates && down > tol_) {
         fail(loc_, s.raw.line,
-             "the program leaves the CL's cut at " + xyz(prev_) + " at rapid traverse (G00) " +
-                 fixed_text(-(s.end - prev_).dot(s.axis.normalized()), 4) + " down along the tool axis",
-             off);
+             "the program leaves the CL's cut at " + xyz(prev_) + " at rapid traverse (G00) " + fixed_text(down, 4) +
+                 " down along the tool axis",
+             down);
         return;
       }
       if (off > tol_ && have_prev_ && cut_from_point_ && i >= back) {
