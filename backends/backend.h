@@ -38,6 +38,7 @@ class ProgramWriter : public Backend {
   virtual void write_spindle(const ir::Spindle& s, SourceLoc loc);
   virtual void write_feed_mode(ir::FeedMode mode);
   virtual void start_program() {}
+  virtual void before_finish() {}  // after the last operation, before the finish blocks
   virtual void after_finish() {}  // after the finish blocks, before program_end (e.g. subprograms)
   virtual void write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc);
   virtual void write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc);

@@ -25,7 +25,11 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   side_ = 0;  // the next tool's side is where it starts
   end_drill_speed(loc);
   if (!tool_changer_for(t, loc)) return;
-  if (tool_ >= 0) blocks({m_.codes.safe_retract}, loc);
+  if (tool_ >= 0) {
+    clear_to_retract(loc, "the tool change finds the tool");
+    blocks({m_.codes.safe_retract}, loc);
+  }
+  reach_ = {};
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
@@ -41,7 +45,10 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   after_tool_change(t.tool, loc);
 }
 
-void LatheBackend::retract_for_stop(SourceLoc loc) { blocks({m_.codes.safe_retract}, loc); }
+void LatheBackend::retract_for_stop(SourceLoc loc) {
+  clear_to_retract(loc, "the stop's retract finds the tool");
+  blocks({m_.codes.safe_retract}, loc);
+}
 
 void LatheBackend::write_spindle(const ir::Spindle& s, SourceLoc loc) {
   if (s.dir == ir::SpindleDir::Off) {
@@ -219,6 +226,8 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   e_.modal_word('Z', o.z());
   if (!rapid) feed_word(loc);
   e_.end();
+  if (rapid) reach_.went_in = false;
+  else note_cut_to(mv.point, loc);
   pos_ = mv.point;
   position_known_ = true;
 }
@@ -329,6 +338,7 @@ void LatheBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLo
   }
   feed_word(loc);
   e_.end();
+  note_arc(a, loc);
   pos_ = a.end;
   (void)op;
 }
@@ -372,6 +382,9 @@ void LatheBackend::write_groove(const ir::Operation& op, const ir::Groove& g, So
   // The cycle ends where it started.
   e_.set_last('X', g.start.x() * k_);
   e_.set_last('Z', g.start.z() * k_);
+  note_cut(g.start, loc);
+  note_cut(g.end, loc);
+  reach_.went_in = false;  // the cycle returns to its start
   pos_ = g.start;
   position_known_ = true;
 }

@@ -22,6 +22,22 @@ class LatheBackend : public ProgramWriter {
   void write_thread_mark(const ir::ThreadMark& t, SourceLoc loc) override;
   void write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc) override;
   void write_rough(const ir::Operation& op, size_t at, SourceLoc loc) override;  // backends/lathe_rough.cpp
+  void before_finish() override;
+
+  // The retract home (backends/lathe_retract.cpp). The reach of this tool's cuts: how far out
+  // in X and how far toward +Z any of them went. The machine's retract (G28 U0. W0.) takes
+  // the tool to home, out in X and Z at once; it leaves the part only from beyond that reach.
+  struct CutReach {
+    bool any = false;
+    double x = 0, z = 0;  // program units
+    SourceLoc last;       // the last cut's record
+    bool went_in = false; // the last motion was a cut toward the axis or the chuck (-X, -Z)
+  };
+  CutReach reach_;
+  void note_cut(const ir::Vec3& p, SourceLoc loc);
+  void note_cut_to(const ir::Vec3& to, SourceLoc loc);  // a feed from pos_ to `to`
+  void note_arc(const ir::Arc& a, SourceLoc loc);
+  bool clear_to_retract(SourceLoc loc, const char* before);
 
   void motion_code(Motion mo);
   bool stays_on_its_side(double x, bool feed, SourceLoc loc, const char* what = "a feed to");

@@ -167,6 +167,7 @@ void LatheBackend::write_rough(const ir::Operation& op, size_t at, SourceLoc loc
   feed_written_ = false;
   e_.set_last('X', m.start.x() * k_);
   e_.set_last('Z', m.start.z() * k_);
+  reach_.went_in = false;  // the cycle returns to its start
   pos_ = m.start;
   position_known_ = true;
 }

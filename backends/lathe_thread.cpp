@@ -143,6 +143,7 @@ void LatheBackend::write_thread_move(const ir::Move& mv, SourceLoc loc) {
   if (!write_lead(lead, (mv.point - pos_).norm(), loc)) return;
   e_.end();
   motion_ = Motion::None;  // G32 is a motion code of its own: the next G00/G01 is written
+  note_cut_to(mv.point, loc);
   pos_ = mv.point;
 }
 
@@ -184,6 +185,9 @@ void LatheBackend::write_thread_cycle(const ir::ThreadCycle& t, SourceLoc loc) {
   // The cycle ends where it started.
   e_.set_last('X', t.start.x() * k_);
   e_.set_last('Z', t.start.z() * k_);
+  note_cut(t.start, loc);
+  note_cut(t.end, loc);
+  reach_.went_in = false;  // the cycle returns to its start
   pos_ = t.start;
   position_known_ = true;
 }

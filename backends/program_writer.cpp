@@ -59,6 +59,7 @@ void ProgramWriter::begin(const ir::ProgramInfo& info) {
 
 void ProgramWriter::end() {
   cancel_cycle({});
+  before_finish();
   // Compensation still on (a CUTCOM/OFF with no move after it, or none at all) is cancelled
   // before the finish's moves: the retract and park are no compensated path.
   if (comp_on_) {

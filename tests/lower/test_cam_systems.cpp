@@ -614,7 +614,7 @@ TEST(CamSystems, ALatheFrameTurnedFromTheFirstIsASetupOfItsOwn) {
   EXPECT_FALSE(turned.ok);
   EXPECT_THAT(turned.diags, HasSubstr("part.cls:13:1: error: this MSYS is turned from the first one (the program's frame, "
                                       "along the spindle's axis): on a lathe only a shift along Z is one setup"));
-  Compiled shifted = compile_text(head + "MSYS/0,0,-10,1,0,0,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\n",
+  Compiled shifted = compile_text(head + "MSYS/0,0,-10,1,0,0,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\nGOTO/30,0,-20\n",
                                   machine("fanuc-lathe"), {.certify = true});
   ASSERT_TRUE(shifted.ok) << shifted.diags;
   EXPECT_THAT(shifted.output, HasSubstr("G00 X60. Z-8.\n"));
@@ -622,7 +622,7 @@ TEST(CamSystems, ALatheFrameTurnedFromTheFirstIsASetupOfItsOwn) {
   Compiled rounded = compile_text(
       "TOOL PATH/OP1,TOOL,OD\nMSYS/0,0,0,0.8660254,0,-0.5,0,1,0\nUNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\n"
       "FEDRAT/MMPR,0.1\nRAPID\nGOTO/30,0,2\nGOTO/15,0,-20\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,OD\n"
-      "MSYS/-5.0000,0.0000,-8.6603,0.8660254,0,-0.5,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/14,0,-20\nEND-OF-PATH\n",
+      "MSYS/-5.0000,0.0000,-8.6603,0.8660254,0,-0.5,0,1,0\nRAPID\nGOTO/30,0,2\nGOTO/14,0,-20\nGOTO/30,0,-20\nEND-OF-PATH\n",
       machine("fanuc-lathe"), {.certify = true});
   EXPECT_TRUE(rounded.ok) << rounded.diags;
   // Creo's CSYS: its points are in the program's frame, but a frame turned from the first is

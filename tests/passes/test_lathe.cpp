@@ -361,7 +361,8 @@ TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
                                machine("fanuc-lathe"));
   EXPECT_THAT(over.diags, HasSubstr(":9:1: error: an arc reaching radius -38, 38 past the spindle axis"));
   // The same circle the short way round, under it, stays on the tool's side.
-  Compiled under = compile_text(head + "GOTO/10,0,8.2462\nGOTO/1,0,6.2450\nCIRCLE/-18,0,0,0,1,0,20\nGOTO/1,0,-6.2450\n",
+  Compiled under = compile_text(head + "GOTO/10,0,8.2462\nGOTO/1,0,6.2450\nCIRCLE/-18,0,0,0,1,0,20\nGOTO/1,0,-6.2450\n"
+                                "GOTO/30,0,-6.2450\n",
                                 machine("fanuc-lathe"), {.certify = true});
   EXPECT_TRUE(under.ok) << under.diags;
   for (const std::string& cl :
@@ -369,7 +370,7 @@ TEST(LatheMotion, AFeedFarPastTheSpindleAxisIsRefused) {
         head + "GOTO/60,0,2\nGOTO/60,0,0\nGOTO/-6,0,0\nGOTO/-6,0,2\n",  // a round insert's R6
         head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/0.8,0,0\nGOTO/-20,0,0\n",
         head + "GOTO/-30,0,2\nGOTO/-30,0,0\nGOTO/-10,0,0\nRAPID\nGOTO/-40,0,5\nLOAD/TOOL,4\nRAPID\nGOTO/30,0,2\n"
-               "GOTO/30,0,-5\nGOTO/20,0,-5\n",
+               "GOTO/30,0,-5\nGOTO/20,0,-5\nGOTO/30,0,-5\n",
         drill + "GOTO/0,0,5\nGOTO/0,0,-20\n",
         head + "GOTO/-0.8,0,2\nGOTO/-0.8,0,0\nGOTO/30,0,0\nGOTO/30,0,2\n"}) {  // a face cut from just past the centre
     Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
@@ -480,4 +481,39 @@ TEST(LatheMotion, AClampHoldsUntilAnotherIsGiven) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N80 G50 S1500\nN90 G96 S150 M03\n"));
   EXPECT_THAT(c.output, Not(HasSubstr("S3000")));
+}
+
+// The retract home (G28 U0. W0.) goes out in X and Z at once. After a cut toward the axis or
+// the chuck that left the tool short of its cuts' reach in both, it drags the tool through the
+// part: a face down a shoulder, then LOADTL, was certified (helper-59). Refused at the record
+// that retracts; the program's end is reported at the cut that left the tool there.
+TEST(LatheRetract, AToolLeftInThePartIsNotSentHomeDiagonally) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/31,0,2\nFEDRAT/0.2,MMPR\n"
+                           "GOTO/31,0,-20\nGOTO/20,0,-20\n";
+  const std::string next = "LOADTL/2\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,5\nEND\n";
+  Compiled change = compile_text(head + next, machine("fanuc-lathe"));
+  EXPECT_FALSE(change.ok);
+  EXPECT_THAT(change.diags,
+              HasSubstr("part.cls:9:1: error: the tool change finds the tool at X40 Z-20 after a cut toward the spindle "
+                        "axis or the chuck, inside the reach of its cuts (out to X62, forward to Z2): the machine's "
+                        "retract G28 U0. W0. goes home in X and Z at once and would drag it through the part; the CL "
+                        "must retract the tool clear of the part (a GOTO out of the groove, bore or shoulder) first\n"
+                        " 9 | LOADTL/2\n"));
+  Compiled ends = compile_text(head + "END\n", machine("fanuc-lathe"));
+  EXPECT_FALSE(ends.ok);
+  EXPECT_THAT(ends.diags, HasSubstr("part.cls:8:1: error: the program ends at X40 Z-20 after a cut toward the spindle "
+                                    "axis or the chuck"));
+  // A bore finished down to its floor: the tool stands below its pass's start in Z and inside
+  // the bore's largest radius.
+  Compiled bore = compile_text("UNITS/MM\nLOADTL/3\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/12,0,2\nFEDRAT/0.1,MMPR\n"
+                               "GOTO/12,0,-30\nGOTO/8,0,-30\n" + next, machine("fanuc-lathe"));
+  EXPECT_THAT(bore.diags, HasSubstr("part.cls:9:1: error: the tool change finds the tool at X16 Z-30 after a cut"));
+  // Clear: the CL's own retract (a rapid, or a feed out of the groove), and a facing pass that
+  // ends going out (NIST turn_op10.ncl.4 changes tool at the bar's diameter).
+  for (const std::string& out : {std::string("RAPID\nGOTO/33,0,-20\n"), std::string("GOTO/33,0,-20\n"),
+                                 std::string("GOTO/20,0,0\nGOTO/32,0,0\n")}) {
+    Compiled c = compile_text(head + out + next, machine("fanuc-lathe"), {.certify = true});
+    EXPECT_TRUE(c.ok) << out << c.diags;
+    EXPECT_THAT(c.output, HasSubstr("G28 U0. W0.\nN")) << out;
+  }
 }
