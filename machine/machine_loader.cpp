@@ -696,6 +696,15 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
           if (const toml::node* n = f->find("scale"))
             f->error(*n, "scale", num_text(scale) + " on " + k + ", which is no length: the control would read another "
                                   "feed, speed, time or number than the one meant; a scale is for a lathe's diameter X");
+      // A position or angle written without its point when it is whole (X50) is read by a
+      // Fanuc or Haas in least input increments (0.050 mm) unless the control is set for
+      // calculator-type input: every whole position a thousand times short, certified (the
+      // reader took it as written; helper-62). point = "always" reads right on every control.
+      if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
+          m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::IfFraction)
+        c.error(key->source(), s->key_path(k) + ".point: \"if-fraction\" writes a whole " + k + " without its point (" +
+                                   k + "50), which a control reads in least input increments (0.050 mm, 0.0050 in) "
+                                   "unless it is set for calculator-type input: say point = \"always\"");
       // Numbers without a point are counted in the control's one least input increment: two
       // axes written so with other decimals (X in 0.001, Y in 0.0001) put one 10 times off.
       const AddressFormat& mine = m.formats[size_t(k[0] - 'A')];

@@ -95,10 +95,14 @@ class Interp {
   void problem(int line, std::string msg) { res_.problems.push_back({line, std::move(msg)}); }
 
   // Converts a word's number as the control would: a value without a decimal point on an
-  // address whose format never writes one is in least-input increments.
+  // address whose format never writes one is in least-input increments, and so is a position
+  // or an angle (X50 is 0.050 mm on a Fanuc or a Haas, whatever the machine's format says: a
+  // hand edit that lost the point was read as 50 mm and certified; helper-62).
   double convert(char letter, double v, bool has_point) {
     const AddressFormat& f = m_.format(letter);
-    if (!has_point && f.point == AddressFormat::Point::Never && f.decimals > 0) v /= std::pow(10.0, f.decimals);
+    const bool position = std::string_view("XYZUVWIJKRABC").find(letter) != std::string_view::npos;
+    if (!has_point && (f.point == AddressFormat::Point::Never || position) && f.decimals > 0)
+      v /= std::pow(10.0, f.decimals);
     return v;
   }
 
@@ -489,10 +493,11 @@ class Interp {
     if (a.count('P')) cyc_p_ = (cycle_ == 82 || cycle_ == 89) ? dwell_p(a, line) : a['P'];
     // K (Fanuc) or L (Haas) repeats the hole: K0 stores the cycle without drilling, K3 drills it
     // three times (G91: three holes a step apart). clpc writes neither; the reader does not follow.
+    // A count, not a length: as written.
     for (char repeat : {'K', 'L'})
-      if (a.count(repeat) && a[repeat] != 1)
-        problem(line, std::string(1, repeat) + fmt(a[repeat]) + " in a canned cycle: the control " +
-                          (a[repeat] == 0 ? std::string("stores the cycle and drills no hole") : "drills the hole " + fmt(a[repeat]) + " times") +
+      if (const double n = a.raw[size_t(repeat - 'A')]; a.count(repeat) && n != 1)
+        problem(line, std::string(1, repeat) + fmt(n) + " in a canned cycle: the control " +
+                          (n == 0 ? std::string("stores the cycle and drills no hole") : "drills the hole " + fmt(n) + " times") +
                           "; clpc's reader does not follow repeats, so the program cannot be checked against the CL");
     bool xy = a.count('X') || a.count('Y');
     if (!xy && !new_cycle) return;

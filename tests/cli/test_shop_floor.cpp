@@ -162,6 +162,16 @@ namespace {
 std::string load_error(const std::string& toml) { return machine_errors(toml); }
 }  // namespace
 
+// point = "if-fraction" on a position wrote G43 H01 Z10 and X50: a Fanuc reads them in least
+// input increments, 0.010 and 0.050 mm (helper-62). Refused at the key.
+TEST(ShopFloor, APositionWrittenWithoutItsPointWhenWholeIsRefused) {
+  EXPECT_EQ(load_error("[iff]\ninherits = \"fanuc-mill\"\n[iff.format]\nY = { point = \"if-fraction\" }\n"),
+            "shop.toml:4:1: error: iff.format.Y.point: \"if-fraction\" writes a whole Y without its point (Y50), which a "
+            "control reads in least input increments (0.050 mm, 0.0050 in) unless it is set for calculator-type input: "
+            "say point = \"always\"\n 4 | Y = { point = \"if-fraction\" }\n   | ^\n");
+  EXPECT_EQ(load_error("[iff]\ninherits = \"fanuc-mill\"\n[iff.format]\nF = { point = \"if-fraction\" }\n"), "");
+}
+
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
                        "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),

@@ -142,6 +142,14 @@ TEST_F(VerifyPlate, PointShiftedBy0_01mmFails) {
   EXPECT_EQ(c.report.max_loc.line, 15u);
 }
 
+// A position without its point is in least input increments on a Fanuc or a Haas: X30 is
+// 0.030 mm. A hand edit that lost the point was read as 30 mm and passed (helper-62).
+TEST_F(VerifyPlate, APositionWithoutItsPointIsReadInIncrements) {
+  Checked c = verify(cl, m, edit(program_for(cl, m), "N90 X30. F800.", "N90 X30 F800."));
+  EXPECT_FALSE(c.report.ok);
+  EXPECT_THAT(first_error(c.diags), HasSubstr("plate.cls:11:1: error: CL point (30.0000, 0.0000, -2.0000) is never reached"));
+}
+
 // Register 0 is no length offset at all (G43 H00; a lathe's T0100): the tip is off by the
 // tool's length. It was taken for "no register said" and passed. (helper-35)
 TEST_F(VerifyPlate, NoLengthOffsetFails) {
