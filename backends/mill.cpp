@@ -29,6 +29,14 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
     return;
   }
   if (!tool_changer_for(t, loc)) return;
+  // No G43 and no offset in the tool change: every tool would cut at the first one's length
+  // (a machine with codes.length_offset = "" certified T2 plunging at T1's Z; helper-62). A
+  // control that applies the length with the tool (Siemens' D) says so with {offset}.
+  if (tool_ >= 0 && m_.codes.length_offset.empty() && !m_.codes.tool_change.uses(Var::Offset))
+    d_.error(loc, "machine '" + m_.name + "' has no length offset (codes.length_offset) and its tool change (" +
+                      m_.codes.tool_change.text + ") selects none: tool " + std::to_string(t.tool) +
+                      " would cut at tool " + std::to_string(tool_) + "'s length; give codes.length_offset (G43 "
+                      "H{offset}), or {offset} in codes.tool_change where the control applies the length with it");
   if (tool_ >= 0) retract(loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;

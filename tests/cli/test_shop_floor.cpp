@@ -701,3 +701,22 @@ TEST(ShopFloor, BlockNumbersArePaddedToTheirDigits) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("\nN00010 G21\nN00020 G00 G17 G40 G49 G80 G90\n"));
 }
+
+// A machine with no G43 and no offset in its tool change ran T2 at T1's length: the second
+// tool's plunge certified (helper-62). A control that applies the length with the tool
+// (Siemens' D) says so with {offset} in the tool change.
+TEST(ShopFloor, ASecondToolWithNoLengthOffsetIsRefused) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,200\nGOTO/0,0,-5\n"
+                         "RAPID\nGOTO/0,0,10\nLOADTL/2\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/MMPM,200\n"
+                         "GOTO/20,0,-3\nRAPID\nGOTO/20,0,10\nFINI\n";
+  Compiled none = compile_text(cl, machine("nog43", "[nog43]\ninherits = \"fanuc-mill\"\n[nog43.codes]\nlength_offset = \"\"\n"));
+  EXPECT_FALSE(none.ok);
+  EXPECT_THAT(none.diags, HasSubstr("part.cls:10:1: error: machine 'nog43' has no length offset (codes.length_offset) and "
+                                    "its tool change (T{tool} M06) selects none: tool 2 would cut at tool 1's length; give "
+                                    "codes.length_offset (G43 H{offset}), or {offset} in codes.tool_change where the control "
+                                    "applies the length with it\n"));
+  Compiled d = compile_text(cl, machine("sie", "[sie]\ninherits = \"fanuc-mill\"\n[sie.codes]\nlength_offset = \"\"\n"
+                                               "tool_change = \"T{tool} M06 D{offset}\"\n"));
+  ASSERT_TRUE(d.ok) << d.diags;
+  EXPECT_THAT(d.output, HasSubstr("N100 T2 M06 D2 (T2)\n"));
+}
