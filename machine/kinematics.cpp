@@ -323,6 +323,29 @@ double angle_between(const Vec3& a, const Vec3& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / kPi;
 }
 
+std::optional<size_t> pole_free_axis(const KinematicsSettings& k) {
+  if (k.rotaries.size() != 2) return std::nullopt;
+  const Vec3 s = tool_axis_in_part(k, {0, 0});
+  const RotaryAxis& inner = k.rotaries[1];
+  const Vec3 u = inner.table ? inner.effective() : rotation(k.rotaries[0].effective(), 0) * inner.effective();
+  if (std::abs(std::abs(s.dot(u.normalized())) - 1) <= 1e-9) return 1;
+  // The outer axis along the tool at zero: turning it turns the tool about itself.
+  if (std::abs(std::abs(s.dot(k.rotaries[0].effective().normalized())) - 1) <= 1e-9) return 0;
+  return std::nullopt;
+}
+
+double off_sweep(const Vec3& v, const Vec3& a0, const Vec3& a1) {
+  const double end = std::min(angle_between(v, a0), angle_between(v, a1));
+  const Vec3 n = a0.cross(a1);
+  if (n.norm() < 1e-12) return end;
+  const Vec3 u = n.normalized();
+  const Vec3 in = v - v.dot(u) * u;  // v projected into the arc's plane
+  if (in.norm() < 1e-12) return end;
+  const Vec3 w = in.normalized();
+  if (std::abs(angle_between(a0, w) + angle_between(w, a1) - angle_between(a0, a1)) > 1e-9) return end;
+  return std::asin(std::min(1.0, std::abs(v.dot(u)))) * 180 / kPi;
+}
+
 bool RotaryIndexing::apply(const KinematicsSettings& k, const ir::RotaryIndex& ri, std::string& why) {
   int which = -1;
   for (size_t i = 0; i < k.rotaries.size(); ++i) {

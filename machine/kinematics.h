@@ -9,6 +9,8 @@
 // along +Z when the head axes are at zero.
 #pragma once
 
+#include <optional>
+
 #include <array>
 #include <vector>
 
@@ -63,6 +65,21 @@ Choice choose(const KinematicsSettings& k, const Vec3& axis, const Angles* curre
 
 // Angular distance between two unit vectors, in degrees.
 double angle_between(const Vec3& a, const Vec3& b);
+
+// The rotary that is free where the tool lies along an axis of the chain (the pole: the C of a
+// B/C trunnion with the tool vertical, or of a B head over a C table), if the machine has one.
+std::optional<size_t> pole_free_axis(const KinematicsSettings& k);
+
+// How far (degrees) the unit vector v lies from the great-circle arc from unit a0 to unit a1:
+// the CL's sweep of the tool axis between two points, whatever rate along it was meant.
+double off_sweep(const Vec3& v, const Vec3& a0, const Vec3& a1);
+
+// The angle (degrees) the tool axis may leave that sweep halfway through a block. Which path
+// the CAM system meant between two points is not in the CL: the great circle, or the rotaries'
+// own (a wrap about C at a constant tilt, 15 degree steps at B30, is 0.21 degrees off the great
+// circle halfway and is right as the rotaries cut it). One degree is beyond any such choice
+// and catches the swing of C near the pole (10 degrees off, certified; helper-63).
+constexpr double kMidBlockAxisTolerance = 1.0;
 
 // How far axis r turns from `from` to `to` (degrees, signed), as the control moves it: a
 // modulo axis (positions in [0, 360)) the short way, any other by the difference.

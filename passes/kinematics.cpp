@@ -223,20 +223,10 @@ class Kinematics : public Pass {
   std::optional<Vec3> singular_direction() const { return singular_; }
 
   std::optional<Vec3> find_singular_direction() {
-    if (k_.rotaries.size() != 2) return std::nullopt;
-    Vec3 s = kin::tool_axis_in_part(k_, {0, 0});
-    const RotaryAxis& inner = k_.rotaries[1];
-    Vec3 u = inner.table ? inner.effective() : kin::rotation(k_.rotaries[0].effective(), 0) * inner.effective();
-    if (std::abs(std::abs(s.dot(u.normalized())) - 1) <= 1e-9) {
-      free_ = 1;
-      return s;
-    }
-    // The outer axis along the tool at zero: turning it turns the tool about itself.
-    if (std::abs(std::abs(s.dot(k_.rotaries[0].effective().normalized())) - 1) <= 1e-9) {
-      free_ = 0;
-      return s;
-    }
-    return std::nullopt;
+    const std::optional<size_t> free = kin::pole_free_axis(k_);
+    if (!free) return std::nullopt;
+    free_ = *free;
+    return kin::tool_axis_in_part(k_, {0, 0});
   }
 
   // Turns the free axis to `to` with the tool at the last CL point (at the singularity the tool
@@ -485,8 +475,12 @@ class Kinematics : public Pass {
       if ((turns[0] != 0 || turns[1] != 0) && !unwind(a, turns, loc, out)) return;
     }
     // Transform mode: split the move where the rotation takes the tip off the CL segment.
-    if (simultaneous && !tcp(true) && have_prev_ && m.kind == ir::MoveKind::Feed)
-      subdivide(prev_tip_, prev_axis_, cur_, m.point, m.axis, a, loc, out, 0);
+    // Under TCPC the tip goes straight, but the tool axis follows the rotaries: split where it
+    // leaves the CL's sweep.
+    if (simultaneous && have_prev_ && m.kind == ir::MoveKind::Feed) {
+      if (!tcp(true)) subdivide(prev_tip_, prev_axis_, cur_, m.point, m.axis, a, loc, out, 0);
+      else subdivide_axis(prev_tip_, prev_axis_, cur_, m.point, m.axis, a, loc, out, 0);
+    }
     emit(m, a, simultaneous, loc, out);
   }
 
@@ -650,6 +644,67 @@ class Kinematics : public Pass {
     mid.kind = ir::MoveKind::Feed;
     emit(mid, c.a, true, loc, out);
     subdivide(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
+  }
+
+  // Under TCPC the control moves the tip straight and turns the rotaries at proportional
+  // rates: near the pole C swings far while B barely moves, and halfway through the block the
+  // tool axis is off the CL's sweep from ax0 to ax1 (10 degrees on a pass 3 degrees from
+  // vertical, certified; helper-63). Where it leaves the sweep by more than half the mid-block
+  // tolerance (kin::kMidBlockAxisTolerance, as verify holds it), a point goes between.
+  void subdivide_axis(const Vec3& p0, const Vec3& ax0, const kin::Angles& t0, const Vec3& p1, const Vec3& ax1,
+                      const kin::Angles& t1, SourceLoc loc, std::vector<ir::Instr>& out, int depth) {
+    // A move from one branch to the other goes through the pole: off the sweep by as far as
+    // the sweep passes from it, whatever the splitting (docs/kinematics.md).
+    if (singular_ && t0[1 - free_] * t1[1 - free_] < 0) return;
+    const Vec3 u0 = ax0.normalized(), u1 = ax1.normalized();
+    const double worst = worst_point([&](double t) {
+      return kin::off_sweep(kin::tool_axis_in_part(k_, kin::between(k_, t0, t1, t)).normalized(), u0, u1);
+    });
+    const double allowed = kin::kMidBlockAxisTolerance;
+    if (worst <= 0.5 * allowed) return;
+    if (depth >= 12) {
+      if (!(bow_reported_ == loc)) {
+        d_->error(loc, "the machine's interpolation of its rotaries takes the tool axis " + num_text(std::round(worst * 1e3) / 1e3) +
+                           " degrees off the CL's sweep here, and splitting the move does not bring it within " +
+                           num_text(std::round(allowed * 1e3) / 1e3) + " degrees");
+        bow_reported_ = loc;
+      }
+      return;
+    }
+    const Vec3 pm = (p0 + p1) / 2;
+    Vec3 am = (u0 + u1).normalized();
+    if (!std::isfinite(am.x())) am = u0;
+    kin::Angles save = cur_;
+    bool save_have = have_cur_;
+    cur_ = t0;
+    have_cur_ = true;
+    Choice c = choose(am);
+    cur_ = save;
+    have_cur_ = save_have;
+    if (!c.found) return;
+    same_branch(am, t0, t1, c.a);
+    subdivide_axis(p0, ax0, t0, pm, am, c.a, loc, out, depth + 1);
+    ir::Move mid;
+    mid.point = pm;
+    mid.axis = am;
+    mid.kind = ir::MoveKind::Feed;
+    emit(mid, c.a, true, loc, out);
+    subdivide_axis(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
+  }
+
+  // Halfway between two positions on one branch (the tilt's sign), the point stays on it. Near
+  // the pole the nearest angles are often the other branch (the tilt's sign flipped, the free
+  // axis half a turn round), and the pieces of the move would then go through the pole, off
+  // the CL's sweep whatever the splitting (NX APT_Variable_Axis.cls:224).
+  void same_branch(const Vec3& am, const kin::Angles& t0, const kin::Angles& t1, kin::Angles& a) const {
+    if (!singular_ || k_.rotaries.size() != 2) return;
+    const size_t tilt = 1 - free_;
+    if (!(t0[tilt] * t1[tilt] > 0) || !(a[tilt] * t0[tilt] < 0)) return;
+    kin::Angles alt = a;
+    alt[tilt] = -a[tilt];
+    alt[free_] = t0[free_] + std::remainder(a[free_] + 180 - t0[free_], 360.0);
+    if (k_.rotaries[free_].cyclic == Cyclic::Modulo) alt[free_] = std::fmod(alt[free_] + 360.0, 360.0);
+    if ((kin::tool_axis_in_part(k_, alt) - am).norm() <= 1e-9) a = alt;
   }
 
   // Whole turns (degrees) that bring each winding axis of `a` with a range (kinematics axes'

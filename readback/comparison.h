@@ -58,7 +58,8 @@ inline std::string xyz(const Vec3& v) {
 class Comparison : public ProgramSink {
  public:
   Comparison(const Machine& m, const ir::ProgramInfo& info, ProgramReader& rd, Diagnostics& d, VerifyReport& rep)
-      : m_(m), rd_(rd), d_(d), rep_(rep), tol_(rep.tolerance), axis_tol_(rep.axis_tolerance) {
+      : m_(m), rd_(rd), d_(d), rep_(rep), tol_(rep.tolerance), axis_tol_(rep.axis_tolerance),
+        axis_mid_tol_(std::max(rep.axis_tolerance, kin::kMidBlockAxisTolerance)) {
     k_ = ir::mm_per_unit(info.units) / ir::mm_per_unit(m.units);
     five_axis_ = m.kinematics.has_rotaries();
     increment_ = std::abs(dequantize(1, m.format('Z')));
@@ -122,6 +123,7 @@ class Comparison : public ProgramSink {
   Vec3 model_dir(const Vec3& v) const { return indexing_.on ? Vec3(indexing_.rotation * v) : v; }
 
   bool axis_ok(const TipSegment& s, const Vec3& axis);
+  void axis_between_ok(size_t j, const Vec3& axis);
   // A canned cycle's return: a move straight up the tool axis (away from the part).
   bool returns_up_the_axis(const TipSegment& s) const;
 
@@ -404,6 +406,7 @@ class Comparison : public ProgramSink {
   Diagnostics& d_;
   VerifyReport& rep_;
   const double tol_, axis_tol_;
+  const double axis_mid_tol_;  // degrees, halfway through a block (kin::kMidBlockAxisTolerance)
   double k_ = 1;
   bool five_axis_ = false, table_ = false;
   Ring<TipSegment> win_;

@@ -35,6 +35,7 @@ ir::Arc arc_of(const TipSegment& s) {
 
 ProgramReader::ProgramReader(const Machine& m, const ir::ProgramInfo& info) : m_(m), info_(info), reader_(m), timer_(m.motion, m.kinematics) {
   known_registers_.insert(m.offsets.default_index);
+  pole_free_ = kin::pole_free_axis(m.kinematics);
   for (const ir::WorkOffset& w : info.offsets) known_registers_.insert(w.index);
   use_offsets_ = !info.offsets.empty();
   if (use_offsets_) {
@@ -136,6 +137,18 @@ Vec3 ProgramReader::tip_at(const TipSegment& s, double t) const {
   kin::Angles a0 = angles(r.rotary_start), a1 = angles(r.rotary), a{0, 0};
   a = kin::between(m_.kinematics, a0, a1, t);  // a modulo axis the short way, as the control turns it
   return part_point(r, r.start + t * (r.end - r.start), a, s.shift);
+}
+
+Vec3 ProgramReader::axis_at(const TipSegment& s, double t) const {
+  const gcode::Segment& r = s.raw;
+  const kin::Angles a = kin::between(m_.kinematics, angles(r.rotary_start), angles(r.rotary), t);
+  return setup_turn(r.work_offset) * kin::tool_axis_in_part(m_.kinematics, a);
+}
+
+bool ProgramReader::through_pole(const TipSegment& s) const {
+  if (!pole_free_) return false;
+  const size_t tilt = 1 - *pole_free_;
+  return angles(s.raw.rotary_start)[tilt] * angles(s.raw.rotary)[tilt] < 0;
 }
 
 void ProgramReader::account(const gcode::Segment& s) {

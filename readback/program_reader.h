@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 #include <map>
+#include <optional>
 #include <set>
 #include <ostream>
 #include <string>
@@ -76,6 +77,12 @@ class ProgramReader {
   bool next(TipSegment& s);
   // The tool tip (part frame) a fraction t through a segment, rotaries turning with the axes.
   ir::Vec3 tip_at(const TipSegment& s, double t) const;
+  // The tool axis (part frame) a fraction t through a segment, the rotaries turning at
+  // proportional rates as the control turns them.
+  ir::Vec3 axis_at(const TipSegment& s, double t) const;
+  // Whether the rotaries go from one branch to the other (the tilt's sign changes), the tool
+  // axis passing the pole (where one rotary is free) on the way.
+  bool through_pole(const TipSegment& s) const;
   // Whether tip_at() is a straight line whatever the rotaries do: with tool-centre-point
   // control or in a tilted plane the control moves the tip, not the axes (part_point()).
   static bool tip_moves_straight(const TipSegment& s) { return s.raw.tcp || s.raw.plane; }
@@ -108,6 +115,7 @@ class ProgramReader {
   std::map<int, ir::Vec3> offsets_;    // register -> machine offset (output units)
   // Machines without rotaries: register -> the turn of its setup (a frame cut with its Z up)
   std::map<int, ir::Mat3> setup_turns_;
+  std::optional<size_t> pole_free_;  // kin::pole_free_axis
   const ir::Mat3& setup_turn(int reg) const;
   double reference_height_ = 0;
   // The work offset registers whose zero is known: the machine's default, those the setup

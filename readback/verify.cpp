@@ -512,6 +512,43 @@ bool Comparison::axis_ok(const TipSegment& s, const Vec3& axis) {
   return a <= axis_tol_;
 }
 
+// Between CL points the control turns the rotaries at proportional rates: near the pole C
+// swings far while B barely moves, and the tool axis halfway through the block is not on the
+// CL's sweep from the last point's axis to this one's (10 degrees off under TCPC, certified;
+// helper-63). Each turning feed block on the way is held to the sweep within the mid-block
+// axis tolerance (the tip is held by the line check).
+void Comparison::axis_between_ok(size_t j, const Vec3& axis) {
+  if (!five_axis_ || !prev_axis_known_ || !(axis_mid_tol_ > 0)) return;
+  const Vec3 a0 = prev_axis_.normalized(), a1 = axis.normalized();
+  for (size_t i = 0; i <= j && i < win_.size(); ++i) {
+    const TipSegment& b = win_[i];
+    if (!b.rotates || b.raw.kind == gcode::Segment::Kind::Rapid || b.raw.from_cycle) continue;
+    // A block that ends between the CL points (the compile's split of the move) ends on the
+    // sweep, as its tip ends on the CL line: within the axis tolerance.
+    if (i < j && b.axis.norm() > 0) {
+      const double end = kin::off_sweep(b.axis.normalized(), a0, a1);
+      if (end > axis_tol_) {
+        fail(loc_, b.raw.line, "the tool axis where this block ends, between CL points, is " + fixed_text(end, 4) +
+                                   " degrees off the CL's sweep from one point's axis to the next", 0);
+        return;
+      }
+    }
+    // Through the pole (the tilt's sign changes) the axis leaves the sweep by as far as the
+    // sweep passes from the pole, whatever the points: not judged (docs/verify-and-plot.md).
+    if (rd_.through_pole(b)) continue;
+    auto off = [&](double t) { return kin::off_sweep(rd_.axis_at(b, t).normalized(), a0, a1); };
+    double dev = off(0.5);
+    if (dev > axis_mid_tol_ / 4) dev = std::max(dev, worst_point(off));
+    if (dev > axis_mid_tol_) {
+      fail(loc_, b.raw.line,
+           "halfway between CL points the tool axis is " + fixed_text(dev, 3) + " degrees off the CL's sweep from one "
+           "point's axis to the next (the control turns the rotaries at proportional rates; the move wants more points)",
+           0);
+      return;
+    }
+  }
+}
+
 double Comparison::worst_while_turning(const TipSegment& s, const LineDistance& line) {
   // A tip that moves straight (TCPC, a tilted plane) does not bow: the distance to the CL
   // line, convex along a straight move, is largest at one of its ends. Exact, where the
@@ -654,6 +691,7 @@ void Comparison::reached(size_t j, const Vec3& p, const Vec3& axis, bool rapid, 
       if (b.rotates && finite(b.start) && (b.end - b.start).norm() <= tol_) continue;
       feed_ok(b, have_cl_feed_ ? &cl_feed_ : nullptr);
     }
+  if (!rapid) axis_between_ok(j, axis);
   if (s.rotates && have_prev_ && finite(s.start) && !rapid) {
     // Five-axis without TCPC: the tip between the block's ends must stay on the CL line.
     double dev = worst_while_turning(s, LineDistance{prev_, p, true});

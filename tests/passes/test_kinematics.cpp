@@ -588,3 +588,31 @@ TEST(RoundTrip, CorpusFiveAxisFilesInBothModes) {
     EXPECT_GT(t.cl_points, 150);
   }
 }
+
+// A pass 3 degrees from vertical under TCPC: the tip goes straight, but the control turns B and
+// C at proportional rates, and C swings 84 degrees in the block while B dips: halfway the tool
+// axis was 9.3 degrees off the CL's sweep from one point's axis to the next, certified
+// (helper-63). The pass puts points on the sweep; verify fails the one-block program.
+TEST(KinematicsPass, TheToolAxisFollowsTheClsSweepBetweenPointsNearThePole) {
+  const std::string cl =
+      "UNITS/MM\nTOOL PATH/FINISH_5AX,TOOL,BALL10\nTLDATA/MILL,10,5,75,0,0\nLOAD/TOOL,1\nSPINDL/RPM,8000,CLW\nRAPID\n"
+      "GOTO/-20,0,50,-0.4993762,0.0499376,0.8650451\nFEDRAT/MMPM,1000\nGOTO/-20,0,0,-0.4993762,0.0499376,0.8650451\n"
+      "GOTO/0,0,0,0,0.0499792,0.9987503\nGOTO/20,0,0,0.4993762,0.0499376,0.8650451\nRAPID\n"
+      "GOTO/20,0,50,0.4993762,0.0499376,0.8650451\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  // Halved where the swing is widest: closest to the pole, the pieces are shortest.
+  EXPECT_THAT(c.output, HasSubstr("N45 G94 G01 Z0. F39.37\nN50 X-0.3937 B15.282 C168.685\nN55 X-0.1969 B8.051 C158.522\n"
+                                  "N60 X-0.0984 B4.744 C142.155\nN65 X-0.0492 B3.443 C122.96\nN70 X0. B2.865 C90.\n"
+                                  "N75 X0.0492 B3.443 C57.04\n"));
+  const std::string one_block =
+      "%\nO01234\nN10 G20\nN15 G00 G17 G40 G49 G80 G90\nN20 T1 M06\nN25 S8000 M03\nN30 G54 G00 G234 H01\n"
+      "N35 G00 X-0.7874 Y0. B30.121 C174.289\nN40 Z1.9685\nN45 G94 G01 Z0. F39.37\nN50 X0. B2.865 C90.\n"
+      "N55 X0.7874 B30.121 C5.711\nN60 G00 X1.6376 Y0.085 Z1.4728\nN65 X0.7874 Y0. Z1.9685\nN70 G49\nN75 M05\n"
+      "N80 G53 G00 Z0.\nN85 M30\n%\n";
+  Compiled v = verify_text(cl, machine("haas-umc750"), one_block);
+  EXPECT_FALSE(v.ok);
+  EXPECT_THAT(v.diags, HasSubstr("part.cl:10:1: error: halfway between CL points the tool axis is 9.259 degrees off the "
+                                 "CL's sweep from one point's axis to the next (the control turns the rotaries at "
+                                 "proportional rates; the move wants more points) [G-code line 11]"));
+}

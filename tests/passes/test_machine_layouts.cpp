@@ -78,8 +78,14 @@ TEST(MachineLayouts, HeadHeadGantryUnderTcpExactBlocks) {
   Compiled c = compile_text(kShortFive, example(kExamples[1]), certified());
   ASSERT_TRUE(c.ok) << c.diags;
   // At the vertical C is free: it turns first, on the spot (C is the axis along the tool at A0).
+  // The quarter turn of C at A30 from (0.5, 0, 0.866) to (0, 0.5, 0.866): the head's own path
+  // keeps A30 and is 7.6 degrees off the CL's sweep of the axis halfway, so points on the sweep
+  // go between (A dips to 22.208 halfway, the tip on the CL line).
   EXPECT_THAT(c.output, HasSubstr("N50 G54 G43.4 H01\nN60 G00 X0. Y0. C0. A0.\nN70 Z60.\nN80 G94 G01 Z5. F800.\n"
-                                  "N90 C90.\nN100 X20. A30.\nN110 Y20. C180.\nN120 G00 Z60. A0.\nN130 G49\n"));
+                                  "N90 C90.\nN100 X20. A30.\nN110 Y2.5 C98.678 A26.871\nN120 Y5. C109.205 A24.391\n"
+                                  "N130 Y7.5 C121.522 A22.773\nN140 Y10. C135. A22.208\nN150 Y12.5 C148.478 A22.773\n"
+                                  "N160 Y15. C160.795 A24.391\nN170 Y17.5 C171.322 A26.871\nN180 Y20. C180. A30.\n"
+                                  "N190 G00 Z60. A0.\nN200 G49\n"));
 }
 
 // Without TCP the B head swings the tool about its pivot (250 mm above the gauge line): the

@@ -53,9 +53,13 @@ TEST(RotaryContinuity, AWindingAxisIsUnwoundWithTheToolClear) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr(":16:1: warning: C would wind to C405, past its range (-400 to 400): retracting along "
                                  "the tool axis, unwinding and re-engaging [-Wunwind]"));
-  EXPECT_THAT(c.output, HasSubstr("N75 X14.142 Y-14.142 Z-3.5 C315.\nN80 X20. Y0. Z-4. C360.\nN85 G00 X25. Z4.66\n"
-                                  "N90 G49\nN95 G00 C0.\nN100 G00 G234 H01\nN105 G00 X25. Y0. Z4.66\n"
-                                  "N110 G94 G01 X20. Z-4. F800.\nN115 X14.142 Y14.142 Z-4.5 C45.\nN120 X0. Y20. Z-5. C90.\n"));
+  // (Each 45 degree step is split once: halfway the rotaries' own path is 1.9 degrees off the
+  // CL's sweep of the tool axis, so a point on the sweep goes between, B28.076.)
+  EXPECT_THAT(c.output, HasSubstr("N110 X14.142 Y-14.142 Z-3.5 B30. C315.\nN115 X17.071 Y-7.071 Z-3.75 B28.076 C337.5\n"
+                                  "N120 X20. Y0. Z-4. B30. C360.\nN125 G00 X25. Z4.66\n"
+                                  "N130 G49\nN135 G00 C0.\nN140 G00 G234 H01\nN145 G00 X25. Y0. Z4.66\n"
+                                  "N150 G94 G01 X20. Z-4. F800.\nN155 X17.071 Y7.071 Z-4.25 B28.076 C22.5\n"
+                                  "N160 X14.142 Y14.142 Z-4.5 B30. C45.\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 }
 
@@ -109,11 +113,12 @@ TEST(RotaryContinuity, AnUnwindCodeRenamesTheAxisWithoutMotion) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.diags, HasSubstr(":16:1: warning: C would wind to C405, past its range (-400 to 400): renamed by whole "
                                  "turns (codes.unwind) [-Wunwind]"));
-  EXPECT_THAT(c.output, HasSubstr("N80 X20. Y0. Z-4. C360.\nN85 G92 C0.\nN90 G94 G01 X14.142 Y14.142 Z-4.5 C45. F800.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N120 X20. Y0. Z-4. B30. C360.\nN125 G92 C0.\n"
+                                  "N130 G94 G01 X17.071 Y7.071 Z-4.25 B28.076 C22.5 F800.\n"));
   EXPECT_THAT(c.diags, HasSubstr("clpc: certified"));
 
   std::string off = c.output;
-  off.replace(off.find("N85 G92 C0."), 11, "N85 G92 C10.");
+  off.replace(off.find("N125 G92 C0."), 12, "N125 G92 C10.");
   gcode::Result r = gcode::interpret(off, machine("umc-wind", toml));
   ASSERT_FALSE(r.problems.empty());
   EXPECT_THAT(r.problems[0].message, HasSubstr("G92 renames C360 as C10: not whole turns, so the part's angle would change"));
