@@ -656,11 +656,15 @@ class Kinematics : public Pass {
     // A move from one branch to the other goes through the pole: off the sweep by as far as
     // the sweep passes from it, whatever the splitting (docs/kinematics.md).
     if (singular_ && t0[1 - free_] * t1[1 - free_] < 0) return;
+    // Turned d degrees in all, the axis halfway is within d/2 of an end of the sweep.
+    const double allowed = kin::kMidBlockAxisTolerance;
+    double turned = 0;
+    for (size_t i = 0; i < k_.rotaries.size(); ++i) turned += std::abs(kin::travel(k_.rotaries[i], t0[i], t1[i]));
+    if (turned <= allowed) return;
     const Vec3 u0 = ax0.normalized(), u1 = ax1.normalized();
     const double worst = worst_point([&](double t) {
       return kin::off_sweep(kin::tool_axis_in_part(k_, kin::between(k_, t0, t1, t)).normalized(), u0, u1);
     });
-    const double allowed = kin::kMidBlockAxisTolerance;
     if (worst <= 0.5 * allowed) return;
     if (depth >= 12) {
       if (!(bow_reported_ == loc)) {

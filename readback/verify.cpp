@@ -533,6 +533,11 @@ void Comparison::axis_between_ok(size_t j, const Vec3& axis) {
         return;
       }
     }
+    // Turning the rotaries by d degrees in all turns the axis no further than d from where it
+    // starts, so halfway it is within d/2 of an end of the sweep: most blocks end here.
+    double turned = 0;
+    for (size_t k = 0; k < 3; ++k) turned += std::abs(b.raw.rotary[k] - b.raw.rotary_start[k]);
+    if (!(turned > 2 * axis_mid_tol_)) continue;
     // Through the pole (the tilt's sign changes) the axis leaves the sweep by as far as the
     // sweep passes from the pole, whatever the points: not judged (docs/verify-and-plot.md).
     if (rd_.through_pole(b)) continue;
