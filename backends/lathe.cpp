@@ -22,13 +22,13 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // The tool already at the cut with the same offset: nothing to write. With another offset
   // (OSETNO), the T word is written again: the turret stays, the offset changes.
   if (t.tool == tool_ && offset == length_offset_) return;
-  side_ = 0;  // the next tool's side is where it starts
   end_drill_speed(loc);
   if (!tool_changer_for(t, loc)) return;
   if (tool_ >= 0) {
-    clear_to_retract(loc, "the tool change finds the tool");
+    clear_to_retract(loc, "the tool change finds the tool");  // judged on the side the last tool worked
     blocks({m_.codes.safe_retract}, loc);
   }
+  side_ = 0;  // the next tool's side is where it starts
   reach_ = {};
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;

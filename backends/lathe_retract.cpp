@@ -57,6 +57,8 @@ bool LatheBackend::clear_to_retract(SourceLoc loc, const char* before) {
   if (!reach_.any || !reach_.went_in || !position_known_ || side_ < 0) return true;
   const double eps = 1e-6 * std::max(1.0, std::max(std::abs(reach_.x), std::abs(reach_.z)));
   if (pos_.x() >= reach_.x - eps || pos_.z() >= reach_.z - eps) return true;
+  // At the axis (a face cut to the centre, a part-off): the face is behind the tool.
+  if (pos_.x() <= 1.0 / ir::mm_per_unit(m_.units) / k_) return true;
   const double sx = k_ * m_.format('X').scale;
   const std::string retract = m_.codes.safe_retract.empty() ? "" : m_.codes.safe_retract.text;
   d_.error(loc.line > 0 ? loc : reach_.last,

@@ -23,6 +23,12 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
     // Already in the spindle: no M06. A reload that names another length register (one tool,
     // two offsets) retracts and brings Z back down with the new H, as after a tool change.
     if (offset == length_offset_) return;
+    // With no G43 the register has no block to go in: the change was dropped, certified
+    // (helper-65). (A tool change's {offset} is written only when the tool changes.)
+    if (m_.codes.length_offset.empty())
+      d_.error(loc, "machine '" + m_.name + "' has no length offset (codes.length_offset): the change of tool " +
+                        std::to_string(t.tool) + "'s offset from " + std::to_string(length_offset_) + " to " +
+                        std::to_string(offset) + " cannot be written");
     retract(loc);
     length_offset_ = offset;
     need_length_offset_ = !m_.codes.length_offset.empty() && !tcp_on_;

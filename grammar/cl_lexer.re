@@ -616,7 +616,13 @@ Lexer::Symbol Lexer::error_token(SourceLoc loc, const std::string& msg) {
 // skipped with a warning, not an error. (A known major word written wrong is an error.)
 Lexer::Symbol Lexer::not_a_record() {
   if (diags_ && !data_comment_) {
-    if (const std::string motion = motion_word_in_line(); !motion.empty())
+    // GOTO10.0,10,-1 and CIRCLE90.03,..: a record glued to its first number. Skipped, the
+    // plunge was lost and the arc cut as a chord, with a warning (helper-64).
+    if (const std::string_view g = glued_record(unknown_major_); !g.empty())
+      diags_->error(record_start_, "'" + std::string(unknown_major_) + "' reads as " + std::string(g) +
+                                       " glued to what follows (a '/' missing?): skipped, its motion or setting would be "
+                                       "lost; write " + std::string(g) + "/...");
+    else if (const std::string motion = motion_word_in_line(); !motion.empty())
       diags_->error(record_start_, "not a CL record, yet the line holds " + motion +
                                        " further on: skipped, its motion would be lost (an APT statement label is "
                                        "written 'NAME)' before the record)");
@@ -670,6 +676,7 @@ Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned ch
   MajorTok t;
   t.id = id;
   t.text = id == MajorId::Unknown ? keep(b, e) : major_spelling(id);
+  unknown_major_ = id == MajorId::Unknown ? t.text : std::string_view();
   t.data_comment = data_comment_;
   mode_ = Mode::AfterMajor;
   return Parser::make_MAJOR(t, record_start_);
@@ -940,10 +947,30 @@ Lexer::Symbol Lexer::number_token(const unsigned char* b, const unsigned char* e
   double v = 0;
   auto [end, ec] = read_decimal(digits, digits_end, v);
   if (ec == std::errc::result_out_of_range) {
-    // Underflow reads as zero; overflow is an error.
+    // Underflow reads as zero; overflow is an error. Which one is the number's order of
+    // magnitude: the digits before the point (less leading zeros), or the zeros after it, plus
+    // the exponent. A 400-digit whole number without an exponent was taken for underflow and
+    // read as 0: GOTO/<400 digits> posted X0. (helper-64).
     const char* exp = digits;
     while (exp < digits_end && *exp != 'e' && *exp != 'E') ++exp;
-    if (exp < digits_end && exp[1] != '-') {
+    long order = 0;
+    const char* p = digits + (digits < exp && *digits == '-');
+    while (p < exp && *p == '0') ++p;
+    if (p < exp && *p != '.') {
+      while (p < exp && *p != '.') ++p, ++order;
+    } else {
+      if (p < exp && *p == '.') ++p;
+      while (p < exp && *p == '0') ++p, --order;
+    }
+    if (exp + 1 < digits_end) {
+      const char* q = exp + 1;
+      const bool minus = *q == '-';
+      if (*q == '-' || *q == '+') ++q;
+      long e10 = 0;
+      for (; q < digits_end && *q >= '0' && *q <= '9'; ++q) e10 = std::min(e10 * 10 + (*q - '0'), 100000L);
+      order += minus ? -e10 : e10;
+    }
+    if (order > 0) {
       bad = true;
       return error_token(loc_of(b), "number out of range: '" + std::string(s, end_text) + "'");
     }

@@ -32,4 +32,29 @@ bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
+namespace {
+constexpr std::string_view kGluable[] = {"GOTO",   "GODLTA", "GOHOME", "FROM",   "CIRCLE", "MOVARC", "RAPID",
+                                         "FEDRAT", "SPINDL", "LOADTL", "UNITS",  "CUTCOM", "MULTAX", "CYCLE",
+                                         "TLAXIS", "DELAY",  "TURRET", "INDIRV", "GOFWD"};
+
+bool starts_with(std::string_view s, std::string_view prefix) {
+  return s.size() >= prefix.size() && iequals(s.substr(0, prefix.size()), prefix);
+}
+}  // namespace
+
+std::string_view glued_record(std::string_view word) {
+  for (std::string_view name : kGluable) {
+    if (word.size() <= name.size() || !starts_with(word, name)) continue;
+    const std::string_view rest = word.substr(name.size());
+    const char c = rest[0];
+    if ((c >= '0' && c <= '9') || c == '.' || c == '-' || c == '+') return name;
+    for (std::string_view other : kGluable)
+      if (starts_with(rest, other)) return name;
+    if (name == "UNITS")
+      for (std::string_view u : {"INCHES", "INCH", "MM", "CM"})
+        if (iequals(rest, u)) return name;
+  }
+  return {};
+}
+
 }  // namespace clpc

@@ -21,6 +21,11 @@ std::string_view major_spelling(MajorId id);
 // The id of a major word as written (any case), or Unknown.
 MajorId major_id(std::string_view word);
 
+// The record a word begins with when that record moves the tool or changes how it cuts and
+// the rest is glued to it: a number (GOTO10.0, LOADTL2, FEDRAT1000), or another such record
+// (RAPIDGOTO), or UNITS' word (UNITSINCHES). A missing '/' that would lose the record. Else "".
+std::string_view glued_record(std::string_view word);
+
 // ASCII case-insensitive equality (CL words are upper case by convention, not by rule).
 bool iequals(std::string_view a, std::string_view b);
 

@@ -278,8 +278,23 @@ void Lowerer::record(const Record& r) {
     // Header facts read by the pre-scan, and records with no meaning for the output.
     case MajorId::Multax:
       // MULTAX, MULTAX/ON: tool axes on the GOTOs (read wherever there are six values); OFF: none.
-      multax_off_ = r.params.size() == 1 && r.params[0].is("OFF");
-      multax_on_ = !multax_off_;
+      // Anything else is no guess: MULTAX/OFF,XYZ and MULTAX/OF were read as ON, and the next
+      // GOTO's second point taken for a tool axis (helper-64).
+      {
+        bool on = false, off = false, other = false;
+        for (const Param& p : r.params) {
+          if (p.is("ON")) on = true;
+          else if (p.is("OFF")) off = true;
+          else other = true;
+        }
+        if (other || (on && off)) {
+          d_.error(r.loc, "MULTAX: expected ON or OFF (or nothing, for ON): whether the GOTOs carry tool axes cannot "
+                          "be told");
+          return;
+        }
+        multax_off_ = off;
+        multax_on_ = !off;
+      }
       return;
     case MajorId::Partno: case MajorId::Machin: case MajorId::Remark:
     case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart:
@@ -424,6 +439,13 @@ void Lowerer::say_another_diameter(const Record& r) {
 }
 
 void Lowerer::unknown(const Record& r, std::string_view why, bool warn) {
+  // LOADTL2, UNITSINCHES, RAPIDGOTO/..: a known record glued to what follows. Passed through
+  // as a comment, the tool change, the units or the rapid was lost, with a warning (helper-64).
+  if (const std::string_view g = glued_record(r.major); !g.empty()) {
+    d_.error(r.loc, "'" + upper(r.major) + "' reads as " + std::string(g) + " glued to what follows (a '/' missing?): as "
+                        "an unknown record its motion or setting would be lost; write " + std::string(g) + "/...");
+    return;
+  }
   if (warn)
     d_.warning(r.loc, std::string(why) + " '" + std::string(r.major) + "' (passed through as a comment)",
                why == "unknown record" ? "unknown-record" : "not-supported", upper(r.major));

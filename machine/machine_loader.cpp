@@ -701,6 +701,12 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       // calculator-type input: every whole position a thousand times short, certified (the
       // reader took it as written; helper-62). point = "always" reads right on every control.
       if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
+          m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::Never &&
+          m.formats[size_t(k[0] - 'A')].decimals == 0)
+        c.error(key->source(), s->key_path(k) + ": written without a point in whole units (" + k + "20), which a control "
+                                   "reads in least input increments (0.020 mm): give the decimals of its increment "
+                                   "(3 in mm, 4 in inches) or point = \"always\"");
+      if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
           m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::IfFraction)
         c.error(key->source(), s->key_path(k) + ".point: \"if-fraction\" writes a whole " + k + " without its point (" +
                                    k + "50), which a control reads in least input increments (0.050 mm, 0.0050 in) "

@@ -470,6 +470,13 @@ class Kinematics : public Pass {
         turn_free_axis(c.a[free_], m.kind == ir::MoveKind::Rapid && prev_rapid_ ? ir::MoveKind::Rapid : ir::MoveKind::Feed,
                        loc, out);
       }
+      // A feed that changes branch (the tilt's sign) goes through the pole: right where the
+      // CL's sweep passes it, 10 degrees off where it does not (B20 C0 to B-20 C-60, the sweep
+      // 10 degrees from the pole: the least travel, certified; helper-65). There the branch
+      // stays, C swings, and the move is split along the sweep.
+      if (m.kind == ir::MoveKind::Feed && have_prev_ && !c.jump && singular_ &&
+          kin::off_sweep(*singular_, prev_axis_.normalized(), m.axis.normalized()) > kin::kMidBlockAxisTolerance / 2)
+        keep_branch(m.axis, c.a);
       a = c.a;
       const kin::Angles turns = unwind_turns(a);
       if ((turns[0] != 0 || turns[1] != 0) && !unwind(a, turns, loc, out)) return;
@@ -709,6 +716,22 @@ class Kinematics : public Pass {
     alt[free_] = t0[free_] + std::remainder(a[free_] + 180 - t0[free_], 360.0);
     if (k_.rotaries[free_].cyclic == Cyclic::Modulo) alt[free_] = std::fmod(alt[free_] + 360.0, 360.0);
     if ((kin::tool_axis_in_part(k_, alt) - am).norm() <= 1e-9) a = alt;
+  }
+
+  // The position for `axis` on the branch the rotaries are on now (cur_), if `a` is on the
+  // other one and this one is within the limits.
+  void keep_branch(const Vec3& axis, kin::Angles& a) const {
+    const size_t tilt = 1 - free_;
+    if (!(a[tilt] * cur_[tilt] < 0)) return;
+    kin::Angles alt = a;
+    alt[tilt] = -a[tilt];
+    alt[free_] = cur_[free_] + std::remainder(a[free_] + 180 - cur_[free_], 360.0);
+    if (k_.rotaries[free_].cyclic == Cyclic::Modulo) alt[free_] = std::fmod(alt[free_] + 360.0, 360.0);
+    for (size_t i = 0; i < 2; ++i) {
+      const RotaryAxis& r = k_.rotaries[i];
+      if (r.cyclic == Cyclic::No && (alt[i] < r.min - 1e-9 || alt[i] > r.max + 1e-9)) return;
+    }
+    if ((kin::tool_axis_in_part(k_, alt) - axis.normalized()).norm() <= 1e-9) a = alt;
   }
 
   // Whole turns (degrees) that bring each winding axis of `a` with a range (kinematics axes'

@@ -539,8 +539,11 @@ void Comparison::axis_between_ok(size_t j, const Vec3& axis) {
     for (size_t k = 0; k < 3; ++k) turned += std::abs(b.raw.rotary[k] - b.raw.rotary_start[k]);
     if (!(turned > 2 * axis_mid_tol_)) continue;
     // Through the pole (the tilt's sign changes) the axis leaves the sweep by as far as the
-    // sweep passes from the pole, whatever the points: not judged (docs/verify-and-plot.md).
+    // sweep passes from the pole, whatever the points: not judged (docs/verify-and-plot.md;
+    // the pass keeps the branch where the sweep stays clear of the pole).
     if (rd_.through_pole(b)) continue;
+    // Without TCPC the tip's bow is the measure (worst_while_turning); the pass splits for it.
+    if (!b.raw.tcp) continue;
     auto off = [&](double t) { return kin::off_sweep(rd_.axis_at(b, t).normalized(), a0, a1); };
     double dev = off(0.5);
     if (dev > axis_mid_tol_ / 4) dev = std::max(dev, worst_point(off));

@@ -170,6 +170,10 @@ TEST(ShopFloor, APositionWrittenWithoutItsPointWhenWholeIsRefused) {
             "control reads in least input increments (0.050 mm, 0.0050 in) unless it is set for calculator-type input: "
             "say point = \"always\"\n 4 | Y = { point = \"if-fraction\" }\n   | ^\n");
   EXPECT_EQ(load_error("[iff]\ninherits = \"fanuc-mill\"\n[iff.format]\nF = { point = \"if-fraction\" }\n"), "");
+  // So is one in whole units without a point: Y20 is 0.020 mm (helper-65).
+  EXPECT_THAT(load_error("[d0]\ninherits = \"fanuc-mill\"\n[d0.format]\nY = { decimals = 0, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:1: error: d0.format.Y: written without a point in whole units (Y20), which a control "
+                        "reads in least input increments (0.020 mm)"));
 }
 
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
@@ -719,4 +723,11 @@ TEST(ShopFloor, ASecondToolWithNoLengthOffsetIsRefused) {
                                                "tool_change = \"T{tool} M06 D{offset}\"\n"));
   ASSERT_TRUE(d.ok) << d.diags;
   EXPECT_THAT(d.output, HasSubstr("N100 T2 M06 D2 (T2)\n"));
+  // The same tool reloaded with another register: no block for it (helper-65).
+  Compiled reload = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nLOADTL/1,OSETNO,2\n"
+                                 "RAPID\nGOTO/0,0,5\nFINI\n",
+                                 machine("sie", "[sie]\ninherits = \"fanuc-mill\"\n[sie.codes]\nlength_offset = \"\"\n"
+                                                "tool_change = \"T{tool} M06 D{offset}\"\n"));
+  EXPECT_THAT(reload.diags, HasSubstr("part.cls:6:1: error: machine 'sie' has no length offset (codes.length_offset): the "
+                                      "change of tool 1's offset from 1 to 2 cannot be written"));
 }

@@ -62,6 +62,37 @@ TEST(Lower, SixValuesUnderMultaxOffAreRefused) {
               ElementsAre("feed (1, 2, 3)", "feed (10, 0, -2) axis (0, 0, 1)", "feed (4, 5, 6) axis (0, 0, 1)"));
 }
 
+// A MULTAX that says neither ON nor OFF, or both, is no guess: MULTAX/OFF,XYZ and MULTAX/OF
+// were read as ON and a GOTO's second point taken for a tool axis (helper-64).
+TEST(Lower, AMultaxOfAnyOtherWordIsRefused) {
+  for (const char* rec : {"MULTAX/OFF,XYZ", "MULTAX/OF", "MULTAX/0", "MULTAX/OFF,ON"})
+    EXPECT_EQ(err(std::string(rec) + "\nGOTO/30,10,-1,0,0,1\n"),
+              "1:1: MULTAX: expected ON or OFF (or nothing, for ON): whether the GOTOs carry tool axes cannot be told")
+        << rec;
+}
+
+// A record glued to what follows (a '/' missing) lost its motion or setting with a warning:
+// GOTO10.0 skipped the plunge, LOADTL2 the tool change, UNITSINCHES the units (helper-64).
+TEST(Lower, ARecordGluedToWhatFollowsIsRefused) {
+  EXPECT_EQ(err("GOTO10.0000,10.0000,-1.0000\n"),
+            "1:1: 'GOTO10' reads as GOTO glued to what follows (a '/' missing?): skipped, its motion or setting would be "
+            "lost; write GOTO/...");
+  EXPECT_EQ(err("LOADTL2\n"), "1:1: 'LOADTL2' reads as LOADTL glued to what follows (a '/' missing?): as an unknown "
+                               "record its motion or setting would be lost; write LOADTL/...");
+  for (const char* rec : {"UNITSINCHES", "RAPIDGOTO/30,20,-1", "FEDRAT1000,MMPM", "CIRCLE90.03,1,2"})
+    EXPECT_THAT(err(std::string(rec) + "\n"), HasSubstr("glued to what follows")) << rec;
+  // Words that only begin like a record are unknown records, as before.
+  EXPECT_EQ(err("RAPIDS\nCOOLNT2\nFROMAGE/1\n"), "");
+}
+
+// A whole number too large for a double was taken for an underflow and read as 0: GOTO/<400
+// digits> posted X0. (helper-64). Overflow is an error; an underflow is still 0.
+TEST(Lower, ANumberTooLargeIsAnErrorNotZero) {
+  EXPECT_THAT(err("GOTO/" + std::string(400, '9') + ",10,-1\n"), HasSubstr("1:6: number out of range: '999"));
+  EXPECT_THAT(err("GOTO/1" + std::string(320, '0') + ".5,10,-1\n"), HasSubstr("number out of range"));
+  EXPECT_EQ(err("GOTO/0." + std::string(400, '0') + "1,10,-1\nGOTO/1e-400,0,0\n"), "");
+}
+
 // APT's GOTO carries a list of points (ISO 3592): three values each under MULTAX/OFF, six
 // under MULTAX/ON; nine values were refused (helper-51). A count that reads two ways is
 // refused: a multiple of six with no MULTAX said. RAPID is its first point's.

@@ -616,3 +616,18 @@ TEST(KinematicsPass, TheToolAxisFollowsTheClsSweepBetweenPointsNearThePole) {
                                  "CL's sweep from one point's axis to the next (the control turns the rotaries at "
                                  "proportional rates; the move wants more points) [G-code line 11]"));
 }
+
+// From B20 C0 to an axis 120 degrees round at the same tilt: the least travel was the other
+// branch (B-20 C-60), through the pole while the CL's sweep stays 10 degrees from it; certified
+// (helper-65). The branch stays, C swings, and the move is split along the sweep.
+TEST(KinematicsPass, AFeedKeepsItsBranchWhereTheSweepStaysClearOfThePole) {
+  const std::string cl = "UNITS/MM\nMULTAX\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\n"
+                         "GOTO/17.101007,0,46.984631,0.342020143,0,0.939692621\nFEDRAT/500,MMPM\n"
+                         "GOTO/0,0,0,0.342020143,0,0.939692621\nGOTO/10,0,0,-0.171010072,0.296198133,0.939692621\n"
+                         "RAPID\nGOTO/1.449496,14.809907,46.984631,-0.171010072,0.296198133,0.939692621\nEND\n";
+  Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N50 X0.0492 B16.479 C7.967\n"));
+  EXPECT_THAT(c.output, HasSubstr("N65 X0.1969 B10.314 C60.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N85 X0.3937 B20. C120.\n"));
+}

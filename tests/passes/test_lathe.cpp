@@ -516,4 +516,13 @@ TEST(LatheRetract, AToolLeftInThePartIsNotSentHomeDiagonally) {
     EXPECT_TRUE(c.ok) << out << c.diags;
     EXPECT_THAT(c.output, HasSubstr("G28 U0. W0.\nN")) << out;
   }
+  // A face cut to the centre: the face is behind the tool (helper-65 R1). A tool on the minus-X
+  // side is judged on its own side's terms, not reset before (helper-65 R2).
+  for (const std::string& cl : {std::string("UNITS/MM\nLOADTL/1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/32,0,2\nFEDRAT/0.2,MMPR\n"
+                                            "GOTO/32,0,0\nGOTO/-0.8,0,0\n"),
+                                std::string("UNITS/MM\nLOADTL/1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/-2,0,2\nFEDRAT/0.2,MMPR\n"
+                                            "GOTO/-2,0,0\nGOTO/-32,0,0\n")}) {
+    Compiled c = compile_text(cl + next, machine("fanuc-lathe"), {.certify = true});
+    EXPECT_TRUE(c.ok) << cl << c.diags;
+  }
 }
