@@ -31,7 +31,8 @@ std::string convention_text(const ir::Arc& a, ir::CamSystem cam) {
 // The sense comes from the right-hand rule clpc assumes for a CIRCLE axis when the file does
 // not say which CAM system wrote it (not from a sense word, an angle or an INDIRV).
 bool assumed_convention(const ir::Arc& a, ir::CamSystem cam) {
-  return cam == ir::CamSystem::Unknown && (a.layout == ir::ArcLayout::Creo7 || a.layout == ir::ArcLayout::NoRadius6);
+  return cam == ir::CamSystem::Unknown &&
+         (a.layout == ir::ArcLayout::Creo7 || a.layout == ir::ArcLayout::NoRadius6 || a.layout == ir::ArcLayout::Nx11);
 }
 
 // The move leaving the arc is a chord of the same circle, going on round the way `dir` turns:

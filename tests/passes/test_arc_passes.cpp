@@ -200,6 +200,16 @@ TEST(ArcDirection, AnUnknownSystemsAxisAgainstTheGeometryIsRefused) {
   // Named (Creo's header): its convention is documented, and the corpus bears it out.
   Compiled creo = compile_text("$$* Pro/CLfile Version Wildfire 5.0 - M060\n" + head + "GOTO/20,0,-2\n", machine("fanuc-mill"));
   EXPECT_TRUE(creo.ok) << creo.diags;
+  // The same for NX's eleven values in a file that does not name NX: its convention was taken
+  // on trust, and a 270-degree arc cut where both tangents said 90 the other way (helper-61).
+  const std::string eleven = "UNITS/MM\nLOADTL/1\nSPINDL/2000,RPM,CLW\nRAPID\nGOTO/0,-10,20\nFEDRAT/200,MMPM\n"
+                             "GOTO/0,-10,-1\nGOTO/20,-10,-1\nCIRCLE/20,0,-1,0,0,1,10,0.01,0.5,10,0\nGOTO/30,0,-1\n"
+                             "GOTO/30,20,-1\nFINI\n";
+  Compiled nx = compile_text(eleven, machine("fanuc-mill"));
+  EXPECT_THAT(nx.diags, HasSubstr("part.cls:9:1: error: arc: the NX CLSF convention (the axis of clockwise rotation) says "
+                                  "clockwise, but the arc is tangent to the move entering it only if it turns "
+                                  "counter-clockwise, and so is the move leaving it: the file does not say which CAM "
+                                  "system wrote it"));
 }
 
 // Creo points that run against the CIRCLE's convention. The first GOTO is the arc's end, and
