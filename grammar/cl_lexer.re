@@ -888,6 +888,21 @@ Lexer::Symbol Lexer::lex_line_start() {
         MAJOR(Unknown)
       }
 
+      "%" {
+        // A tape mark alone on its line (the first and last line of a punched-tape or DNC file,
+        // left when the CL went through one): nothing, not an error (helper-64).
+        const unsigned char* q = cur_;
+        while (q < lim_ && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
+        if (q >= lim_ || *q == '\n') {
+          if (!wanted_ && diags_ && !data_comment_)
+            diags_->warning(loc_of(tok_), "a tape mark ('%' alone on its line, from a punched tape or a DNC transfer) "
+                                          "is ignored", "not-a-record");
+          skip_record();
+          continue;
+        }
+        if (wanted_) { skip_record(); continue; }
+        return error_token(loc_of(tok_), "expected a major word at the start of a record, found " + describe(*tok_));
+      }
       * {
         if (wanted_) { skip_record(); continue; }
         return error_token(loc_of(tok_), "expected a major word at the start of a record, found " + describe(*tok_));

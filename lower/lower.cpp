@@ -396,6 +396,8 @@ bool Lowerer::blank_joined_record(const Record& r) {
   for (size_t k = 0; k < words.size(); ++k) {
     const std::string_view w = words[k];
     const MajorId id = major_id(w);
+    // END does nothing (END OF FILE, END OF PROGRAM: a line of text, refused; helper-61).
+    if (id == MajorId::End) continue;
     if ((id != MajorId::Unknown && !carries_nothing_to_cut(id)) || motion_word_exact(w)) {
       d_.error(r.loc, "'" + upper(name) + "': a record name of several words, and " + upper(w) +
                           " moves the tool or changes how it cuts: APT separates the words before the major word with "

@@ -467,11 +467,25 @@ void Lowerer::lower_cutcom(const Record& r) {
 void Lowerer::lower_delay(const Record& r) {
   ParamReader ps(r, d_);
   ir::Dwell dw;
-  bool have = false;
+  bool have = false, sec = false;
+  // One time in one unit: DELAY/2,3 dwelled 3 s and DELAY/SEC,2,REV two revolutions, silently
+  // (helper-61); a FEDRAT refuses the same.
   for (size_t i = 0; i < ps.size(); ++i) {
-    if (ps[i].is_number()) { dw.value = ps[i].number; have = true; }
-    else if (ps[i].is("REV")) dw.revolutions = true;
-    else if (!ps[i].is("SEC")) {
+    if (ps[i].is_number()) {
+      if (have) {
+        d_.error(ps[i].loc, upper(r.major) + ": more than one time (" + num_text(dw.value) + ", then " +
+                                num_text(ps[i].number) + "): which one is meant cannot be told");
+        return;
+      }
+      dw.value = ps[i].number;
+      have = true;
+    } else if (ps[i].is("REV") || ps[i].is("SEC")) {
+      (ps[i].is("REV") ? dw.revolutions : sec) = true;
+      if (dw.revolutions && sec) {
+        d_.error(ps[i].loc, upper(r.major) + ": both SEC and REV: seconds or revolutions of the spindle cannot be told");
+        return;
+      }
+    } else {
       d_.error(ps[i].loc, upper(r.major) + ": unknown word '" + std::string(ps[i].text) + "'");
       return;
     }

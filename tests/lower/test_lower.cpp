@@ -85,6 +85,22 @@ TEST(Lower, ARecordGluedToWhatFollowsIsRefused) {
   EXPECT_EQ(err("RAPIDS\nCOOLNT2\nFROMAGE/1\n"), "");
 }
 
+// Lines with no motion never stop a post: a tape mark alone on its line (a CL file sent through
+// DNC) and END OF FILE were errors (helper-64, helper-61). A '%' with more on its line is not.
+TEST(Lower, TapeMarksAndEndOfFileLinesAreNoStop) {
+  EXPECT_EQ(err("%\nGOTO/1,2,3\nEND OF FILE\nFINI\n%\n"), "");
+  EXPECT_THAT(warn("%\nGOTO/1,2,3\n"), HasSubstr("1:1: a tape mark ('%' alone on its line, from a punched tape or a DNC "
+                                                  "transfer) is ignored"));
+  EXPECT_EQ(err("% 12\nGOTO/1,2,3\n"), "1:1: expected a major word at the start of a record, found '%'");
+}
+
+// One time in one unit: DELAY/2,3 dwelled 3 s, DELAY/SEC,2,REV two revolutions (helper-61).
+TEST(Lower, ADelayOfTwoTimesOrTwoUnitsIsRefused) {
+  EXPECT_EQ(err("DELAY/2,3\n"), "1:9: DELAY: more than one time (2, then 3): which one is meant cannot be told");
+  EXPECT_EQ(err("DELAY/SEC,2,REV\n"), "1:13: DELAY: both SEC and REV: seconds or revolutions of the spindle cannot be told");
+  EXPECT_EQ(err("DELAY/2,SEC\nDELAY/3,REV\n"), "");
+}
+
 // A whole number too large for a double was taken for an underflow and read as 0: GOTO/<400
 // digits> posted X0. (helper-64). Overflow is an error; an underflow is still 0.
 TEST(Lower, ANumberTooLargeIsAnErrorNotZero) {
