@@ -803,6 +803,7 @@ Lexer::Symbol Lexer::lex_line_start() {
       'INSERT' [ \t/] text { FREE_TEXT(Insert, 6) }
       'REMARK' [ \t/] text { FREE_TEXT(Remark, 6) }
       'TPRINT' [ \t/] text { FREE_TEXT(Tprint, 6) }
+      'COMMENT' [ \t/] text { FREE_TEXT(Comment, 7) }
 
       'GOTO'        { MAJOR(Goto) }
       'FROM'        { MAJOR(From) }

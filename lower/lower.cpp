@@ -226,11 +226,11 @@ void Lowerer::record(const Record& r) {
     case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: {
       ensure_operation(r.loc);
       std::string_view text = r.text;
-      std::string joined;
-      if (r.id == MajorId::Comment) {  // COMMENT/'text' (Fusion): its parameters
-        for (const Param& p : r.params) joined += (joined.empty() ? "" : " ") + std::string(p.name());
-        text = joined;
-      }
+      // COMMENT/'text' (Fusion): free text, as PPRINT, less one pair of enclosing quotes (an
+      // apostrophe inside, COMMENT/'Operator's note', stopped the post; helper-61).
+      if (r.id == MajorId::Comment && text.size() >= 2 && (text.front() == '\'' || text.front() == '"') &&
+          text.back() == text.front())
+        text = text.substr(1, text.size() - 2);
       push_text<ir::Comment>(r.loc, text);
       return;
     }

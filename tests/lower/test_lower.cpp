@@ -94,6 +94,12 @@ TEST(Lower, TapeMarksAndEndOfFileLinesAreNoStop) {
   EXPECT_EQ(err("% 12\nGOTO/1,2,3\n"), "1:1: expected a major word at the start of a record, found '%'");
 }
 
+// COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
+// (helper-61). One pair of enclosing quotes is the record's, not the text's.
+TEST(Lower, ACommentIsFreeText) {
+  EXPECT_EQ(err("COMMENT/'Operator's note: check vise'\nCOMMENT/\"5\" vise\nCOMMENT/'a'b\n"), "");
+}
+
 // One time in one unit: DELAY/2,3 dwelled 3 s, DELAY/SEC,2,REV two revolutions (helper-61).
 TEST(Lower, ADelayOfTwoTimesOrTwoUnitsIsRefused) {
   EXPECT_EQ(err("DELAY/2,3\n"), "1:9: DELAY: more than one time (2, then 3): which one is meant cannot be told");
