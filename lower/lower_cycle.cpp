@@ -252,6 +252,14 @@ void Lowerer::lower_cycle(const Record& r) {
   if (c.depth == 0)
     d_.warning(r.loc, "CYCLE/" + kind + ": the depth is zero: each hole is a touch of its top", "cycle");
   if (!clear) d_.warning(r.loc, "CYCLE/" + kind + ": no clearance (CLEAR or RAPTO); the R plane is at the hole's top", "cycle", "clearance");
+  // Below the top: the tool rapids into the hole, right only where it is already there (a pilot,
+  // a counterbore). Said, not refused: NX's RAPTO,-15 after a pilot drill is a shop's way
+  // (helper-62 found CLEAR,-2 written as R-2. without a word).
+  if (clear && c.clearance < 0)
+    d_.warning(r.loc, "CYCLE/" + kind + ": the clearance " + num_text(c.clearance) + " puts the R plane " +
+                          num_text(-c.clearance) + " below the hole's top: the tool goes there at rapid, into the "
+                          "hole (right only where a pilot or a counterbore is already there)",
+               "cycle");
   // RETURN/RTRCTO at or below the clearance plane: back to the R plane.
   if (c.retract >= 0 && c.retract <= c.clearance) c.retract = c.clearance;
   if (c.kind == ir::CycleKind::Peck || c.kind == ir::CycleKind::ChipBreak) {

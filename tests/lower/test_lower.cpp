@@ -100,6 +100,15 @@ TEST(Lower, ACommentIsFreeText) {
   EXPECT_EQ(err("COMMENT/'Operator's note: check vise'\nCOMMENT/\"5\" vise\nCOMMENT/'a'b\n"), "");
 }
 
+// A negative clearance puts the R plane inside the part: written R-2. without a word (helper-62).
+TEST(Lower, ANegativeClearanceIsSaid) {
+  EXPECT_THAT(warn("GOTO/0,0,10\nCYCLE/DRILL,DEPTH,10,MMPM,100,CLEAR,-2\nGOTO/0,0,0\nCYCLE/OFF\n"),
+              HasSubstr("2:1: CYCLE/DRILL: the clearance -2 puts the R plane 2 below the hole's top: the tool goes there "
+                        "at rapid, into the hole (right only where a pilot or a counterbore is already there)\n"));
+  EXPECT_THAT(warn("GOTO/0,0,10\nCYCLE/DRILL,DEPTH,10,MMPM,100,CLEAR,2\nGOTO/0,0,0\nCYCLE/OFF\n"),
+              Not(HasSubstr("below the hole's top")));
+}
+
 // One time in one unit: DELAY/2,3 dwelled 3 s, DELAY/SEC,2,REV two revolutions (helper-61).
 TEST(Lower, ADelayOfTwoTimesOrTwoUnitsIsRefused) {
   EXPECT_EQ(err("DELAY/2,3\n"), "1:9: DELAY: more than one time (2, then 3): which one is meant cannot be told");
