@@ -186,9 +186,21 @@ class TableBuilder : public RecordSink {
     // Number the named-only tools with numbers no record uses.
     std::set<int> used;
     for (auto& t : info_.tools) if (!t.auto_numbered) used.insert(t.number);
+    // A name that is a pocket number (NX's TOOL,12) is that number where no record uses it.
+    std::set<const ir::ToolInfo*> by_name;
+    for (auto& t : info_.tools) {
+      if (!t.auto_numbered || t.name.empty() || t.name.size() > 3 ||
+          t.name.find_first_not_of("0123456789") != std::string::npos)
+        continue;
+      const int n = std::stoi(t.name);
+      if (n < 1 || used.count(n)) continue;
+      t.number = n;
+      by_name.insert(&t);
+      used.insert(n);
+    }
     int next = 1;
     for (auto& t : info_.tools) {
-      if (!t.auto_numbered) continue;
+      if (!t.auto_numbered || by_name.count(&t)) continue;
       while (used.count(next)) ++next;
       t.number = next;
       used.insert(next);

@@ -1,5 +1,7 @@
 #include "lower/tool_records.h"
 
+#include "support/text.h"
+
 #include <cmath>
 
 #include "lower/params.h"
@@ -12,9 +14,15 @@ bool whole(double v, int lo, int hi) { return v == std::floor(v) && v >= lo && v
 
 }  // namespace
 
+// Names are names: a tool named 12 is named "12" (as written), not no name; its operations were
+// cut with no tool loaded (helper-61).
 std::string tool_name_of_tool_path(const Record& r) {
   for (size_t i = 0; i + 1 < r.params.size(); ++i)
-    if (r.params[i].is("TOOL") && !r.params[i + 1].is_number()) return std::string(r.params[i + 1].text);
+    if (r.params[i].is("TOOL")) {
+      const Param& p = r.params[i + 1];
+      if (p.is_number()) return p.text.empty() ? num_text(p.number) : std::string(p.text);
+      return std::string(p.text);
+    }
   return {};
 }
 

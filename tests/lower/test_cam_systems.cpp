@@ -1417,3 +1417,15 @@ TEST(CamSystems, EachLoadBeginsAnOperationInAFileWithNone) {
   EXPECT_THAT(c.output, HasSubstr("N50 G94 G98 G84 X-1.1811 Y-1.1811 Z-0.3937 R0.1969 F11.811\nN55 G80\n"));
   EXPECT_THAT(c.output, HasSubstr("N75 G54 G00 G234 H04\n"));
 }
+
+// Names are names: NX's TOOL PATH naming a tool 12 gave it no name, and its cuts were refused
+// as made with no tool loaded (helper-61). A name that is a pocket number is that number.
+TEST(CamSystems, AToolNamedByANumberIsNamedAndNumberedSo) {
+  const std::string cl = "TOOL PATH/FACE_1,TOOL,12\nTLDATA/MILL,10,0,50,0,0\nUNITS/MM\nSPINDL/RPM,2000,CLW\nRAPID\n"
+                         "GOTO/0,0,20\nFEDRAT/MMPM,200\nGOTO/10,0,-1\nRAPID\nGOTO/10,0,20\nEND-OF-PATH\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.diags, HasSubstr("part.cls:1:1: warning: operation 'FACE_1' names tool '12' but loads no tool number; "
+                                 "using T12 [-Wtool-by-name]"));
+  EXPECT_THAT(c.output, HasSubstr(" T12 M06 (T12 D=10. CR=0. - 12)\n"));
+}
