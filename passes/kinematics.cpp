@@ -476,7 +476,7 @@ class Kinematics : public Pass {
       // stays, C swings, and the move is split along the sweep.
       if (m.kind == ir::MoveKind::Feed && have_prev_ && !c.jump && singular_ &&
           kin::off_sweep(*singular_, prev_axis_.normalized(), m.axis.normalized()) > kin::kMidBlockAxisTolerance / 2)
-        keep_branch(m.axis, c.a);
+        on_branch_of(cur_, m.axis, c.a);
       a = c.a;
       const kin::Angles turns = unwind_turns(a);
       if ((turns[0] != 0 || turns[1] != 0) && !unwind(a, turns, loc, out)) return;
@@ -635,22 +635,32 @@ class Kinematics : public Pass {
     Vec3 pm = (p0 + p1) / 2;
     Vec3 am = (ax0 + ax1).normalized();
     if (!std::isfinite(am.x())) am = ax0;
-    // The angles halfway, continuing from t0.
-    kin::Angles save = cur_;
-    bool save_have = have_cur_;
-    cur_ = t0;
-    have_cur_ = true;
-    Choice c = choose(am);
-    cur_ = save;
-    have_cur_ = save_have;
+    Choice c = choose_from(t0, am);
     if (!c.found) return;
     subdivide(p0, ax0, t0, pm, am, c.a, loc, out, depth + 1);
-    ir::Move mid;
-    mid.point = pm;
-    mid.axis = am;
-    mid.kind = ir::MoveKind::Feed;
-    emit(mid, c.a, true, loc, out);
+    emit_feed_point(pm, am, c.a, loc, out);
     subdivide(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
+  }
+
+  // The angles for `axis` continuing from t0 (not from where the machine is now).
+  Choice choose_from(const kin::Angles& t0, const Vec3& axis) {
+    const kin::Angles save = cur_;
+    const bool save_have = have_cur_;
+    cur_ = t0;
+    have_cur_ = true;
+    Choice c = choose(axis);
+    cur_ = save;
+    have_cur_ = save_have;
+    return c;
+  }
+
+  // A point a split puts between two CL points: fed, at angles a.
+  void emit_feed_point(const Vec3& p, const Vec3& axis, const kin::Angles& a, SourceLoc loc, std::vector<ir::Instr>& out) {
+    ir::Move mid;
+    mid.point = p;
+    mid.axis = axis;
+    mid.kind = ir::MoveKind::Feed;
+    emit(mid, a, true, loc, out);
   }
 
   // Under TCPC the control moves the tip straight and turns the rotaries at proportional
@@ -685,47 +695,26 @@ class Kinematics : public Pass {
     const Vec3 pm = (p0 + p1) / 2;
     Vec3 am = (u0 + u1).normalized();
     if (!std::isfinite(am.x())) am = u0;
-    kin::Angles save = cur_;
-    bool save_have = have_cur_;
-    cur_ = t0;
-    have_cur_ = true;
-    Choice c = choose(am);
-    cur_ = save;
-    have_cur_ = save_have;
+    Choice c = choose_from(t0, am);
     if (!c.found) return;
-    same_branch(am, t0, t1, c.a);
+    if (t0[1 - free_] * t1[1 - free_] > 0) on_branch_of(t0, am, c.a);
     subdivide_axis(p0, ax0, t0, pm, am, c.a, loc, out, depth + 1);
-    ir::Move mid;
-    mid.point = pm;
-    mid.axis = am;
-    mid.kind = ir::MoveKind::Feed;
-    emit(mid, c.a, true, loc, out);
+    emit_feed_point(pm, am, c.a, loc, out);
     subdivide_axis(pm, am, c.a, p1, ax1, t1, loc, out, depth + 1);
   }
 
-  // Halfway between two positions on one branch (the tilt's sign), the point stays on it. Near
-  // the pole the nearest angles are often the other branch (the tilt's sign flipped, the free
-  // axis half a turn round), and the pieces of the move would then go through the pole, off
-  // the CL's sweep whatever the splitting (NX APT_Variable_Axis.cls:224).
-  void same_branch(const Vec3& am, const kin::Angles& t0, const kin::Angles& t1, kin::Angles& a) const {
+  // The position for `axis` on the branch (the tilt's sign) of `ref`, where `a` is on the other
+  // one and that branch is within the limits: halfway between two points on one branch (near
+  // the pole the nearest angles are often the other branch, the free axis half a turn round:
+  // the pieces of the move would go through the pole; NX APT_Variable_Axis.cls:224), and a
+  // feed whose sweep stays clear of the pole.
+  void on_branch_of(const kin::Angles& ref, const Vec3& axis, kin::Angles& a) const {
     if (!singular_ || k_.rotaries.size() != 2) return;
     const size_t tilt = 1 - free_;
-    if (!(t0[tilt] * t1[tilt] > 0) || !(a[tilt] * t0[tilt] < 0)) return;
+    if (!(a[tilt] * ref[tilt] < 0)) return;
     kin::Angles alt = a;
     alt[tilt] = -a[tilt];
-    alt[free_] = t0[free_] + std::remainder(a[free_] + 180 - t0[free_], 360.0);
-    if (k_.rotaries[free_].cyclic == Cyclic::Modulo) alt[free_] = std::fmod(alt[free_] + 360.0, 360.0);
-    if ((kin::tool_axis_in_part(k_, alt) - am).norm() <= 1e-9) a = alt;
-  }
-
-  // The position for `axis` on the branch the rotaries are on now (cur_), if `a` is on the
-  // other one and this one is within the limits.
-  void keep_branch(const Vec3& axis, kin::Angles& a) const {
-    const size_t tilt = 1 - free_;
-    if (!(a[tilt] * cur_[tilt] < 0)) return;
-    kin::Angles alt = a;
-    alt[tilt] = -a[tilt];
-    alt[free_] = cur_[free_] + std::remainder(a[free_] + 180 - cur_[free_], 360.0);
+    alt[free_] = ref[free_] + std::remainder(a[free_] + 180 - ref[free_], 360.0);
     if (k_.rotaries[free_].cyclic == Cyclic::Modulo) alt[free_] = std::fmod(alt[free_] + 360.0, 360.0);
     for (size_t i = 0; i < 2; ++i) {
       const RotaryAxis& r = k_.rotaries[i];
