@@ -2,15 +2,17 @@
 //
 // The machine's retract (Fanuc's `G28 U0. W0.`) sends the turret to its reference point, at
 // plus X and plus Z, in both axes at once. The CAM system's retract is the one that knows the
-// part, and the post cannot prove a diagonal safe without the stock. What it refuses is the
-// shape that is plainly a crash: the tool's last motion a cut toward the spindle axis or the
-// chuck (-X or -Z: a groove's plunge, a bore, the foot of a shoulder), and the tool short of the
-// reach of its cuts in both X and Z (any of them, their start points included, went further out
-// or further forward). From there the diagonal drags it through the part (helper-59: a groove's
-// last plunge, then LOADTL, was certified). It stays silent after a rapid (the CAM system's own
-// clearance move), a cut going out (a facing pass ending at the bar's diameter: NIST
-// turn_op10.ncl.4 changes tool there) and a cycle (it returns to its start). It never guesses
-// which axis to retract first: that depends on whether the tool is in a groove or a bore.
+// part, and the post cannot prove a diagonal safe without the stock. This is a guard against
+// the plain crash, not a proof: the tool's last motion a cut toward the spindle axis or the
+// chuck (-X or -Z: a face down a shoulder, a bore's floor), and the tool short of the reach of
+// its cuts in both X and Z (any of them, their start points included, went further out and one
+// went further forward). From there the diagonal drags it through the part (helper-59: a face
+// down a shoulder, then LOADTL, was certified). It stays silent at the axis (a face cut to the
+// centre), after a rapid (the CAM system's own clearance move), a cut going out (a facing pass
+// ending at the bar's diameter: NIST turn_op10.ncl.4 changes tool there) and a cycle (it
+// returns to its start). A straight plunge from the reach leaves the tool at it in the other
+// axis and passes (docs/lathe.md lists what it misses). It never guesses which axis to retract
+// first: that depends on whether the tool is in a groove or a bore.
 #include <algorithm>
 #include <cmath>
 
