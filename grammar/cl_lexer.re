@@ -584,10 +584,17 @@ void Lexer::check_text(const unsigned char* b, const unsigned char* e, const cha
   }
 }
 
+// A record that only names or describes (PAINT, INTOL, TOOLNO, ...) written wrong moves nothing,
+// so it never stops the post: it is skipped with a warning, unless the rest of its line holds
+// a motion record that skipping it would lose (helper-64: PAINT/1e400 stopped the post).
 void Lexer::report(SourceLoc loc, const std::string& msg) {
   if (!diags_) return;
   if (data_comment_)
     diags_->warning(loc, "malformed '$$->' data comment ignored: " + msg, "data-comment");
+  else if (carries_nothing_to_cut(record_id_) && motion_word_in_line().empty())
+    diags_->warning(loc, "malformed " + std::string(major_spelling(record_id_)) +
+                             " record ignored (it carries nothing to cut): " + msg,
+                    "malformed-record");
   else
     diags_->error(loc, msg);
 }
@@ -673,6 +680,7 @@ Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned ch
   depth_ = 0;
   numbers_end_ = 0;
   known_major_ = id != MajorId::Unknown;
+  record_id_ = id;
   MajorTok t;
   t.id = id;
   t.text = id == MajorId::Unknown ? keep(b, e) : major_spelling(id);
@@ -774,6 +782,7 @@ Lexer::Symbol Lexer::lex_line_start() {
   for (;;) {
     tok_ = cur_;
     data_comment_ = data_mark;
+    record_id_ = MajorId::Unknown;
     if (hidden_head_ < hidden_.size() && !wanted_ && !data_mark)
       if (auto e = hidden_record_error()) return *e;
     /*!re2c
@@ -902,6 +911,19 @@ Lexer::Symbol Lexer::lex_line_start() {
           continue;
         }
         if (wanted_) { skip_record(); continue; }
+        return error_token(loc_of(tok_), "expected a major word at the start of a record, found " + describe(*tok_));
+      }
+      [(;*#!] {
+        // A line that opens as a comment does in other languages ("(SETUP 2)", "; roughing",
+        // "* note"): no record, so it moves nothing. Skipped with a warning unless it hides a
+        // motion record further on (helper-64: these stopped the post).
+        if (wanted_) { skip_record(); continue; }
+        if (diags_ && !data_comment_ && motion_word_in_line().empty()) {
+          diags_->warning(loc_of(tok_), "not a CL record (a line starting with " + describe(*tok_) +
+                                            "): the line is ignored", "not-a-record");
+          skip_record();
+          continue;
+        }
         return error_token(loc_of(tok_), "expected a major word at the start of a record, found " + describe(*tok_));
       }
       * {
@@ -1051,6 +1073,17 @@ Lexer::Symbol Lexer::lex_run() {
     numbers_end_ = abs(t);
     cur_ = first_end;
     return number_token(tok_, first_end, bad);
+  }
+  // "PAINT/COLOR,31 GOTO/10,0,10": two records on a line. Read as one word, the GOTO was lost
+  // (helper-64), whichever record it followed.
+  if (std::memchr(tok_, '/', size_t(t - tok_))) {
+    const std::string_view run(reinterpret_cast<const char*>(tok_), size_t(t - tok_));
+    if (const size_t at = record_inside(run); at != std::string_view::npos) {
+      const std::string_view rest = run.substr(at);
+      return error_token(loc_of(tok_ + at), "'" + std::string(rest.substr(0, rest.find('/'))) +
+                                                "/' inside a parameter: a record of its own on this line (a line end "
+                                                "missing?); read as a parameter, it would be lost");
+    }
   }
   check_text(tok_, t, "word");
   return Parser::make_WORD(keep(tok_, t), loc_of(tok_));

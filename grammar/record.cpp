@@ -1,5 +1,7 @@
 #include "grammar/record.h"
 
+#include <cctype>
+
 namespace clpc {
 
 std::string_view major_spelling(MajorId id) {
@@ -55,6 +57,30 @@ std::string_view glued_record(std::string_view word) {
         if (iequals(rest, u)) return name;
   }
   return {};
+}
+
+bool carries_nothing_to_cut(MajorId id) {
+  switch (id) {
+    case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: case MajorId::Partno: case MajorId::Remark:
+    case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart: case MajorId::Toolno:
+    case MajorId::Autops: case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler: case MajorId::Featno:
+      return true;
+    default: return false;
+  }
+}
+
+size_t record_inside(std::string_view param) {
+  for (size_t slash = param.find('/'); slash != std::string_view::npos; slash = param.find('/', slash + 1)) {
+    size_t end = slash;
+    while (end > 0 && (param[end - 1] == ' ' || param[end - 1] == '\t')) --end;
+    size_t start = end;
+    while (start > 0 && std::isalpha(static_cast<unsigned char>(param[start - 1]))) --start;
+    if (start > 0 && param[start - 1] != ' ' && param[start - 1] != '\t') continue;  // inside a word: "1/2"
+    const std::string_view name = param.substr(start, end - start);
+    for (std::string_view g : kGluable)
+      if (iequals(name, g)) return start;
+  }
+  return std::string_view::npos;
 }
 
 }  // namespace clpc

@@ -26,6 +26,15 @@ MajorId major_id(std::string_view word);
 // (RAPIDGOTO), or UNITS' word (UNITSINCHES). A missing '/' that would lose the record. Else "".
 std::string_view glued_record(std::string_view word);
 
+// Records that only name or describe (text, header facts, tolerances): nothing in them moves
+// the tool or changes how it cuts, so one written wrong is skipped, never a stopped post.
+bool carries_nothing_to_cut(MajorId id);
+
+// Where a record that moves the tool or changes how it cuts (glued_record's list) starts a
+// record of its own inside a parameter, as in "31 GOTO/10" (PAINT/COLOR,31 GOTO/10,0,10: a
+// line end missing): the offset of its name, or npos. Reading past it would lose the record.
+size_t record_inside(std::string_view param);
+
 // ASCII case-insensitive equality (CL words are upper case by convention, not by rule).
 bool iequals(std::string_view a, std::string_view b);
 

@@ -416,18 +416,6 @@ std::string head_and_major(const Record& r) {
   return name + std::string(r.major);
 }
 
-// Records that only name or describe (text, header facts, tolerances): nothing in them moves
-// the tool or changes how it cuts.
-bool carries_nothing_to_cut(MajorId id) {
-  switch (id) {
-    case MajorId::Pprint: case MajorId::Tprint: case MajorId::Comment: case MajorId::Partno: case MajorId::Remark:
-    case MajorId::Paint: case MajorId::Ppword: case MajorId::Mfgno: case MajorId::Setstart: case MajorId::Toolno:
-    case MajorId::Autops: case MajorId::Intol: case MajorId::Outtol: case MajorId::Toler: case MajorId::Featno:
-      return true;
-    default: return false;
-  }
-}
-
 // A tool number the pre-scan found given another diameter at this record: one pocket holds one
 // cutter, and the program's tool list (and a cutting speed's rpm) keep the first.
 void Lowerer::say_another_diameter(const Record& r) {

@@ -19,8 +19,6 @@ namespace clpc {
 
 // GOFWD, GOLFT, ...: APT contour motion (lower/lower_contour.cpp).
 bool is_contour_motion(MajorId id);
-// PPRINT, PARTNO, INTOL, ...: records that neither move the tool nor change how it cuts (lower/lower.cpp).
-bool carries_nothing_to_cut(MajorId id);
 bool moves_the_tool(const Record& r);
 std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).

@@ -44,6 +44,7 @@ const std::vector<WarningName>& warning_names() {
       {"insert", "an INSERT that is no block the control reads, written as a comment; one with axis words, not checked"},
       {"invalid-utf8", "a byte of a one-byte code page in a comment or text"},
       {"machine-code", "an optional stop the machine has no code for, not written"},
+      {"malformed-record", "a record that only names or describes (PAINT, INTOL, TOOLNO, ...) written wrong, skipped"},
       {"motion-before-tool", "a rapid before the first tool change, taken as the start point"},
       {"not-a-record", "a line that is no CL record, skipped"},
       {"not-supported", "a record none of clpc's machines can act on"},

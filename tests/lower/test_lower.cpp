@@ -94,6 +94,35 @@ TEST(Lower, TapeMarksAndEndOfFileLinesAreNoStop) {
   EXPECT_EQ(err("% 12\nGOTO/1,2,3\n"), "1:1: expected a major word at the start of a record, found '%'");
 }
 
+// A record that only names or describes, written wrong, and a line that opens as a comment does
+// in other languages, moved nothing yet stopped the post (helper-64). Skipped with a warning,
+// unless the line holds a motion record further on.
+TEST(Lower, MalformedRecordsWithoutMotionAreNoStop) {
+  EXPECT_EQ(err("PAINT/1e400\nPAINT/COLOR,(31\nINTOL/0.01,'x\n(SETUP 2)\n; roughing\n* note\n# x\nGOTO/1,2,3\n"), "");
+  EXPECT_EQ(warn("PAINT/1e400\n(SETUP 2)\nGOTO/1,2,3\n"),
+            "1:7: malformed PAINT record ignored (it carries nothing to cut): number out of range: '1e400'\n"
+            "2:1: not a CL record (a line starting with '('): the line is ignored\n");
+  // A record that changes how the tool cuts still stops the post; so does a motion record
+  // hidden further on the line.
+  EXPECT_EQ(err("FEDRAT/1e400\n"), "1:8: number out of range: '1e400'");
+  EXPECT_EQ(err("(SETUP) GOTO/1,2,3\n"), "1:1: expected a major word at the start of a record, found '('");
+}
+
+// Two records on a line: the second read as a parameter of the first, its motion lost
+// silently (helper-64: PAINT/COLOR,31 GOTO/10,0,10 and INTOL/0.01 GOTO/20,0,10 posted nothing).
+TEST(Lower, ARecordInsideAnothersParametersIsRefused) {
+  for (const char* line : {"PAINT/COLOR,31 GOTO/10,0,10", "INTOL/0.01 GOTO/20,0,10", "GOTO/1,2,3 GOTO/4,5,6"}) {
+    const size_t col = std::string_view(line).find("GOTO/", 1) + 1;
+    EXPECT_EQ(err(std::string(line) + "\n"), "1:" + std::to_string(col) +
+                                                 ": 'GOTO/' inside a parameter: a record of its own on this line (a "
+                                                 "line end missing?); read as a parameter, it would be lost")
+        << line;
+  }
+  EXPECT_THAT(err("PAINT/COLOR,3 FEDRAT/100\n"), HasSubstr("'FEDRAT/' inside a parameter"));
+  // A slash inside a name is no record: LOADTL/1,EM 1/2 FLAT, TOOL PATH/D10/R2.
+  EXPECT_EQ(err("LOADTL/1,EM 1/2 FLAT\nPAINT/COLOR,D10/R2\nPAINT/TOOL,MY_GOTO/2\n"), "");
+}
+
 // COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
 // (helper-61). One pair of enclosing quotes is the record's, not the text's.
 TEST(Lower, ACommentIsFreeText) {
