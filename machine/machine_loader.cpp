@@ -131,8 +131,9 @@ class Reader {
   std::vector<std::pair<std::string, const toml::key*>> keys() const {
     std::vector<std::pair<std::string, const toml::key*>> out;
     std::set<std::string> seen;
-    for (const toml::table* t : layers_)
-      for (auto&& [key, n] : *t)
+    // The topmost layer's key first: a mistake is said where the file that made it gives it.
+    for (auto it = layers_.rbegin(); it != layers_.rend(); ++it)
+      for (auto&& [key, n] : **it)
         if (seen.insert(std::string(key.str())).second) out.emplace_back(std::string(key.str()), &key);
     return out;
   }
@@ -505,6 +506,34 @@ std::string dwell_word_problem(const CodeTemplate& t, const Machine& m) {
   return "";
 }
 
+// A whole number (a tool, a register, a work offset's number, a speed) in a word whose address
+// is written without a point in decimals: G54.1 P{number} with format.P = { decimals = 1,
+// point = "never" } wrote P10 for P1, another fixture's offset, certified (verify read it back
+// through the same format; helper-67). "" when there is none.
+std::string whole_number_problem(const CodeTemplate& t, const Machine& m) {
+  for (const CodeTemplate::Word& w : t.words) {
+    const char letter = CodeTemplate::letter(w);
+    // S, T, H, D, ... themselves are refused at their format (the same mistake, said once).
+    if (letter == 0 || std::string_view("STHDOLMG").find(letter) != std::string_view::npos) continue;
+    const AddressFormat& f = m.format(letter);
+    if (f.point != AddressFormat::Point::Never || f.decimals == 0) continue;
+    for (const CodeTemplate::Piece& p : w) {
+      if (p.var < 0 || p.width > 0) continue;
+      switch (Var(p.var)) {
+        case Var::Tool: case Var::Offset: case Var::Register: case Var::Number: case Var::Level: case Var::Tip:
+        case Var::Speed: case Var::Max:
+          return std::string(1, letter) + "{" + std::string(var_name(Var(p.var))) + "} is a whole number, and format." +
+                 letter + " writes it without a point in " + std::to_string(f.decimals) + " decimals: 1 would be " +
+                 letter + "1" + std::string(size_t(f.decimals), '0') + ", which the control reads as " +
+                 "1" + std::string(size_t(f.decimals), '0') + "; write " + letter + "{" +
+                 std::string(var_name(Var(p.var))) + ":1} (a plain whole number)";
+        default: break;
+      }
+    }
+  }
+  return "";
+}
+
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
   // Inverse time with no G93 to write it: every move that turns a rotary would be an error,
@@ -545,6 +574,17 @@ void check_job_codes(Reader& r, const Machine& m) {
           if (!at) at = r.top().at_path(std::string("format.") + why[0]).node();  // (the message starts with the word)
           codes->error(at ? *at : *n, key, why);
         }
+  if (auto codes = r.sub("codes"))
+    for (const KeySpec& k : machine_keys()) {
+      if (k.section != "codes" || !k.code) continue;
+      if (const std::string why = whole_number_problem(m.codes.*k.code, m); !why.empty()) {
+        // Said where this machine's file made it so, as for the dwell.
+        const toml::node* at = r.top().at_path("codes." + k.key).node();
+        if (!at) at = r.top().at_path(std::string("format.") + why[0]).node();
+        if (at) codes->error(*at, k.key, why);
+        else if (const toml::node* n = codes->find(k.key)) codes->error(*n, k.key, why);
+      }
+    }
   auto p = r.sub("program");
   if (!p) return;
   if (const toml::node* n = p->find("smoothing"); n && m.smoothing > 0 && m.codes.smoothing_on.empty())
@@ -706,6 +746,18 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
         c.error(key->source(), s->key_path(k) + ": written without a point in whole units (" + k + "20), which a control "
                                    "reads in least input increments (0.020 mm): give the decimals of its increment "
                                    "(3 in mm, 4 in inches) or point = \"always\"");
+      // A speed, a tool, a register, a program number or a repeat count is a whole number the
+      // control reads as written: without a point in decimals, S3000 was written S30000 (past
+      // max_rpm, which holds the CL's speed) and H1 as H10, certified (helper-67).
+      if (std::string_view("STHDOLMG").find(k[0]) != std::string_view::npos &&
+          m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::Never &&
+          m.formats[size_t(k[0] - 'A')].decimals > 0)
+        c.error(key->source(), s->key_path(k) + ": " + k + " is a whole number (a speed, a tool, a register, a "
+                                   "program number, a count), and without a point in " +
+                                   std::to_string(m.formats[size_t(k[0] - 'A')].decimals) + " decimals " + k +
+                                   "1 would be written " + k + "1" +
+                                   std::string(size_t(m.formats[size_t(k[0] - 'A')].decimals), '0') +
+                                   ", which the control reads as that number: say decimals = 0");
       if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
           m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::IfFraction)
         c.error(key->source(), s->key_path(k) + ".point: \"if-fraction\" writes a whole " + k + " without its point (" +
@@ -725,6 +777,30 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
             break;
           }
         }
+    }
+    // R (an arc's radius, a cycle's R plane), Q (a peck, a bore's shift) and a lathe's P (a
+    // groove's peck) written without a point are counted in the same least input increment as
+    // the axes: format.R = { decimals = 2, point = "never" } wrote R3.2 as R320, a 0.32 mm
+    // R plane, certified (helper-67). The increment is that of an axis written without a point,
+    // else the usual one (0.001 mm, 0.0001 in).
+    {
+      int increment = m.units == ir::Units::Inch ? 4 : 3;
+      for (char a : {'X', 'Y', 'Z'})
+        if (m.format(a).point == AddressFormat::Point::Never) {
+          increment = m.format(a).decimals;
+          break;
+        }
+      for (char k : std::string_view(m.is_lathe() ? "RQP" : "RQ")) {
+        const AddressFormat& f = m.format(k);
+        if (f.point != AddressFormat::Point::Never || f.decimals == increment) continue;
+        if (const toml::node* n = s->find(std::string(1, k)))
+          s->error(*n, std::string(1, k),
+                   std::string(1, k) + " is a length written without a point in " + std::to_string(f.decimals) +
+                       " decimals, and the control counts it in its least input increment (" +
+                       std::to_string(increment) + " decimals): every " + k + " would be off by a power of ten; give it " +
+                       std::to_string(increment) + " decimals, or point = \"always\"" +
+                       (k == 'P' ? "" : " where the control takes one"));
+      }
     }
     s->finish();
   }

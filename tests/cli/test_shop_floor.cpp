@@ -176,6 +176,51 @@ TEST(ShopFloor, APositionWrittenWithoutItsPointWhenWholeIsRefused) {
                         "reads in least input increments (0.020 mm)"));
 }
 
+// A whole number written without a point in decimals is multiplied: S3000 was S30000, H1 H10,
+// G54.1 P{number} P10 for P1; all certified (helper-67). Refused at the key.
+TEST(ShopFloor, AWholeNumberWrittenWithoutAPointInDecimalsIsRefused) {
+  EXPECT_EQ(load_error("[s1]\ninherits = \"fanuc-mill\"\n[s1.format]\nS = { decimals = 1, point = \"never\" }\n"),
+            "shop.toml:4:1: error: s1.format.S: S is a whole number (a speed, a tool, a register, a program number, a "
+            "count), and without a point in 1 decimals S1 would be written S10, which the control reads as that number: "
+            "say decimals = 0\n 4 | S = { decimals = 1, point = \"never\" }\n   | ^\n");
+  for (const char* k : {"T", "H", "D"})
+    EXPECT_THAT(load_error("[w]\ninherits = \"fanuc-mill\"\n[w.format]\n" + std::string(k) +
+                           " = { decimals = 2, point = \"never\" }\n"),
+                HasSubstr("shop.toml:4:1: error: w.format." + std::string(k) + ": " + k + " is a whole number"))
+        << k;
+  EXPECT_EQ(load_error("[p1]\ninherits = \"fanuc-mill\"\n[p1.format]\nP = { decimals = 1, point = \"never\" }\n"
+                       "[p1.codes]\nwork_offset_extended = \"G54.1 P{number}\"\n"),
+            "shop.toml:6:24: error: p1.codes.work_offset_extended: P{number} is a whole number, and format.P writes it "
+            "without a point in 1 decimals: 1 would be P10, which the control reads as 10; write P{number:1} (a plain "
+            "whole number)\n 6 | work_offset_extended = \"G54.1 P{number}\"\n   |                        ^\n");
+  // A width makes it a plain whole number whatever format.P says; with a point it is no other number.
+  EXPECT_EQ(load_error("[p2]\ninherits = \"fanuc-mill\"\n[p2.format]\nP = { decimals = 1, point = \"never\" }\n"
+                       "[p2.codes]\nwork_offset_extended = \"G54.1 P{number:1}\"\n"),
+            "");
+  EXPECT_EQ(load_error("[s2]\ninherits = \"fanuc-mill\"\n[s2.format]\nS = { decimals = 0, point = \"never\" }\n"), "");
+}
+
+// R and Q are lengths counted in the control's increment when written without a point: with
+// 2 decimals R3.2 was R320 (0.32 mm: the R plane inside the boss), Q3 with 4 was Q30000 (one
+// 30 mm peck), certified (helper-67).
+TEST(ShopFloor, AnRorQWithoutAPointInAnotherIncrementIsRefused) {
+  EXPECT_EQ(load_error("[r2]\ninherits = \"fanuc-mill\"\n[r2.format]\nR = { decimals = 2, point = \"never\" }\n"),
+            "shop.toml:4:5: error: r2.format.R: R is a length written without a point in 2 decimals, and the control "
+            "counts it in its least input increment (3 decimals): every R would be off by a power of ten; give it 3 "
+            "decimals, or point = \"always\" where the control takes one\n 4 | R = { decimals = 2, point = \"never\" "
+            "}\n   |     ^\n");
+  EXPECT_THAT(load_error("[q4]\ninherits = \"fanuc-mill\"\n[q4.format]\nQ = { decimals = 4, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:5: error: q4.format.Q: Q is a length written without a point in 4 decimals"));
+  // The increment is the axes' where they are written without a point (0.0001 mm here).
+  EXPECT_EQ(load_error("[isc]\ninherits = \"fanuc-mill\"\n[isc.format]\nX = { decimals = 4, point = \"never\" }\n"
+                       "Y = { decimals = 4, point = \"never\" }\nZ = { decimals = 4, point = \"never\" }\n"
+                       "I = { decimals = 4, point = \"never\" }\nJ = { decimals = 4, point = \"never\" }\n"
+                       "K = { decimals = 4, point = \"never\" }\nR = { decimals = 4, point = \"never\" }\n"),
+            "");
+  EXPECT_THAT(load_error("[lq]\ninherits = \"fanuc-lathe\"\n[lq.format]\nP = { decimals = 2, point = \"never\" }\n"),
+              HasSubstr("shop.toml:4:5: error: lq.format.P: P is a length written without a point in 2 decimals"));
+}
+
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
                        "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),
