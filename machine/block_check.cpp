@@ -230,6 +230,30 @@ bool may_move_axes(std::string_view block) {
   return false;
 }
 
+std::string part_position_in(std::string_view block, bool lathe) {
+  const std::string axes = axis_words(block);
+  if (axes.empty()) return "";
+  bool machine = false, reference = false, incremental = false;
+  for (double g : code_numbers(block, 'G')) {
+    if (std::abs(g - 53) < 1e-6) machine = true;
+    if (std::abs(g - 28) < 1e-6 || std::abs(g - 30) < 1e-6) reference = true;
+    if (std::abs(g - 91) < 1e-6) incremental = true;
+  }
+  if (machine) return "";
+  if (!reference)
+    return "'" + std::string(block) + "' moves " + axes + " to a position in the part's coordinates (or shifts them)";
+  for (char a : axes) {
+    const std::vector<double> v = code_numbers(block, a);  // (a negative value reads as none)
+    const bool zero = !v.empty() && std::all_of(v.begin(), v.end(), [](double x) { return x == 0; });
+    const bool in_place = incremental || (lathe && (a == 'U' || a == 'W'));
+    if (!zero || !in_place)
+      return "'" + std::string(block) + "' goes home through an intermediate point " +
+             (in_place ? "away from where the tool is" : "in the part's coordinates (G90: " + std::string(1, a) +
+                                                             " of the part, at rapid)");
+  }
+  return "";
+}
+
 bool returns_z_home(std::string_view block) {
   if (axis_words(block) != "Z" || calls_a_macro(block) || has_m_code_that_may_move(block)) return false;
   bool reference = false, machine = false;

@@ -15,6 +15,13 @@ namespace clpc {
 // first thing that is none of these.
 bool is_control_block(std::string_view text, std::string& why);
 
+// Why a machine's fixed block (program start or finish, a park, a retract, a tool change) may
+// take the tool to a position in the part's coordinates, which clpc cannot know is clear of the
+// part; "" when it cannot. What may stand: a move in machine coordinates (G53), and G28/G30
+// whose intermediate point is where the tool is (G91 with every axis 0; a lathe's U0 W0).
+// "G28 Z0." in G90 rapids down to the part's Z0 before going home (helper-67).
+std::string part_position_in(std::string_view block, bool lathe);
+
 // The axis letters (X Y Z A B C U V W) that stand as address words in a control block, outside
 // comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.
 std::string axis_words(std::string_view block);

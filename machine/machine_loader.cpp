@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "machine/block_check.h"
 #include "machine/pipeline_check.h"
 #include "machine/schema.h"
 #include "support/suggest.h"
@@ -534,6 +535,39 @@ std::string whole_number_problem(const CodeTemplate& t, const Machine& m) {
   return "";
 }
 
+// A machine's fixed blocks run wherever the CL has left the tool, so they may move it only in
+// ways that clear the part whatever it is: G53, or G91 G28 Z0. "G28 Z0." as safe_retract
+// rapided from Z100 down to the part's Z0 on the way home, and "G00 X0. Y0. Z-30." in finish
+// went into the part; both certified (helper-67).
+void check_fixed_blocks(Reader& r, const Machine& m) {
+  const bool lathe = m.is_lathe();
+  // The park blocks come after the finish's: once it has sent the tool home, they start from
+  // there (a lathe's G00 X200. Z100., clear of the chuck).
+  bool finish_goes_home = false;
+  for (const CodeTemplate& b : m.finish)
+    for (double g : code_numbers(b.text, 'G'))
+      if (std::abs(g - 28) < 1e-6 || std::abs(g - 30) < 1e-6 || std::abs(g - 53) < 1e-6) finish_goes_home = true;
+  if (auto p = r.sub("program"))
+    for (const char* key : {"safe_start", "finish", "park_blocks"}) {
+      if (std::string_view(key) == "park_blocks" && finish_goes_home) continue;
+      const toml::node* n = p->find(key);
+      const toml::array* a = n ? n->as_array() : nullptr;
+      if (!a) continue;
+      for (const toml::node& e : *a)
+        if (const auto* text = e.as_string())
+          if (const std::string why = part_position_in(**text, lathe); !why.empty())
+            p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; move in machine "
+                                   "coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)");
+    }
+  if (auto codes = r.sub("codes"))
+    for (auto [code, key] : {std::pair{&m.codes.safe_retract, "safe_retract"}, std::pair{&m.codes.tool_change, "tool_change"},
+                             std::pair{&m.codes.tool_preselect, "tool_preselect"}})
+      if (const std::string why = part_position_in(code->text, lathe); !why.empty())
+        if (const toml::node* n = codes->find(key))
+          codes->error(*n, key, why + ": it runs wherever the tool stands, so it must clear the part whatever it is; "
+                                      "move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)");
+}
+
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
   // Inverse time with no G93 to write it: every move that turns a rotary would be an error,
@@ -989,6 +1023,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   // With no family there is no default pipeline to judge: the missing family is the error.
   if (!passes.empty() && fam >= 0) report_pipeline(r, m, passes);
   check_job_codes(r, m);
+  check_fixed_blocks(r, m);
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
   // minute 4 and 3) need to keep their meaning.

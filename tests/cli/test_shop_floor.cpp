@@ -221,6 +221,30 @@ TEST(ShopFloor, AnRorQWithoutAPointInAnotherIncrementIsRefused) {
               HasSubstr("shop.toml:4:5: error: lq.format.P: P is a length written without a point in 2 decimals"));
 }
 
+// A machine's fixed blocks run wherever the CL left the tool: "G28 Z0." (G90) as the retract
+// rapided from Z100 down to the part's Z0 before going home, "G00 X0. Y0. Z-20." in the finish
+// went into the part; both certified (helper-67). Only G53 and a home return from where the
+// tool is (G91 G28 Z0., a lathe's G28 U0. W0.) load.
+TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
+  EXPECT_EQ(load_error("[g28]\ninherits = \"fanuc-mill\"\n[g28.codes]\nsafe_retract = \"G28 Z0.\"\n"),
+            "shop.toml:4:16: error: g28.codes.safe_retract: 'G28 Z0.' goes home through an intermediate point in the "
+            "part's coordinates (G90: Z of the part, at rapid): it runs wherever the tool stands, so it must clear the "
+            "part whatever it is; move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)\n"
+            " 4 | safe_retract = \"G28 Z0.\"\n   |                ^\n");
+  EXPECT_THAT(load_error("[f]\ninherits = \"fanuc-mill\"\n[f.program]\nfinish = [\"M05\", \"G00 X0. Y0. Z-20.\", \"M30\"]\n"),
+              HasSubstr("shop.toml:4:18: error: f.program.finish: 'G00 X0. Y0. Z-20.' moves XYZ to a position in the "
+                        "part's coordinates (or shifts them): a fixed block must clear the part"));
+  EXPECT_THAT(load_error("[g]\ninherits = \"fanuc-mill\"\n[g.codes]\nsafe_retract = \"G91 G28 Z-5.\"\n"),
+              HasSubstr("'G91 G28 Z-5.' goes home through an intermediate point away from where the tool is"));
+  for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G28 G91 Z0. Y0.", "M05"})
+    EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.codes]\nsafe_retract = \"" + std::string(ok) + "\"\n"), "")
+        << ok;
+  EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.codes]\nsafe_retract = \"G28 X0. Z0.\"\n"),
+              HasSubstr("'G28 X0. Z0.' goes home through an intermediate point in the part's coordinates"));
+  // After a finish that has gone home, a park position is where the tool goes from there.
+  EXPECT_EQ(load_error("[p]\ninherits = \"fanuc-lathe\"\n[p.program]\npark_blocks = [\"G00 X200. Z100.\"]\n"), "");
+}
+
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
                        "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),
