@@ -559,6 +559,18 @@ void check_fixed_blocks(Reader& r, const Machine& m) {
             p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; move in machine "
                                    "coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)");
     }
+  // On a mill M03 turns the spindle clockwise and M04 counter-clockwise (ISO 6983), whichever
+  // way a builder wires it: swapped, every right-hand cutter ran backwards, certified, as verify
+  // holds the program to the machine's own codes (helper-67). (A lathe's M03 is "forward", which
+  // APT's CLW means as seen from where the turret is: not judged.)
+  if (auto codes = r.sub("codes"); codes && !lathe)
+    for (auto [code, key, wrong] : {std::tuple{&m.codes.spindle_cw, "spindle_cw", 4}, std::tuple{&m.codes.spindle_ccw, "spindle_ccw", 3}})
+      for (double mc : code_numbers(code->text, 'M'))
+        if (mc == wrong)
+          if (const toml::node* n = codes->find(key))
+            codes->error(*n, key, "M0" + std::to_string(wrong) + " turns a mill's spindle " +
+                                      (wrong == 4 ? "counter-clockwise" : "clockwise") + " (ISO 6983), the other way than " +
+                                      key + " says: every cutter would run backwards");
   if (auto codes = r.sub("codes"))
     for (auto [code, key] : {std::pair{&m.codes.safe_retract, "safe_retract"}, std::pair{&m.codes.tool_change, "tool_change"},
                              std::pair{&m.codes.tool_preselect, "tool_preselect"}})

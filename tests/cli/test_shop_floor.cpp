@@ -245,6 +245,18 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
   EXPECT_EQ(load_error("[p]\ninherits = \"fanuc-lathe\"\n[p.program]\npark_blocks = [\"G00 X200. Z100.\"]\n"), "");
 }
 
+// spindle_cw = "M04" ran every right-hand cutter backwards, certified: verify holds a program
+// to the machine's own codes (helper-67). On a mill M03 is clockwise whatever the file says.
+TEST(ShopFloor, ASpindleDirectionCodeTheOtherWayIsRefused) {
+  EXPECT_EQ(load_error("[m4]\ninherits = \"fanuc-mill\"\n[m4.codes]\nspindle_cw = \"M04\"\nspindle_ccw = \"M03\"\n"),
+            "shop.toml:4:14: error: m4.codes.spindle_cw: M04 turns a mill's spindle counter-clockwise (ISO 6983), the "
+            "other way than spindle_cw says: every cutter would run backwards\n 4 | spindle_cw = \"M04\"\n   |           "
+            "   ^\nshop.toml:5:15: error: m4.codes.spindle_ccw: M03 turns a mill's spindle clockwise (ISO 6983), the "
+            "other way than spindle_ccw says: every cutter would run backwards\n 5 | spindle_ccw = \"M03\"\n   |       "
+            "        ^\n");
+  EXPECT_EQ(load_error("[m13]\ninherits = \"fanuc-mill\"\n[m13.codes]\nspindle_cw = \"M13\"\n"), "");
+}
+
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
                        "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),
