@@ -172,6 +172,8 @@ class ProgramWriter : public Backend {
   // machine. The last SPINDL that started it is started again before the next motion, unless
   // the CL gives a SPINDL of its own first.
   std::optional<ir::Spindle> spindle_on_;
+  SourceLoc cl_stopped_spindle_at_;    // the CL's SPINDL/OFF that stopped a running spindle, until one starts
+  bool spindle_stop_refused_ = false;  // a cut after it was refused: no warning for each move after
   bool spindle_restore_ = false;
   bool spindle_restore_warn_ = false;  // the restore follows a tool change: the new tool runs at the last one's speed
   ir::CoolantKind coolant_after_ = ir::CoolantKind::Off;

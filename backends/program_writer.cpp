@@ -166,8 +166,13 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           coolant_restore_ = false;
         } else if constexpr (std::is_same_v<T, ir::Spindle>) {
           spindle_restore_ = false;  // the CL says what it wants
+          if (x.dir == ir::SpindleDir::Off && spindle_on_) cl_stopped_spindle_at_ = loc;
+          if (x.dir != ir::SpindleDir::Off) cl_stopped_spindle_at_ = {}, spindle_stop_refused_ = false;
           if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();
           else spindle_on_ = x;
+        } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
+          cl_stopped_spindle_at_ = {};  // the next tool's own (a forming tool does not turn)
+          spindle_stop_refused_ = false;
         }
         if constexpr (std::is_same_v<T, ir::ToolChange> || std::is_same_v<T, ir::Hole> ||
                       std::is_same_v<T, ir::RotaryPosition> || std::is_same_v<T, ir::RotaryIndex> ||
@@ -849,8 +854,21 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
   return {};
 }
 
+// A tool fed with the spindle stopped is a warning: CL files feed tools that do not turn
+// (CATIA's peening and incremental forming, NX course files without SPINDL). But a cutter whose
+// spindle the CL turned and then stopped with SPINDL/OFF, fed on without a SPINDL to start it
+// again, is fed into the part without turning: an error, said once (helper-67).
 void ProgramWriter::warn_spindle_stopped(SourceLoc loc, const char* what) {
-  if (spindle_ == ir::SpindleDir::Off) d_.warning(loc, std::string(what) + " with the spindle stopped", "spindle-stopped");
+  if (spindle_ != ir::SpindleDir::Off) return;
+  if (cl_stopped_spindle_at_.valid()) {
+    d_.error(loc, std::string(what) + " with the spindle stopped: SPINDL/OFF at line " +
+                      std::to_string(cl_stopped_spindle_at_.line) +
+                      " stopped it and no SPINDL starts it again, so the cutter would be fed in without turning");
+    cl_stopped_spindle_at_ = {};
+    spindle_stop_refused_ = true;
+    return;
+  }
+  if (!spindle_stop_refused_) d_.warning(loc, std::string(what) + " with the spindle stopped", "spindle-stopped");
 }
 
 void ProgramWriter::note_plane_codes(std::string_view text) {

@@ -1057,7 +1057,9 @@ TEST(CamSystems, InsertedBlocksThatChangeWhatThePostKeepsAreRefusedOrUndone) {
 
 // Cuts with the spindle stopped: an arc said nothing (only straight feeds were warned), and a
 // drilling cycle with no SPINDL since the tool change was certified. A hole is an error: a
-// drill fed into the part without turning breaks. An arc warns, as a straight feed does.
+// drill fed into the part without turning breaks. An arc warns, as a straight feed does, where
+// the tool never turned (peening, incremental forming); where the CL turned the spindle and
+// stopped it with SPINDL/OFF, a feed on is an error, said once (helper-67: certified).
 TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
   const std::string head = "UNITS/MM\nLOADTL/1\nRAPID\nGOTO/10,0,5\nFEDRAT/200,MMPM\n";
   Compiled hole = compile_text(head + "CYCLE/DRILL,FEDTO,10,RAPTO,3,MMPM,100\nGOTO/10,0,0\nCYCLE/OFF\nFINI\n",
@@ -1065,10 +1067,18 @@ TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
   EXPECT_FALSE(hole.ok);
   EXPECT_THAT(hole.diags, HasSubstr("part.cls:7:1: error: a hole drilled with the spindle stopped (no SPINDL since the "
                                     "tool change, or SPINDL/OFF): the tool would be fed into the part without turning"));
-  Compiled arc = compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nCIRCLE/0,0,-1,0,0,1,10\nGOTO/-10,0,-1\nFINI\n",
-                              machine("fanuc-mill"));
+  Compiled arc = compile_text(head + "GOTO/10,0,-1\nCIRCLE/0,0,-1,0,0,1,10\nGOTO/-10,0,-1\nFINI\n", machine("fanuc-mill"));
   ASSERT_TRUE(arc.ok) << arc.diags;
-  EXPECT_THAT(arc.diags, HasSubstr("part.cls:9:1: warning: arc with the spindle stopped [-Wspindle-stopped]"));
+  EXPECT_THAT(arc.diags, HasSubstr("part.cls:7:1: warning: arc with the spindle stopped [-Wspindle-stopped]"));
+  Compiled stopped = compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nCIRCLE/0,0,-1,0,0,1,10\nGOTO/-10,0,-1\n"
+                                         "GOTO/-10,-5,-1\nFINI\n",
+                                  machine("fanuc-mill"));
+  EXPECT_FALSE(stopped.ok);
+  EXPECT_EQ(messages(stopped.diags), "part.cls:9:1: error: arc with the spindle stopped: SPINDL/OFF at line 8 stopped it "
+                                     "and no SPINDL starts it again, so the cutter would be fed in without turning\n");
+  // Started again, or another tool loaded (it may be one that does not turn): as before.
+  EXPECT_TRUE(compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nSPINDL/800,CLW\nGOTO/20,0,-1\nFINI\n",
+                           machine("fanuc-mill")).ok);
 }
 
 // APT's spindle runs until SPINDL/OFF; the machine's M06 (a mill's), M00 and M01 stop it. A CL
