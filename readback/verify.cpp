@@ -65,6 +65,12 @@ void Comparison::operation(const ir::Operation& op) {
             // (Not any M code may_move_axes fears: after INSERT/M88 the post writes the CL's move
             // whole, and a retract in its place passed; helper-58.)
             if (moves_axes_by_itself(op.str(x.text))) cut_from_point_ = false;
+            // INSERT/G04 P1000: the CL asks for a dwell in the control's own words (shops put one
+            // at a hole's bottom through INSERT in Mastercam, PowerMill, hyperMILL). Its time is
+            // the control's reading of the block, not judged here (helper-66: refused as a dwell
+            // the CL has no DELAY for).
+            for (double g : code_numbers(op.str(x.text), 'G'))
+              if (g == 4) cl_dwell_known_ = false;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
           } else if constexpr (std::is_same_v<T, ir::CutterComp>) {

@@ -413,6 +413,17 @@ TEST(CamSystems, AFeedWithoutAUnitKeepsTheLastOnesMode) {
   EXPECT_THAT(inverse.output, HasSubstr(" G93 G01 Z0.0394 F10.\nN55 G94 X0.3937 F7.87\n"));
 }
 
+// A dwell passed through INSERT (a hole's bottom in Mastercam, PowerMill or hyperMILL APT) was
+// written, then refused by the certificate as a dwell the CL has no DELAY for (helper-66).
+TEST(CamSystems, ADwellInAnInsertIsTheClsOwn) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,10\n"
+                         "INSERT/G04 P1000\nGOTO/0,0,-1\nGOTO/10,0,-1\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("\nN60 G43 H01 Z10.\nG04 P1000\nN70 G94 G01 X0. Y0. Z-1. F200.\n"));
+  EXPECT_TRUE(verifies(cl, machine("fanuc-mill")));
+}
+
 // G93's F is one over the block's minutes, given by the CL for one move. A move the program
 // writes as several blocks (an arc cut in quarters, an arc made lines under TCPC) gave each
 // block the whole move's F: four quarters took four times the CL's time, certified. Refused;
