@@ -109,6 +109,10 @@ void Lowerer::lower_spindle(const Record& r) {
       continue;
     }
     std::string w = upper(p.text);
+    // CW and CCW (and the words in full) are the ISO 4343 words' plain spellings, written by
+    // generic and home-grown posts (helper-66: refused as unknown words).
+    if (w == "CW" || w == "CLOCKWISE") w = "CLW";
+    else if (w == "CCW" || w == "COUNTERCLOCKWISE") w = "CCLW";
     // Two words that say opposite things: the last one won (SPINDL/1000,RPM,SMM turned at
     // 31831 rpm). Which one the CAM system meant is not known.
     std::string& first = (w == "RPM" || w == "SFM" || w == "SMM") ? kind_word : (w == "CLW" || w == "CCLW") ? dir_word : w;

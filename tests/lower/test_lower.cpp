@@ -123,6 +123,13 @@ TEST(Lower, ARecordInsideAnothersParametersIsRefused) {
   EXPECT_EQ(err("LOADTL/1,EM 1/2 FLAT\nPAINT/COLOR,D10/R2\nPAINT/TOOL,MY_GOTO/2\n"), "");
 }
 
+// SPINDL/RPM,1200,CW: the direction words' plain spellings, from generic posts (helper-66).
+TEST(Lower, SpindleDirectionsInPlainWords) {
+  EXPECT_EQ(err("SPINDL/RPM,1200,CW\nSPINDL/RPM,1200,CCW\nSPINDL/1200,CLOCKWISE\n"), "");
+  EXPECT_EQ(err("SPINDL/RPM,1200,CW,CCLW\n"),
+            "1:20: SPINDL: CLW and CCLW say opposite things in one record; which is meant is not known");
+}
+
 // COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
 // (helper-61). One pair of enclosing quotes is the record's, not the text's.
 TEST(Lower, ACommentIsFreeText) {
