@@ -309,6 +309,7 @@ void Lowerer::record(const Record& r) {
     case MajorId::Tracut: case MajorId::Copy: case MajorId::Index: lower_transform(r); return;
     case MajorId::Thread: note_feed_unit(r); lower_thread(r); return;
     case MajorId::Indirp: case MajorId::Psis: case MajorId::Rothed:
+      if (switches_off_only(r)) return;
       motion_not_read(r, motion_hint(r.major));
       return;
     case MajorId::Mode:
@@ -329,10 +330,7 @@ void Lowerer::record(const Record& r) {
       if (blank_joined_record(r)) return;
       if (motion_word(r.major)) {
         if (iequals(r.major, "TRANS") && no_shift(r)) return;  // TRANS/0,0,0 shifts nothing, as ORIGIN/0,0,0
-        // REFSYS/NOMORE ends a reference system, and every REFSYS that starts one is refused.
-        if (iequals(r.major, "REFSYS") && !r.params.empty() &&
-            std::all_of(r.params.begin(), r.params.end(), [](const Param& p) { return p.is("NOMORE") || p.is("OFF"); }))
-          return;
+        if (switches_off_only(r)) return;
         motion_not_read(r, motion_hint(r.major));
         return;
       }
@@ -407,6 +405,14 @@ bool Lowerer::blank_joined_record(const Record& r) {
     }
   }
   return false;
+}
+
+// ARCSLP/OFF, ROTHED/OFF, PLUNGE/OFF, REFSYS/NOMORE: a record that only switches off what clpc
+// never switches on (each one that would is refused) asks for nothing. They stopped the post as
+// motion clpc does not read (helper-66).
+bool switches_off_only(const Record& r) {
+  return !r.params.empty() &&
+         std::all_of(r.params.begin(), r.params.end(), [](const Param& p) { return p.is("NOMORE") || p.is("OFF"); });
 }
 
 // The record's name as written: its head words, then its major (TLON,GOFWD).

@@ -20,6 +20,7 @@ namespace clpc {
 // GOFWD, GOLFT, ...: APT contour motion (lower/lower_contour.cpp).
 bool is_contour_motion(MajorId id);
 bool moves_the_tool(const Record& r);
+bool switches_off_only(const Record& r);
 std::string head_and_major(const Record& r);
 // APT words that move the tool in ways clpc does not read, and what to do instead (lower/lower.cpp).
 bool motion_word(std::string_view major);

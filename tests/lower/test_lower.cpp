@@ -130,6 +130,14 @@ TEST(Lower, SpindleDirectionsInPlainWords) {
             "1:20: SPINDL: CLW and CCLW say opposite things in one record; which is meant is not known");
 }
 
+// ARCSLP/OFF, ROTHED/OFF, PLUNGE/OFF, POSTN/OFF switch off what clpc never switches on: nothing
+// to do. They stopped the post as motion clpc does not read (helper-66).
+TEST(Lower, ARecordThatOnlySwitchesOffIsNothing) {
+  EXPECT_EQ(err("ARCSLP/OFF\nROTHED/OFF\nPLUNGE/OFF\nPOSTN/OFF\nREFSYS/NOMORE\nGOTO/1,2,3\n"), "");
+  EXPECT_THAT(err("ARCSLP/ON\n"), HasSubstr("1:1: 'ARCSLP' moves the tool and clpc does not read it"));
+  EXPECT_THAT(err("ROTHED/OFF,30\n"), HasSubstr("1:1: 'ROTHED' moves the tool"));
+}
+
 // COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
 // (helper-61). One pair of enclosing quotes is the record's, not the text's.
 TEST(Lower, ACommentIsFreeText) {
