@@ -612,6 +612,17 @@ std::string_view Lexer::keep(const unsigned char* b, const unsigned char* e) {
   return {dst, n};
 }
 
+// An error that stands whatever record it is in (a record read as another's parameter is lost
+// whether or not that one carries anything to cut); in a '$$->' data comment, a warning.
+Lexer::Symbol Lexer::hard_error_token(SourceLoc loc, const std::string& msg) {
+  if (diags_ && !data_comment_) {
+    diags_->error(loc, msg);
+    mode_ = Mode::SkipRecord;
+    return Parser::make_YYerror(loc);
+  }
+  return error_token(loc, msg);
+}
+
 Lexer::Symbol Lexer::error_token(SourceLoc loc, const std::string& msg) {
   report(loc, msg);
   mode_ = Mode::SkipRecord;
@@ -647,23 +658,19 @@ Lexer::Symbol Lexer::not_a_record() {
 // stand alone and move the tool or change how it moves ("RAPID", "GOHOME", "STOP", "OPSTOP"),
 // or "". A line skipped as no record must not hide a move ("Date 12-Jan RAPID": the rapid after
 // it was fed).
-std::string Lexer::motion_word_in_line() const {
-  static const char* const kMotion[] = {"GOTO", "GODLTA", "FROM", "GOHOME", "CIRCLE", "MOVARC", "GOFWD", "GOLFT",
-                                        "GORGT", "GOBACK", "GOUP", "GODOWN", "CYCLE", "RAPID", "FEDRAT"};
+std::string Lexer::motion_word_in_line(bool prose) const {
   const unsigned char* e = cur_;
   while (e < lim_ && *e != '\n' && *e != '\0') ++e;
-  std::string line;
-  for (const unsigned char* p = tok_; p < e; ++p) line += char(std::toupper(*p));
-  for (const char* w : kMotion) {
-    for (size_t at = line.find(w); at != std::string::npos; at = line.find(w, at + 1)) {
-      size_t after = at + std::strlen(w);
-      while (after < line.size() && (line[after] == ' ' || line[after] == '\t')) ++after;
-      const bool word_start = at == 0 || !(std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_');
-      if (word_start && after < line.size() && line[after] == '/') return std::string(w) + "/";
-    }
-  }
   std::string_view text(reinterpret_cast<const char*>(tok_), size_t(e - tok_));
   if (size_t c = text.find("$$"); c != std::string_view::npos) text = text.substr(0, c);
+  // "(CHECK FEDRAT/ BEFORE RUN)": the parentheses hold a note.
+  if (prose && !text.empty() && text[0] == '(') text = text.substr(std::min(text.size(), text.find(')') + 1));
+  if (const size_t at = record_inside(text); at != std::string_view::npos) {
+    std::string name(text.substr(at, text.find_first_of("/ \t", at) - at));
+    for (char& c : name) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return name + "/";
+  }
+  if (prose) return "";  // "* RETRACT AT RAPID", "; PROGRAM STOP": words of a note
   while (!text.empty() && is_ws(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
   size_t b = text.size();
   while (b > 0 && !is_ws(static_cast<unsigned char>(text[b - 1])) && text[b - 1] != ',') --b;
@@ -918,7 +925,11 @@ Lexer::Symbol Lexer::lex_line_start() {
         // "* note"): no record, so it moves nothing. Skipped with a warning unless it hides a
         // motion record further on (helper-64: these stopped the post).
         if (wanted_) { skip_record(); continue; }
-        if (diags_ && !data_comment_ && motion_word_in_line().empty()) {
+        if (diags_ && !data_comment_) {
+          if (const std::string motion = motion_word_in_line(true); !motion.empty())
+            return hard_error_token(loc_of(tok_), "not a CL record (a line starting with " + describe(*tok_) +
+                                                      "), yet the line holds " + motion +
+                                                      " further on: skipped, it would be lost");
           diags_->warning(loc_of(tok_), "not a CL record (a line starting with " + describe(*tok_) +
                                             "): the line is ignored", "not-a-record");
           skip_record();
@@ -1076,14 +1087,20 @@ Lexer::Symbol Lexer::lex_run() {
   }
   // "PAINT/COLOR,31 GOTO/10,0,10": two records on a line. Read as one word, the GOTO was lost
   // (helper-64), whichever record it followed.
-  if (std::memchr(tok_, '/', size_t(t - tok_))) {
+  // The same for the records that stand alone: "INTOL/0.01 RAPID" lost the rapid.
+  {
     const std::string_view run(reinterpret_cast<const char*>(tok_), size_t(t - tok_));
-    if (const size_t at = record_inside(run); at != std::string_view::npos) {
-      const std::string_view rest = run.substr(at);
-      return error_token(loc_of(tok_ + at), "'" + std::string(rest.substr(0, rest.find('/'))) +
-                                                "/' inside a parameter: a record of its own on this line (a line end "
-                                                "missing?); read as a parameter, it would be lost");
+    size_t at = std::memchr(tok_, '/', size_t(t - tok_)) ? record_inside(run) : std::string_view::npos;
+    std::string name;
+    if (at != std::string_view::npos) {
+      name = std::string(run.substr(at, run.find_first_of("/ \t", at) - at)) + "/";
+    } else if (const size_t blank = run.find_last_of(" \t"); blank != std::string_view::npos) {
+      const std::string_view last = run.substr(blank + 1);
+      if (iequals(last, "RAPID") || iequals(last, "GOHOME")) at = blank + 1, name = std::string(last);
     }
+    if (at != std::string_view::npos)
+      return hard_error_token(loc_of(tok_ + at), "'" + name + "' inside a parameter: a record of its own on this line "
+                                                              "(a line end missing?); read as a parameter, it would be lost");
   }
   check_text(tok_, t, "word");
   return Parser::make_WORD(keep(tok_, t), loc_of(tok_));

@@ -80,7 +80,9 @@ class Lexer {
   Symbol major(MajorId id, const unsigned char* b, const unsigned char* e);
   Symbol free_text_major(MajorId id, size_t keyword_len);
   bool skip_record();               // to the end of the record; false at end of input
-  std::string motion_word_in_line() const;
+  // `prose`: the line opens as a note ("* RETRACT AT RAPID"): only a "NAME/" record counts.
+  std::string motion_word_in_line(bool prose = false) const;
+  Symbol hard_error_token(SourceLoc loc, const std::string& msg);
   uint32_t motion_skipped_ = 0;  // records that move the tool skipped as not wanted
   void check_text(const unsigned char* b, const unsigned char* e, const char* what);
   std::string_view lexeme() const { return {reinterpret_cast<const char*>(tok_), size_t(cur_ - tok_)}; }

@@ -69,16 +69,26 @@ bool carries_nothing_to_cut(MajorId id) {
   }
 }
 
-size_t record_inside(std::string_view param) {
-  for (size_t slash = param.find('/'); slash != std::string_view::npos; slash = param.find('/', slash + 1)) {
+bool moves_or_changes_the_cut(std::string_view name) {
+  static constexpr std::string_view kMore[] = {"LOAD",   "SELECT", "COOLNT", "GOLFT",  "GORGT", "GOBACK", "GOUP",
+                                               "GODOWN", "CALSUB", "COPY",   "TRACUT", "ROTABL", "ROTATE", "THREAD"};
+  for (std::string_view g : kGluable)
+    if (iequals(name, g)) return true;
+  for (std::string_view g : kMore)
+    if (iequals(name, g)) return true;
+  return false;
+}
+
+size_t record_inside(std::string_view text) {
+  for (size_t slash = text.find('/'); slash != std::string_view::npos; slash = text.find('/', slash + 1)) {
     size_t end = slash;
-    while (end > 0 && (param[end - 1] == ' ' || param[end - 1] == '\t')) --end;
+    while (end > 0 && (text[end - 1] == ' ' || text[end - 1] == '\t')) --end;
     size_t start = end;
-    while (start > 0 && std::isalpha(static_cast<unsigned char>(param[start - 1]))) --start;
-    if (start > 0 && param[start - 1] != ' ' && param[start - 1] != '\t') continue;  // inside a word: "1/2"
-    const std::string_view name = param.substr(start, end - start);
-    for (std::string_view g : kGluable)
-      if (iequals(name, g)) return start;
+    while (start > 0 && std::isalpha(static_cast<unsigned char>(text[start - 1]))) --start;
+    // A name's own letters before it ("MY_GOTO/", "D10/R2", "1/2") make it no record; a blank,
+    // APT's ';' statement separator or a label's ')' before it do not.
+    if (start > 0 && (std::isalnum(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_')) continue;
+    if (start < end && moves_or_changes_the_cut(text.substr(start, end - start))) return start;
   }
   return std::string_view::npos;
 }

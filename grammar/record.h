@@ -30,10 +30,14 @@ std::string_view glued_record(std::string_view word);
 // the tool or changes how it cuts, so one written wrong is skipped, never a stopped post.
 bool carries_nothing_to_cut(MajorId id);
 
-// Where a record that moves the tool or changes how it cuts (glued_record's list) starts a
-// record of its own inside a parameter, as in "31 GOTO/10" (PAINT/COLOR,31 GOTO/10,0,10: a
-// line end missing): the offset of its name, or npos. Reading past it would lose the record.
-size_t record_inside(std::string_view param);
+// Whether a record of this name moves the tool or changes how it cuts (GOTO, CIRCLE, RAPID,
+// FEDRAT, SPINDL, LOADTL, LOAD, UNITS, CUTCOM, COOLNT, ...): one skipped loses motion.
+bool moves_or_changes_the_cut(std::string_view name);
+
+// Where such a record starts, as "NAME/", inside a text: a parameter ("31 GOTO/10" in
+// PAINT/COLOR,31 GOTO/10,0,10: a line end missing), or a line skipped as no record. The offset
+// of its name, or npos. Reading past it would lose the record.
+size_t record_inside(std::string_view text);
 
 // ASCII case-insensitive equality (CL words are upper case by convention, not by rule).
 bool iequals(std::string_view a, std::string_view b);

@@ -105,7 +105,12 @@ TEST(Lower, MalformedRecordsWithoutMotionAreNoStop) {
   // A record that changes how the tool cuts still stops the post; so does a motion record
   // hidden further on the line.
   EXPECT_EQ(err("FEDRAT/1e400\n"), "1:8: number out of range: '1e400'");
-  EXPECT_EQ(err("(SETUP) GOTO/1,2,3\n"), "1:1: expected a major word at the start of a record, found '('");
+  EXPECT_EQ(err("(SETUP) GOTO/1,2,3\n"),
+            "1:1: not a CL record (a line starting with '('), yet the line holds GOTO/ further on: skipped, it would be lost");
+  EXPECT_THAT(err("; note SPINDL/OFF\n"), HasSubstr("the line holds SPINDL/ further on"));
+  // Words of a note are no records (helper-68): a record's name alone, one in the note's
+  // parentheses, or after a "$$".
+  EXPECT_EQ(err("* RETRACT AT RAPID\n; PROGRAM STOP\n(CHECK FEDRAT/ BEFORE RUN)\nPAINT/1e400 $$ then GOTO/1,2,3\n"), "");
 }
 
 // Two records on a line: the second read as a parameter of the first, its motion lost
@@ -119,6 +124,15 @@ TEST(Lower, ARecordInsideAnothersParametersIsRefused) {
         << line;
   }
   EXPECT_THAT(err("PAINT/COLOR,3 FEDRAT/100\n"), HasSubstr("'FEDRAT/' inside a parameter"));
+  // Every record that moves the tool or changes how it cuts, whichever record it is in; after
+  // APT's ';' or a label's ')'; and the records that stand alone (helper-68: these were warnings).
+  for (const char* line : {"PAINT/COLOR,31 LOADTL/2", "INTOL/0.01 UNITS/INCHES", "PAINT/COLOR,31 SPINDL/OFF",
+                           "PAINT/COLOR,31 LOAD/TOOL,2", "PAINT/COLOR,31 COOLNT/ON", "PAINT/COLOR,31;GOTO/10,0,10",
+                           "PAINT/COLOR,31 L1)GOTO/10,0,10", "TOOLNO/1 MULTAX/ON"})
+    EXPECT_THAT(err(std::string(line) + "\n"), HasSubstr("/' inside a parameter")) << line;
+  EXPECT_EQ(err("INTOL/0.01 RAPID\n"), "1:12: 'RAPID' inside a parameter: a record of its own on this line (a line end "
+                                        "missing?); read as a parameter, it would be lost");
+  EXPECT_THAT(err("INTOL/0.01 GOHOME\n"), HasSubstr("1:12: 'GOHOME' inside a parameter"));
   // A slash inside a name is no record: LOADTL/1,EM 1/2 FLAT, TOOL PATH/D10/R2.
   EXPECT_EQ(err("LOADTL/1,EM 1/2 FLAT\nPAINT/COLOR,D10/R2\nPAINT/TOOL,MY_GOTO/2\n"), "");
 }
