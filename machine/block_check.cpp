@@ -6,6 +6,7 @@
 #include <charconv>
 
 #include "support/decimal.h"
+#include "support/text.h"
 
 namespace clpc {
 
@@ -230,26 +231,90 @@ bool may_move_axes(std::string_view block) {
   return false;
 }
 
-std::string part_position_in(std::string_view block, bool lathe) {
-  const std::string axes = axis_words(block);
-  if (axes.empty()) return "";
-  bool machine = false, reference = false, incremental = false;
-  for (double g : code_numbers(block, 'G')) {
-    if (std::abs(g - 53) < 1e-6) machine = true;
-    if (std::abs(g - 28) < 1e-6 || std::abs(g - 30) < 1e-6) reference = true;
-    if (std::abs(g - 91) < 1e-6) incremental = true;
+std::string control_words(std::string_view block) {
+  std::string out;
+  for (size_t i = 0; i < block.size(); ++i) {
+    const char c = block[i];
+    if (c == '(') {
+      if ((i = block.find(')', i)) == std::string_view::npos) break;
+      continue;
+    }
+    if (blank(c)) {
+      // A blank between an address and its number goes ("G 28" is G28); one between words stays
+      // ("L Z-0.5": L is no address of Z's).
+      size_t n = i;
+      while (n + 1 < block.size() && blank(block[n + 1])) ++n;
+      const char next = n + 1 < block.size() ? block[n + 1] : ' ';
+      if (!(digit(next) || next == '-' || next == '+' || next == '.' || next == '#' || next == '[') && !out.empty() &&
+          out.back() != ' ')
+        out += ' ';
+      i = n;
+      continue;
+    }
+    out += char(std::toupper(static_cast<unsigned char>(c)));
   }
-  if (machine) return "";
-  if (!reference)
-    return "'" + std::string(block) + "' moves " + axes + " to a position in the part's coordinates (or shifts them)";
-  for (char a : axes) {
-    const std::vector<double> v = code_numbers(block, a);  // (a negative value reads as none)
-    const bool zero = !v.empty() && std::all_of(v.begin(), v.end(), [](double x) { return x == 0; });
-    const bool in_place = incremental || (lathe && (a == 'U' || a == 'W'));
-    if (!zero || !in_place)
+  return out;
+}
+
+namespace {
+
+// One address word of a block in control_words' form: its letter and value, or no value (a
+// #variable, a [expression]) where it cannot be read.
+struct AddressWord {
+  char letter;
+  bool known;
+  double value;
+};
+
+std::vector<AddressWord> address_words(const std::string& t) {
+  std::vector<AddressWord> out;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!upper_letter(t[i]) || (i > 0 && upper_letter(t[i - 1]))) continue;  // inside a word: SUPA, FMAX
+    size_t v = i + 1;
+    if (v < t.size() && (t[v] == '-' || t[v] == '+')) ++v;
+    while (v < t.size() && (digit(t[v]) || t[v] == '.')) ++v;
+    double x = 0;
+    const bool number = v > i + 1 && from_chars_double(t.data() + i + 1 + (t[i + 1] == '+'), t.data() + v, x).ec == std::errc();
+    if (!number && (i + 1 >= t.size() || upper_letter(t[i + 1]) || t[i + 1] == ' ')) continue;  // a word of letters
+    out.push_back({t[i], number, x});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string part_position_in(std::string_view block, bool lathe, bool& incremental, std::string_view free_axes) {
+  const std::string t = control_words(block);
+  const std::vector<AddressWord> words = address_words(t);
+  bool machine = t.find("SUPA") != std::string::npos, reference = false, dwell = false;
+  for (const AddressWord& w : words) {
+    if (!w.known) continue;
+    if (w.letter == 'G') {
+      if (w.value == 91) incremental = true;
+      if (w.value == 90) incremental = false;
+      if (w.value == 53 || w.value == 153) machine = true;  // Fanuc, Siemens
+      if (w.value == 28 || w.value == 30) reference = true;
+      if (w.value == 4) dwell = true;
+    }
+    if (w.letter == 'M' && (w.value == 91 || w.value == 92)) machine = true;  // Heidenhain
+  }
+  if (machine || dwell) return "";
+  for (const AddressWord& w : words) {
+    if (std::string_view("XYZABCUVW").find(w.letter) == std::string_view::npos) continue;
+    // (A free axis is free to go, not to pass through a G28's intermediate point: a lathe's
+    // "G28 X0. Z0." goes to the face's centre first.)
+    if (!reference && free_axes.find(w.letter) != std::string_view::npos) continue;
+    const bool zero = w.known && w.value == 0;
+    // U, V, W are incremental X, Y, Z on a lathe (and in a Mazak's G28 U0 V0 W0).
+    const bool in_place = incremental || ((lathe || reference) && std::string_view("UVW").find(w.letter) != std::string_view::npos);
+    if (zero && in_place) continue;
+    const std::string word = std::string(1, w.letter) + (w.known ? num_text(w.value) : std::string("#"));
+    if (reference)
       return "'" + std::string(block) + "' goes home through an intermediate point " +
-             (in_place ? "away from where the tool is" : "in the part's coordinates (G90: " + std::string(1, a) +
-                                                             " of the part, at rapid)");
+             (in_place ? "away from where the tool is (" + word + ")"
+                       : "in the part's coordinates (G90: " + word + " of the part, at rapid)");
+    return "'" + std::string(block) + "' moves " + std::string(1, w.letter) + " to a position in the part's coordinates (" +
+           word + (incremental ? ", from where the tool is" : "") + ")";
   }
   return "";
 }

@@ -15,12 +15,19 @@ namespace clpc {
 // first thing that is none of these.
 bool is_control_block(std::string_view text, std::string& why);
 
+// A block as a control reads its words: capitals, without comments and without the blanks
+// between an address and its number ("g 28 z 0." is "G28 Z0.").
+std::string control_words(std::string_view block);
+
 // Why a machine's fixed block (program start or finish, a park, a retract, a tool change) may
 // take the tool to a position in the part's coordinates, which clpc cannot know is clear of the
-// part; "" when it cannot. What may stand: a move in machine coordinates (G53), and G28/G30
-// whose intermediate point is where the tool is (G91 with every axis 0; a lathe's U0 W0).
-// "G28 Z0." in G90 rapids down to the part's Z0 before going home (helper-67).
-std::string part_position_in(std::string_view block, bool lathe);
+// part; "" when it cannot. What may stand: a move in machine coordinates (G53; Siemens' G153
+// and SUPA; Heidenhain's M91, M92), a dwell, and G28/G30 whose intermediate point is where the
+// tool is (G91 with every axis 0; U, V, W 0, incremental on a lathe and a Mazak). "G28 Z0." in
+// G90 rapids down to the part's Z0 before going home (helper-67). `incremental` is G91 in
+// force, carried from block to block; axes in `free_axes` may go anywhere but
+// through a G28's intermediate point (a park from home, a lathe's tool change position).
+std::string part_position_in(std::string_view block, bool lathe, bool& incremental, std::string_view free_axes = "");
 
 // The axis letters (X Y Z A B C U V W) that stand as address words in a control block, outside
 // comments, in the order met ("" for none). A dwell (G04 X1.5) has none: its X is a time.

@@ -507,6 +507,10 @@ std::string dwell_word_problem(const CodeTemplate& t, const Machine& m) {
   return "";
 }
 
+// The addresses that hold whole numbers only: a speed, a tool, a register, a program number, a
+// count, a code.
+constexpr std::string_view kWholeNumberLetters = "STHDOLMG";
+
 // A whole number (a tool, a register, a work offset's number, a speed) in a word whose address
 // is written without a point in decimals: G54.1 P{number} with format.P = { decimals = 1,
 // point = "never" } wrote P10 for P1, another fixture's offset, certified (verify read it back
@@ -515,7 +519,7 @@ std::string whole_number_problem(const CodeTemplate& t, const Machine& m) {
   for (const CodeTemplate::Word& w : t.words) {
     const char letter = CodeTemplate::letter(w);
     // S, T, H, D, ... themselves are refused at their format (the same mistake, said once).
-    if (letter == 0 || std::string_view("STHDOLMG").find(letter) != std::string_view::npos) continue;
+    if (letter == 0 || kWholeNumberLetters.find(letter) != std::string_view::npos) continue;
     const AddressFormat& f = m.format(letter);
     if (f.point != AddressFormat::Point::Never || f.decimals == 0) continue;
     for (const CodeTemplate::Piece& p : w) {
@@ -535,49 +539,79 @@ std::string whole_number_problem(const CodeTemplate& t, const Machine& m) {
   return "";
 }
 
+// The axes a run of blocks sends home (G91 G28 Z0., G53 Z0.; a lathe's G28 U0. W0.): X, Y, Z.
+std::string homed_axes(const std::vector<CodeTemplate>& blocks) {
+  std::string homed;
+  for (const CodeTemplate& b : blocks) {
+    const std::string t = control_words(b.text);
+    bool home = false;
+    for (double g : code_numbers(t, 'G'))
+      if (g == 28 || g == 30 || g == 53) home = true;
+    if (!home) continue;
+    for (char a : axis_words(t)) {
+      const char axis = a == 'U' ? 'X' : a == 'V' ? 'Y' : a == 'W' ? 'Z' : a;
+      if (homed.find(axis) == std::string::npos) homed += axis;
+    }
+  }
+  return homed;
+}
+
 // A machine's fixed blocks run wherever the CL has left the tool, so they may move it only in
 // ways that clear the part whatever it is: G53, or G91 G28 Z0. "G28 Z0." as safe_retract
 // rapided from Z100 down to the part's Z0 on the way home, and "G00 X0. Y0. Z-30." in finish
 // went into the part; both certified (helper-67).
 void check_fixed_blocks(Reader& r, const Machine& m) {
   const bool lathe = m.is_lathe();
-  // The park blocks come after the finish's: once it has sent the tool home, they start from
-  // there (a lathe's G00 X200. Z100., clear of the chuck).
-  bool finish_goes_home = false;
-  for (const CodeTemplate& b : m.finish)
-    for (double g : code_numbers(b.text, 'G'))
-      if (std::abs(g - 28) < 1e-6 || std::abs(g - 30) < 1e-6 || std::abs(g - 53) < 1e-6) finish_goes_home = true;
+  constexpr std::string_view kAll = "XYZABCUVW";
+  // The park blocks come after the finish's: from where it sent the tool. A mill's Z at home
+  // leaves X, Y and the rotaries free to go anywhere (the table to the front); a lathe's X and
+  // Z at home, any position (G00 X200. Z100., clear of the chuck). A Z move is judged.
+  const std::string homed = homed_axes(m.finish);
+  const bool z_home = homed.find('Z') != std::string::npos, x_home = homed.find('X') != std::string::npos;
+  const std::string_view park_free = lathe ? (x_home && z_home ? kAll : "") : (z_home ? "XYABCUV" : "");
+  const std::string advice = "move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)";
   if (auto p = r.sub("program"))
-    for (const char* key : {"safe_start", "finish", "park_blocks"}) {
-      if (std::string_view(key) == "park_blocks" && finish_goes_home) continue;
+    for (const char* key : {"start", "safe_start", "finish", "park_blocks"}) {
       const toml::node* n = p->find(key);
       const toml::array* a = n ? n->as_array() : nullptr;
       if (!a) continue;
+      bool incremental = false;
       for (const toml::node& e : *a)
         if (const auto* text = e.as_string())
-          if (const std::string why = part_position_in(**text, lathe); !why.empty())
-            p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; move in machine "
-                                   "coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)");
+          if (const std::string why = part_position_in(**text, lathe, incremental,
+                                                       std::string_view(key) == "park_blocks" ? park_free : "");
+              !why.empty())
+            p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; " + advice);
     }
-  // On a mill M03 turns the spindle clockwise and M04 counter-clockwise (ISO 6983), whichever
-  // way a builder wires it: swapped, every right-hand cutter ran backwards, certified, as verify
-  // holds the program to the machine's own codes (helper-67). (A lathe's M03 is "forward", which
-  // APT's CLW means as seen from where the turret is: not judged.)
-  if (auto codes = r.sub("codes"); codes && !lathe)
-    for (auto [code, key, wrong] : {std::tuple{&m.codes.spindle_cw, "spindle_cw", 4}, std::tuple{&m.codes.spindle_ccw, "spindle_ccw", 3}})
-      for (double mc : code_numbers(code->text, 'M'))
-        if (mc == wrong)
-          if (const toml::node* n = codes->find(key))
-            codes->error(*n, key, "M0" + std::to_string(wrong) + " turns a mill's spindle " +
-                                      (wrong == 4 ? "counter-clockwise" : "clockwise") + " (ISO 6983), the other way than " +
-                                      key + " says: every cutter would run backwards");
+  // A lathe's tool change position (G00 X250. Z200. T0101) is where lathes change tools: the
+  // retract guard (backends/lathe_retract.cpp) judges the way there from inside the part.
   if (auto codes = r.sub("codes"))
     for (auto [code, key] : {std::pair{&m.codes.safe_retract, "safe_retract"}, std::pair{&m.codes.tool_change, "tool_change"},
-                             std::pair{&m.codes.tool_preselect, "tool_preselect"}})
-      if (const std::string why = part_position_in(code->text, lathe); !why.empty())
+                             std::pair{&m.codes.tool_preselect, "tool_preselect"}}) {
+      bool incremental = false;
+      const bool lathe_change = lathe && std::string_view(key) != "tool_preselect";
+      if (const std::string why = part_position_in(code->text, lathe, incremental, lathe_change ? kAll : "");
+          !why.empty())
         if (const toml::node* n = codes->find(key))
-          codes->error(*n, key, why + ": it runs wherever the tool stands, so it must clear the part whatever it is; "
-                                      "move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)");
+          codes->error(*n, key, why + ": it runs wherever the tool stands, so it must clear the part whatever it is; " +
+                                    advice);
+    }
+}
+
+// On a mill M03 turns the spindle clockwise and M04 counter-clockwise (ISO 6983), whichever way
+// a builder wires it: swapped, every right-hand cutter ran backwards, certified, as verify holds
+// the program to the machine's own codes (helper-67). (A lathe's M03 is "forward", which APT's
+// CLW means as seen from where the turret is: not judged.)
+void check_spindle_codes(Reader& r, const Machine& m) {
+  auto codes = r.sub("codes");
+  if (!codes || m.is_lathe()) return;
+  for (auto [code, key, wrong] : {std::tuple{&m.codes.spindle_cw, "spindle_cw", 4}, std::tuple{&m.codes.spindle_ccw, "spindle_ccw", 3}})
+    for (double mc : code_numbers(control_words(code->text), 'M'))
+      if (mc == wrong)
+        if (const toml::node* n = codes->find(key))
+          codes->error(*n, key, "M0" + std::to_string(wrong) + " turns a mill's spindle " +
+                                    (wrong == 4 ? "counter-clockwise" : "clockwise") + " (ISO 6983), the other way than " +
+                                    key + " says: every cutter would run backwards");
 }
 
 // The same, for options that need a code (read after [NAME.codes]).
@@ -795,15 +829,14 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       // A speed, a tool, a register, a program number or a repeat count is a whole number the
       // control reads as written: without a point in decimals, S3000 was written S30000 (past
       // max_rpm, which holds the CL's speed) and H1 as H10, certified (helper-67).
-      if (std::string_view("STHDOLMG").find(k[0]) != std::string_view::npos &&
-          m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::Never &&
-          m.formats[size_t(k[0] - 'A')].decimals > 0)
+      if (const AddressFormat& f = m.formats[size_t(k[0] - 'A')];
+          kWholeNumberLetters.find(k[0]) != std::string_view::npos && f.point == AddressFormat::Point::Never &&
+          f.decimals > 0)
         c.error(key->source(), s->key_path(k) + ": " + k + " is a whole number (a speed, a tool, a register, a "
-                                   "program number, a count), and without a point in " +
-                                   std::to_string(m.formats[size_t(k[0] - 'A')].decimals) + " decimals " + k +
-                                   "1 would be written " + k + "1" +
-                                   std::string(size_t(m.formats[size_t(k[0] - 'A')].decimals), '0') +
-                                   ", which the control reads as that number: say decimals = 0");
+                                   "program number, a count), and without a point in " + std::to_string(f.decimals) +
+                                   " decimals " + k + "1 would be written " + k + "1" +
+                                   std::string(size_t(f.decimals), '0') + ", which the control reads as that number: "
+                                   "say decimals = 0");
       if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
           m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::IfFraction)
         c.error(key->source(), s->key_path(k) + ".point: \"if-fraction\" writes a whole " + k + " without its point (" +
@@ -831,21 +864,31 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     // else the usual one (0.001 mm, 0.0001 in).
     {
       int increment = m.units == ir::Units::Inch ? 4 : 3;
+      char axis = 0;  // the axis that says the increment, if any
       for (char a : {'X', 'Y', 'Z'})
         if (m.format(a).point == AddressFormat::Point::Never) {
           increment = m.format(a).decimals;
+          axis = a;
           break;
         }
-      for (char k : std::string_view(m.is_lathe() ? "RQP" : "RQ")) {
+      for (char k : std::string_view(m.is_lathe() ? "PQR" : "QR")) {
         const AddressFormat& f = m.format(k);
         if (f.point != AddressFormat::Point::Never || f.decimals == increment) continue;
-        if (const toml::node* n = s->find(std::string(1, k)))
+        // Said where this machine's file made it so: its own R, Q or P, else the axis whose
+        // decimals it gave (an inherited P made wrong by an X given here).
+        const toml::node* n = r.top().at_path(std::string("format.") + k).node();
+        if (!n && axis) n = r.top().at_path(std::string("format.") + axis).node();
+        if (!n) n = s->find(std::string(1, k));
+        if (n)
           s->error(*n, std::string(1, k),
                    std::string(1, k) + " is a length written without a point in " + std::to_string(f.decimals) +
                        " decimals, and the control counts it in its least input increment (" +
-                       std::to_string(increment) + " decimals): every " + k + " would be off by a power of ten; give it " +
-                       std::to_string(increment) + " decimals, or point = \"always\"" +
-                       (k == 'P' ? "" : " where the control takes one"));
+                       std::to_string(increment) + " decimals" +
+                       (axis ? std::string(", as format.") + axis + " says"
+                             : std::string(", the usual ") + (increment == 4 ? "0.0001 in" : "0.001 mm") +
+                                   "; a control in finer increments says so by writing its axes without a point") +
+                       "): every " + k + " would be off by a power of ten; give it " + std::to_string(increment) +
+                       " decimals" + (k == 'P' ? "" : ", or point = \"always\" where the control takes one"));
       }
     }
     s->finish();
@@ -1036,6 +1079,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   if (!passes.empty() && fam >= 0) report_pipeline(r, m, passes);
   check_job_codes(r, m);
   check_fixed_blocks(r, m);
+  check_spindle_codes(r, m);
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
   // minute 4 and 3) need to keep their meaning.

@@ -206,8 +206,9 @@ TEST(ShopFloor, AWholeNumberWrittenWithoutAPointInDecimalsIsRefused) {
 TEST(ShopFloor, AnRorQWithoutAPointInAnotherIncrementIsRefused) {
   EXPECT_EQ(load_error("[r2]\ninherits = \"fanuc-mill\"\n[r2.format]\nR = { decimals = 2, point = \"never\" }\n"),
             "shop.toml:4:5: error: r2.format.R: R is a length written without a point in 2 decimals, and the control "
-            "counts it in its least input increment (3 decimals): every R would be off by a power of ten; give it 3 "
-            "decimals, or point = \"always\" where the control takes one\n 4 | R = { decimals = 2, point = \"never\" "
+            "counts it in its least input increment (3 decimals, the usual 0.001 mm; a control in finer increments says "
+            "so by writing its axes without a point): every R would be off by a power of ten; give it 3 decimals, or "
+            "point = \"always\" where the control takes one\n 4 | R = { decimals = 2, point = \"never\" "
             "}\n   |     ^\n");
   EXPECT_THAT(load_error("[q4]\ninherits = \"fanuc-mill\"\n[q4.format]\nQ = { decimals = 4, point = \"never\" }\n"),
               HasSubstr("shop.toml:4:5: error: q4.format.Q: Q is a length written without a point in 4 decimals"));
@@ -219,6 +220,16 @@ TEST(ShopFloor, AnRorQWithoutAPointInAnotherIncrementIsRefused) {
             "");
   EXPECT_THAT(load_error("[lq]\ninherits = \"fanuc-lathe\"\n[lq.format]\nP = { decimals = 2, point = \"never\" }\n"),
               HasSubstr("shop.toml:4:5: error: lq.format.P: P is a length written without a point in 2 decimals"));
+  // An inherited P and Q made wrong by the axes given here are said at the axis (helper-68).
+  EXPECT_EQ(load_error("[l4]\ninherits = \"fanuc-lathe\"\n[l4.format]\nX = { decimals = 4, point = \"never\", scale = 2.0 }\n"
+                       "Z = { decimals = 4, point = \"never\" }\n"),
+            "shop.toml:4:5: error: l4.format.P: P is a length written without a point in 3 decimals, and the control "
+            "counts it in its least input increment (4 decimals, as format.X says): every P would be off by a power of "
+            "ten; give it 4 decimals\n 4 | X = { decimals = 4, point = \"never\", scale = 2.0 }\n   |     ^\n"
+            "shop.toml:4:5: error: l4.format.Q: Q is a length written without a point in 3 decimals, and the control "
+            "counts it in its least input increment (4 decimals, as format.X says): every Q would be off by a power of "
+            "ten; give it 4 decimals, or point = \"always\" where the control takes one\n 4 | X = { decimals = 4, "
+            "point = \"never\", scale = 2.0 }\n   |     ^\n");
 }
 
 // A machine's fixed blocks run wherever the CL left the tool: "G28 Z0." (G90) as the retract
@@ -228,12 +239,12 @@ TEST(ShopFloor, AnRorQWithoutAPointInAnotherIncrementIsRefused) {
 TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
   EXPECT_EQ(load_error("[g28]\ninherits = \"fanuc-mill\"\n[g28.codes]\nsafe_retract = \"G28 Z0.\"\n"),
             "shop.toml:4:16: error: g28.codes.safe_retract: 'G28 Z0.' goes home through an intermediate point in the "
-            "part's coordinates (G90: Z of the part, at rapid): it runs wherever the tool stands, so it must clear the "
+            "part's coordinates (G90: Z0 of the part, at rapid): it runs wherever the tool stands, so it must clear the "
             "part whatever it is; move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)\n"
             " 4 | safe_retract = \"G28 Z0.\"\n   |                ^\n");
   EXPECT_THAT(load_error("[f]\ninherits = \"fanuc-mill\"\n[f.program]\nfinish = [\"M05\", \"G00 X0. Y0. Z-20.\", \"M30\"]\n"),
-              HasSubstr("shop.toml:4:18: error: f.program.finish: 'G00 X0. Y0. Z-20.' moves XYZ to a position in the "
-                        "part's coordinates (or shifts them): a fixed block must clear the part"));
+              HasSubstr("shop.toml:4:18: error: f.program.finish: 'G00 X0. Y0. Z-20.' moves X to a position in the "
+                        "part's coordinates (X0): a fixed block must clear the part"));
   EXPECT_THAT(load_error("[g]\ninherits = \"fanuc-mill\"\n[g.codes]\nsafe_retract = \"G91 G28 Z-5.\"\n"),
               HasSubstr("'G91 G28 Z-5.' goes home through an intermediate point away from where the tool is"));
   for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G28 G91 Z0. Y0.", "M05"})
@@ -241,8 +252,27 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
         << ok;
   EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.codes]\nsafe_retract = \"G28 X0. Z0.\"\n"),
               HasSubstr("'G28 X0. Z0.' goes home through an intermediate point in the part's coordinates"));
-  // After a finish that has gone home, a park position is where the tool goes from there.
+  // After a finish that has gone home, a park position is where the tool goes from there: a
+  // lathe's anywhere, a mill's across, not down (helper-68: G00 X0. Y0. Z-50. was certified).
   EXPECT_EQ(load_error("[p]\ninherits = \"fanuc-lathe\"\n[p.program]\npark_blocks = [\"G00 X200. Z100.\"]\n"), "");
+  EXPECT_EQ(load_error("[p]\ninherits = \"fanuc-mill\"\n[p.program]\npark_blocks = [\"G00 X0. Y200.\"]\n"), "");
+  EXPECT_THAT(load_error("[p]\ninherits = \"fanuc-mill\"\n[p.program]\npark_blocks = [\"G00 X0. Y0. Z-50.\"]\n"),
+              HasSubstr("'G00 X0. Y0. Z-50.' moves Z to a position in the part's coordinates (Z-50)"));
+  // Read as the control reads words: any case, blanks, a G91 of its own block before, a
+  // negative value; program.start too (helper-68).
+  for (const char* bad : {"g00 x0. y0. z-20.", "G 28 Z 0.", "G91 G28 Z0. G90 Z-20.", "G91 G28 Z-5."})
+    EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.program]\nfinish = [\"" + std::string(bad) + "\"]\n"),
+                HasSubstr("c.program.finish: '" + std::string(bad) + "'"))
+        << bad;
+  EXPECT_THAT(load_error("[s]\ninherits = \"fanuc-mill\"\n[s.program]\nstart = [\"%\", \"G00 Z-50.\"]\n"),
+              HasSubstr("s.program.start: 'G00 Z-50.' moves Z"));
+  for (const char* ok : {"[\"M05\", \"G91\", \"G28 Z0.\", \"G90\", \"M30\"]", "[\"G28 U0 V0 W0\"]", "[\"G0 SUPA Z0 D0\"]",
+                         "[\"G153 Z0\"]", "[\"L Z-0.5 R0 FMAX M91\"]"})
+    EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.program]\nfinish = " + std::string(ok) + "\n"), "") << ok;
+  // A lathe changes tools at a position of its own; its G28 goes through its intermediate point.
+  EXPECT_EQ(load_error("[t]\ninherits = \"fanuc-lathe\"\n[t.codes]\ntool_change = \"G00 X250. Z200. T{tool:2}{offset:2}\"\n"
+                       "safe_retract = \"G00 U0 W0\"\n"),
+            "");
 }
 
 // spindle_cw = "M04" ran every right-hand cutter backwards, certified: verify holds a program
