@@ -98,7 +98,7 @@ class ProgramWriter : public Backend {
   // Why an inserted block may not be written (a state it sets that the post does not keep), or "".
   std::string unkept_code(std::string_view text) const;
   // A cut (a feed move, an arc, a hole) with the spindle stopped: a warning (-Wspindle-stopped).
-  void warn_spindle_stopped(SourceLoc loc, const char* what);
+  void warn_spindle_stopped(SourceLoc loc, const char* what, bool away = false);
   virtual bool tcp_in_force() const { return false; }
   // The spindle's rpm a dwell in revolutions is timed by (0: none known).
   virtual double dwell_rpm() const { return spindle_ == ir::SpindleDir::Off ? 0 : spindle_rpm_; }
@@ -172,7 +172,8 @@ class ProgramWriter : public Backend {
   // machine. The last SPINDL that started it is started again before the next motion, unless
   // the CL gives a SPINDL of its own first.
   std::optional<ir::Spindle> spindle_on_;
-  SourceLoc cl_stopped_spindle_at_;    // the CL's SPINDL/OFF that stopped a running spindle, until one starts
+  bool tool_turned_ = false;           // the CL turned the spindle for the tool loaded (or the post did again)
+  SourceLoc cl_stopped_spindle_at_;    // the CL's SPINDL/OFF that stopped it, until a spindle starts
   bool spindle_stop_refused_ = false;  // a cut after it was refused: no warning for each move after
   bool spindle_restore_ = false;
   bool spindle_restore_warn_ = false;  // the restore follows a tool change: the new tool runs at the last one's speed

@@ -184,6 +184,7 @@ void ProgramWriter::restore_after_stop(SourceLoc loc, bool cut) {
                           "): the CL gives no SPINDL after the tool change, which stops it",
                  "spindle-restart");
     write_spindle(*spindle_on_, loc);
+    tool_turned_ = true;
   }
   restore_coolant(loc);
 }

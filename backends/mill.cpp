@@ -174,7 +174,9 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     for (size_t i = 0; i < rotaries.size() && i < 2; ++i) e_.modal_word(rotaries[i].name[0], rot[i]);
   };
   if (rotates) unclamp(loc);
-  if (!rapid && tool_ >= 0) warn_spindle_stopped(loc, "cutting move");
+  if (!rapid && tool_ >= 0)
+    warn_spindle_stopped(loc, "cutting move", !mv.has_rotary && mv.point.x() == pos_.x() && mv.point.y() == pos_.y() &&
+                                                  mv.point.z() > pos_.z());
 
   if (rapid && after_raw_move_ && raw_z_only_ && tool_ >= 0 && !need_length_offset_ && mv.point.z() > pos_.z()) {
     // Up from the last CL point: along Z first, then across at that height (the rule of

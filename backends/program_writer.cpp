@@ -166,13 +166,16 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           coolant_restore_ = false;
         } else if constexpr (std::is_same_v<T, ir::Spindle>) {
           spindle_restore_ = false;  // the CL says what it wants
-          if (x.dir == ir::SpindleDir::Off && spindle_on_) cl_stopped_spindle_at_ = loc;
-          if (x.dir != ir::SpindleDir::Off) cl_stopped_spindle_at_ = {}, spindle_stop_refused_ = false;
+          if (x.dir == ir::SpindleDir::Off && tool_turned_) cl_stopped_spindle_at_ = loc;
+          if (x.dir != ir::SpindleDir::Off) cl_stopped_spindle_at_ = {}, spindle_stop_refused_ = false, tool_turned_ = true;
           if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();
           else spindle_on_ = x;
         } else if constexpr (std::is_same_v<T, ir::ToolChange>) {
-          cl_stopped_spindle_at_ = {};  // the next tool's own (a forming tool does not turn)
-          spindle_stop_refused_ = false;
+          if (x.tool != tool_) {  // another tool's own (a forming tool does not turn); not a reload
+            tool_turned_ = false;
+            cl_stopped_spindle_at_ = {};
+            spindle_stop_refused_ = false;
+          }
         }
         if constexpr (std::is_same_v<T, ir::ToolChange> || std::is_same_v<T, ir::Hole> ||
                       std::is_same_v<T, ir::RotaryPosition> || std::is_same_v<T, ir::RotaryIndex> ||
@@ -857,10 +860,11 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
 // A tool fed with the spindle stopped is a warning: CL files feed tools that do not turn
 // (CATIA's peening and incremental forming, NX course files without SPINDL). But a cutter whose
 // spindle the CL turned and then stopped with SPINDL/OFF, fed on without a SPINDL to start it
-// again, is fed into the part without turning: an error, said once (helper-67).
-void ProgramWriter::warn_spindle_stopped(SourceLoc loc, const char* what) {
+// again, is fed into the part without turning: an error, said once (helper-67). Not a feed
+// straight away from the part (`away`: up a mill's Z, out a lathe's X), the retract after it.
+void ProgramWriter::warn_spindle_stopped(SourceLoc loc, const char* what, bool away) {
   if (spindle_ != ir::SpindleDir::Off) return;
-  if (cl_stopped_spindle_at_.valid()) {
+  if (cl_stopped_spindle_at_.valid() && !away) {
     d_.error(loc, std::string(what) + " with the spindle stopped: SPINDL/OFF at line " +
                       std::to_string(cl_stopped_spindle_at_.line) +
                       " stopped it and no SPINDL starts it again, so the cutter would be fed in without turning");

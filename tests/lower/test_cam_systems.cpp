@@ -1090,6 +1090,18 @@ TEST(CamSystems, CutsWithTheSpindleStoppedAreWarnedAndHolesRefused) {
   // Started again, or another tool loaded (it may be one that does not turn): as before.
   EXPECT_TRUE(compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nSPINDL/800,CLW\nGOTO/20,0,-1\nFINI\n",
                            machine("fanuc-mill")).ok);
+  // helper-68: a tool that does not turn, loaded after one that did, says so with SPINDL/OFF
+  // (a warning); a feed straight up after SPINDL/OFF is the retract; the same tool loaded again
+  // (CATIA, NX: at every operation) is still the tool that turned.
+  const std::string turned = head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nRAPID\nGOTO/10,0,50\n";
+  Compiled forming = compile_text(turned + "LOADTL/2\nSPINDL/OFF\nRAPID\nGOTO/10,0,5\nGOTO/10,0,-1\nFINI\n",
+                                  machine("fanuc-mill"));
+  ASSERT_TRUE(forming.ok) << forming.diags;
+  EXPECT_THAT(forming.diags, HasSubstr("part.cls:14:1: warning: cutting move with the spindle stopped [-Wspindle-stopped]"));
+  EXPECT_TRUE(compile_text(head + "SPINDL/1000,CLW\nGOTO/10,0,-1\nSPINDL/OFF\nGOTO/10,0,50\nFINI\n", machine("fanuc-mill")).ok);
+  Compiled reload = compile_text(turned + "SPINDL/OFF\nLOADTL/1\nRAPID\nGOTO/10,0,5\nGOTO/10,0,-1\nFINI\n",
+                                 machine("fanuc-mill"));
+  EXPECT_THAT(reload.diags, HasSubstr("part.cls:14:1: error: cutting move with the spindle stopped: SPINDL/OFF at line 10"));
 }
 
 // APT's spindle runs until SPINDL/OFF; the machine's M06 (a mill's), M00 and M01 stop it. A CL
