@@ -686,6 +686,7 @@ Lexer::Symbol Lexer::major(MajorId id, const unsigned char* b, const unsigned ch
   arena_full_ = false;
   depth_ = 0;
   numbers_end_ = 0;
+  comma_seen_ = false;
   known_major_ = id != MajorId::Unknown;
   record_id_ = id;
   MajorTok t;
@@ -1081,6 +1082,26 @@ Lexer::Symbol Lexer::lex_run() {
     while (p < t && is_ws(*p)) ++p;
   }
   if (all && first_end) {
+    // "GOTO/10,20                  0080": a sequence number right of the record (not in
+    // columns 73-80) was read as Z. Numbers apart by blanks where the record's others are apart
+    // by commas are no CAMWorks list: which is meant is not known (helper-66).
+    // (A comma with nothing after it ends CAMWorks' lists: GOTO/1.0 0.0 0.5,)
+    bool more_after_a_comma = false;
+    for (const unsigned char* q = e; q < lim_ && *q != '\n'; ++q) {
+      if (q + 1 < lim_ && q[0] == '$' && q[1] == '$') break;
+      if (*q == ',') {
+        const unsigned char* n = q + 1;
+        while (n < lim_ && (is_ws(*n) || *n == '\r')) ++n;
+        if (n < lim_ && *n != '\n' && !(n + 1 < lim_ && n[0] == '$' && n[1] == '$')) more_after_a_comma = true;
+      }
+    }
+    const unsigned char* second = first_end;
+    while (second < t && is_ws(*second)) ++second;
+    if (comma_seen_ || more_after_a_comma)
+      return error_token(loc_of(second), "numbers apart by blanks ('" +
+                                                std::string(reinterpret_cast<const char*>(tok_), size_t(t - tok_)) +
+                                                "') in a record whose others are apart by commas: a sequence number "
+                                                "beside the record, or a comma missing? which is meant is not known");
     numbers_end_ = abs(t);
     cur_ = first_end;
     return number_token(tok_, first_end, bad);
@@ -1134,7 +1155,7 @@ Lexer::Symbol Lexer::lex_params() {
       $    { mode_ = Mode::LineStart; return Parser::make_EOL(loc_of(tok_)); }
       ws+  { continue; }
       nl   { SourceLoc at = loc_of(tok_); newline(cur_); mode_ = Mode::LineStart; return Parser::make_EOL(at); }
-      ","  { return Parser::make_COMMA(loc_of(tok_)); }
+      ","  { comma_seen_ = true; return Parser::make_COMMA(loc_of(tok_)); }
       "$$" { mode_ = Mode::CommentText; return lex_comment(); }
       ['] [^'\n\x00]* ['] | ["] [^"\n\x00]* ["] {
         if (overflow_) return error_token(overflow_at_, too_long());

@@ -152,6 +152,17 @@ TEST(Lower, ARecordThatOnlySwitchesOffIsNothing) {
   EXPECT_THAT(err("ROTHED/OFF,30\n"), HasSubstr("1:1: 'ROTHED' moves the tool"));
 }
 
+// A sequence number beside a record, not in columns 73-80, was read as one more number:
+// GOTO/10,20 ... 0080 cut at Z80 (helper-66). Blank-separated numbers in a record whose others
+// are comma-separated are no CAMWorks list (whose trailing comma ends it).
+TEST(Lower, NumbersApartByBlanksAmongCommasAreRefused) {
+  EXPECT_EQ(err("GOTO/10,20                  0080\n"),
+            "1:29: numbers apart by blanks ('20                  0080') in a record whose others are apart by commas: a "
+            "sequence number beside the record, or a comma missing? which is meant is not known");
+  EXPECT_THAT(err("GOTO/1 2,3\n"), HasSubstr("1:8: numbers apart by blanks ('1 2')"));
+  EXPECT_EQ(err("GOTO/1.0 2.0 3.0\nGOTO/1.0 0.0 0.5,\nGOTO/1 2 3 $$ x, y\n"), "");
+}
+
 // COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
 // (helper-61). One pair of enclosing quotes is the record's, not the text's.
 TEST(Lower, ACommentIsFreeText) {
