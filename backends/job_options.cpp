@@ -70,6 +70,9 @@ long ProgramWriter::program_number(const ir::ProgramInfo& info) const {
     for (int i = 0; i < f.digits; ++i) most *= 10;
     --most;
   }
+  // O8000-O9999 are a Fanuc's (and Haas's) macro programs, often the tool-change macro, kept
+  // under a protection switch: a file named 9001_part.cls was numbered O9001 (helper-67).
+  if (n >= 8000 && n <= 9999) return m_.program_number;
   return n >= 1 && n <= most ? n : m_.program_number;
 }
 

@@ -763,6 +763,14 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     }
     s->finish();
   }
+  // A '%' inside the program is the tape's end to a Fanuc or Haas loading it, and a '(' or ')'
+  // opens or closes a comment: from these keys they reached the program (helper-67).
+  auto no_tape_marks = [](Reader& s, const char* key, const std::string& value, std::string_view bad) {
+    if (value.find_first_of(bad) == std::string::npos) return;
+    if (const toml::node* n = s.find(key))
+      s.error(*n, key, "'" + std::string(1, value[value.find_first_of(bad)]) + "' would stand in the program's blocks, "
+                           "where a control reads '%' as the end of the tape and '(' ')' as a comment's ends");
+  };
   if (auto s = r.sub("comments")) {
     CommentSettings& q = m.comments;
     s->boolean("enabled", q.enabled);
@@ -771,11 +779,14 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
     s->integer("max_length", q.max_length);
     s->boolean("upper_case", q.upper_case);
     s->string("replacement", q.replacement);
+    no_tape_marks(*s, "replacement", q.replacement, "%()");
     s->finish();
   }
   if (auto s = r.sub("words")) {
     s->string("separator", m.separator);
     s->string("block_end", m.block_end);
+    no_tape_marks(*s, "separator", m.separator, "%()");
+    no_tape_marks(*s, "block_end", m.block_end, "%()");
     s->finish();
   }
   if (auto s = r.sub("format")) {
@@ -1080,6 +1091,16 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   check_job_codes(r, m);
   check_fixed_blocks(r, m);
   check_spindle_codes(r, m);
+  // O12345 where format.O has 4 digits: another program's number to a control, or an alarm.
+  if (auto p = r.sub("program"))
+    if (const toml::node* n = p->find("number"); n && m.format('O').digits > 0 && m.format('O').digits < 9) {
+      long most = 1;
+      for (int i = 0; i < m.format('O').digits; ++i) most *= 10;
+      if (m.program_number >= most)
+        p->error(*n, "number", std::to_string(m.program_number) + " has more digits than format.O's " +
+                                   std::to_string(m.format('O').digits) + ": the control would read another program "
+                                   "number, or refuse it");
+    }
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per
   // minute 4 and 3) need to keep their meaning.

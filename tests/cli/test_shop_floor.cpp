@@ -287,6 +287,21 @@ TEST(ShopFloor, ASpindleDirectionCodeTheOtherWayIsRefused) {
   EXPECT_EQ(load_error("[m13]\ninherits = \"fanuc-mill\"\n[m13.codes]\nspindle_cw = \"M13\"\n"), "");
 }
 
+// From the machine's own keys, what a control reads otherwise reached the program: a '%' (the
+// tape's end) as a comment's replacement or a block end, a program number longer than format.O
+// (helper-67).
+TEST(ShopFloor, TapeMarksAndOverlongProgramNumbersAreRefused) {
+  EXPECT_EQ(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.comments]\nreplacement = \"%\"\n"),
+            "shop.toml:4:15: error: c.comments.replacement: '%' would stand in the program's blocks, where a control "
+            "reads '%' as the end of the tape and '(' ')' as a comment's ends\n 4 | replacement = \"%\"\n   |         "
+            "      ^\n");
+  EXPECT_THAT(load_error("[w]\ninherits = \"fanuc-mill\"\n[w.words]\nblock_end = \" %\"\n"),
+              HasSubstr("w.words.block_end: '%' would stand in the program's blocks"));
+  EXPECT_THAT(load_error("[n]\ninherits = \"fanuc-mill\"\n[n.program]\nnumber = 12345\n"),
+              HasSubstr("shop.toml:4:10: error: n.program.number: 12345 has more digits than format.O's 4"));
+  EXPECT_EQ(load_error("[n]\ninherits = \"haas-umc750\"\n[n.program]\nnumber = 12345\n"), "");
+}
+
 TEST(ShopFloor, ARotaryMachineWithoutKinematicsIsOneErrorInItsFile) {
   EXPECT_EQ(load_error("[rot]\ninherits = \"haas-umc750\"\npipeline = [\"arc-direction\", \"helix\", \"drill-cycles\", "
                        "\"rapid-split\", \"offset-table\", \"arc-legalise\"]\n"),
@@ -441,6 +456,7 @@ TEST(JobOptions, ProgramNumberFromTheFileName) {
   EXPECT_EQ(second_line("3axis.cls"), "O1000");           // a name, not a number: the machine's
   EXPECT_EQ(second_line("20231105_part.cls"), "O1000");   // beyond O9999
   EXPECT_EQ(second_line("plate.cls"), "O1000");
+  EXPECT_EQ(second_line("9001_part.cls"), "O1000");  // O8000-O9999: the control's macros (helper-67)
   EXPECT_EQ(second_line("1234_pocket.cls", "-t fanuc-mill --set program.number=55"), "O0055");  // the job's number wins
   EXPECT_EQ(second_line("1234_pocket.cls", "-t fanuc-mill --set program.number_from_name=false"), "O1000");
 }
