@@ -409,7 +409,12 @@ void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
     return;
   }
   // The operator turns the part over: tool clear, spindle and coolant off, then on again.
+  // Without a retract the part was turned under the tool, and the next setup's first move
+  // crossed at the last one's height (helper-67: certified).
   if (lacks(m_.codes.stop, loc, "stop", "stop the program for the operator")) return;
+  if (lacks(m_.codes.safe_retract, loc, "safe_retract", "retract the tool before the operator sets the part up again",
+            "the part would be turned under the tool, and the next setup's first move made at the last one's height"))
+    return;
   const ir::SpindleDir dir = spindle_;
   const double rpm = spindle_rpm_;
   const ir::CoolantKind coolant = coolant_;

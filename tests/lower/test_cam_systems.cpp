@@ -264,6 +264,13 @@ TEST(CamSystems, TiltedFrameOnThreeAndFiveAxes) {
               HasSubstr("(OP2)\n(SETUP 2: TURN THE PART SO THE FRAME OF LINE 12 HAS Z UP, REGISTER 2)\nN90 G91 G28 Z0.\nN100 M05\nN110 M00\nN120 S1000 M03\nN130 G90 G55 G00 X0. Y0.\n"
                         "N140 Z10.\nN150 G94 G01 Z0. F100.\nN160 X20.\n"));
   verifies(cl, machine("fanuc-mill"));
+  // Without a retract the part was turned under the tool (helper-67: certified).
+  Compiled no_retract = compile_text(cl, machine("nr", "[nr]\ninherits = \"fanuc-mill\"\n[nr.codes]\nsafe_retract = \"\"\n"));
+  EXPECT_FALSE(no_retract.ok);
+  EXPECT_THAT(messages(no_retract.diags),
+              HasSubstr("part.cls:14:1: error: machine 'nr' has no code to retract the tool before the operator sets the "
+                        "part up again (codes.safe_retract is empty): the part would be turned under the tool, and the "
+                        "next setup's first move made at the last one's height\n"));
   Compiled five = compile_text(cl, machine("haas-umc750"));
   ASSERT_TRUE(five.ok) << five.diags;
   EXPECT_THAT(five.output, HasSubstr("(OP2)\nN60 G53 G00 Z0.\nN65 M11 M13\nN70 G00 B45.\nN75 M10 M12\nN80 G254\n"
