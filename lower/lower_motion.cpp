@@ -100,14 +100,24 @@ bool Lowerer::on_circle(const ir::Arc& a, SourceLoc circle, SourceLoc end) {
     return (v - v.dot(a.axis) * a.axis).norm() - a.radius;
   };
   double s = off(a.start), e = off(a.end);
+  // In the file's units, without an exponent: "4e-04 off its circle of radius 1" said neither
+  // the unit nor the limit (helper-66).
+  const std::string unit = " " + std::string(ir::units_name(info_.units));
+  auto length = [&](double x) {
+    std::string t = fixed_text(x, 6);
+    while (t.size() > 1 && t.back() == '0') t.pop_back();
+    if (t.back() == '.') t.pop_back();
+    return t + unit;
+  };
+  const std::string limit = " (at most " + length(tol) + " is taken: the control alarms, or cuts another arc)";
   if (std::abs(s) > tol) {
-    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + num_text(std::round(std::abs(s) * 1e6) / 1e6) +
-                         " off its circle of radius " + num_text(a.radius));
+    d_.error(circle, "CIRCLE: the arc's start point (the previous position) is " + length(std::abs(s)) +
+                         " off its circle of radius " + length(a.radius) + limit);
     return false;
   }
   if (std::abs(e) > tol) {
     d_.error(circle, "CIRCLE: the arc's end point (GOTO at line " + std::to_string(end.line) + ") is " +
-                         num_text(std::round(std::abs(e) * 1e6) / 1e6) + " off its circle of radius " + num_text(a.radius));
+                         length(std::abs(e)) + " off its circle of radius " + length(a.radius) + limit);
     return false;
   }
   return true;

@@ -87,7 +87,8 @@ TEST(CamSystems, FusionAptWithMovarc) {
   EXPECT_EQ(first_error(lower_text("GOTO/20,0,0\nMOVARC/0,0,0,0,0,1,20,90\n").diags),
             "2:8: MOVARC needs xc,yc,zc,i,j,k,r,ANGLE,a (the centre, the axis, the radius and the angle turned)");
   EXPECT_EQ(first_error(lower_text("GOTO/20,0,0\nMOVARC/0,0,0,0,0,1,15,ANGLE,90\n").diags),
-            "2:1: CIRCLE: the arc's start point (the previous position) is 5 off its circle of radius 15");
+            "2:1: CIRCLE: the arc's start point (the previous position) is 5 mm off its circle of radius 15 mm (at most "
+            "0.01 mm is taken: the control alarms, or cuts another arc)");
 }
 
 // NCCS NCL: REMARK headers, MACHIN/PWORKS, blanks padding every field, FEDRAT without a unit.

@@ -628,7 +628,8 @@ TEST(LowerErrors, CircleWithoutStart) {
 
 TEST(LowerErrors, CircleEndOffTheCircle) {
   EXPECT_EQ(err("GOTO/1,0,0\nCIRCLE/0,0,0,0,0,1,1\nGOTO/0,2,0\n"),
-            "2:1: CIRCLE: the arc's end point (GOTO at line 3) is 1 off its circle of radius 1");
+            "2:1: CIRCLE: the arc's end point (GOTO at line 3) is 1 mm off its circle of radius 1 mm (at most 0.01 mm "
+            "is taken: the control alarms, or cuts another arc)");
 }
 
 TEST(LowerErrors, SpindleAndFeedWords) {
