@@ -947,10 +947,35 @@ Lexer::Symbol Lexer::lex_line_start() {
       }
       * {
         if (wanted_) { skip_record(); continue; }
+        // "    7  GOTO/0,0,10": a printed CL listing's line numbers (APT's CLPRNT, a print
+        // utility). Said once, at the first; the later numbered lines are skipped unsaid (the
+        // run fails), not fifty errors that each say "found '8'" (helper-66).
+        if (numbered_line()) {
+          if (numbered_said_) { skip_record(); continue; }
+          numbered_said_ = true;
+          return error_token(loc_of(tok_), "a number before the record: the lines are numbered, as in a printed CL "
+                                           "listing (APT's CLPRNT), not a CL file; strip the numbers (the later "
+                                           "numbered lines are not said again)");
+        }
         return error_token(loc_of(tok_), "expected a major word at the start of a record, found " + describe(*tok_));
       }
     */
   }
+}
+
+// A line that is a whole number, blanks, then a record's major word and '/', or its end.
+bool Lexer::numbered_line() const {
+  const unsigned char* e = static_cast<const unsigned char*>(std::memchr(tok_, '\n', size_t(lim_ - tok_)));
+  if (!e) e = lim_;
+  const unsigned char* p = tok_;
+  while (p < e && *p >= '0' && *p <= '9') ++p;
+  if (p == tok_ || p == e || !is_ws(*p)) return false;
+  while (p < e && is_ws(*p)) ++p;
+  const unsigned char* w = p;
+  while (p < e && (std::isalpha(*p) || *p == '-')) ++p;
+  if (p == w || major_id(std::string_view(reinterpret_cast<const char*>(w), size_t(p - w))) == MajorId::Unknown)
+    return false;
+  return p == e || *p == '/' || is_ws(*p);  // (PARTNO and PPRINT take their text after a blank)
 }
 
 Lexer::Symbol Lexer::lex_after_major() {

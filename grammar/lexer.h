@@ -140,7 +140,9 @@ class Lexer {
   uint64_t numbers_end_ = 0; // inside "1.0 2.0 3.0" (numbers apart by blanks): where the run ends
   bool known_major_ = false; // the current record's major word is one clpc knows
   MajorId record_id_ = MajorId::Unknown;
-  bool comma_seen_ = false;  // the record's parameters so far had a comma between two  // and which it is (Unknown before one is read)
+  bool comma_seen_ = false;  // the record's parameters so far had a comma between two
+  bool numbered_said_ = false;  // a numbered line (a CL listing's) was said
+  bool numbered_line() const;  // and which it is (Unknown before one is read)
   std::string_view unknown_major_;  // its text where it is not (in the record's arena)
   Mode mode_ = Mode::LineStart;
   bool data_comment_ = false;

@@ -163,6 +163,15 @@ TEST(Lower, NumbersApartByBlanksAmongCommasAreRefused) {
   EXPECT_EQ(err("GOTO/1.0 2.0 3.0\nGOTO/1.0 0.0 0.5,\nGOTO/1 2 3 $$ x, y\n"), "");
 }
 
+// A printed CL listing's numbered lines gave fifty errors, each "found '8'" (helper-66): one
+// error at the first says what the file is.
+TEST(Lower, NumberedLinesAreSaidOnce) {
+  EXPECT_EQ(err("    1  PARTNO NUMBERED\n    2  UNITS/MM\n    7  GOTO/0,0,10\n"),
+            "1:5: a number before the record: the lines are numbered, as in a printed CL listing (APT's CLPRNT), not a "
+            "CL file; strip the numbers (the later numbered lines are not said again)");
+  EXPECT_EQ(lower_text("    1  PARTNO NUMBERED\n    2  UNITS/MM\n    7  GOTO/0,0,10\n").diags.size(), 1u);
+}
+
 // COMMENT is free text, as PPRINT: an apostrophe inside its quotes stopped the post
 // (helper-61). One pair of enclosing quotes is the record's, not the text's.
 TEST(Lower, ACommentIsFreeText) {
