@@ -202,8 +202,8 @@ void LatheBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   }
   if (!in_plane(mv.point, loc)) return;
   if (mv.kind == ir::MoveKind::Feed && !tool_loaded_for_cut(loc)) return;
-  if (mv.kind == ir::MoveKind::Feed)
-    warn_spindle_stopped(loc, "cutting move", mv.point.z() == pos_.z() && std::abs(mv.point.x()) > std::abs(pos_.x()));
+  // (No move is "away" on a lathe: out in X is into the wall of a bore; helper-69.)
+  if (mv.kind == ir::MoveKind::Feed) warn_spindle_stopped(loc, "cutting move");
   if (thread_ && mv.kind == ir::MoveKind::Feed && is_thread_cut(pos_, mv.point)) {
     write_thread_move(mv, loc);
     return;

@@ -866,7 +866,9 @@ std::string ProgramWriter::unkept_code(std::string_view text) const {
 // (CATIA's peening and incremental forming, NX course files without SPINDL). But a cutter whose
 // spindle the CL turned and then stopped with SPINDL/OFF, fed on without a SPINDL to start it
 // again, is fed into the part without turning: an error, said once (helper-67). Not a feed
-// straight away from the part (`away`: up a mill's Z, out a lathe's X), the retract after it.
+// straight away from the part (`away`: up a mill's Z), the retract after it. A SPINDL/OFF
+// between a tool change and the new tool's first move says that tool does not turn (a forming
+// or peening tool after a cutter): its feeds warn.
 void ProgramWriter::warn_spindle_stopped(SourceLoc loc, const char* what, bool away) {
   if (spindle_ != ir::SpindleDir::Off) return;
   if (cl_stopped_spindle_at_.valid() && !away) {

@@ -411,7 +411,8 @@ bool Lowerer::blank_joined_record(const Record& r) {
 // never switches on (each one that would is refused) asks for nothing. They stopped the post as
 // motion clpc does not read (helper-66).
 bool switches_off_only(const Record& r) {
-  return !r.params.empty() &&
+  // (CUT/OFF may say "stop cutting", as DNTCUT does: the motion after it is not to be cut.)
+  return !iequals(r.major, "CUT") && !r.params.empty() &&
          std::all_of(r.params.begin(), r.params.end(), [](const Param& p) { return p.is("NOMORE") || p.is("OFF"); });
 }
 

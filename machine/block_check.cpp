@@ -296,7 +296,8 @@ std::string part_position_in(std::string_view block, bool lathe, bool& increment
       if (w.value == 28 || w.value == 30) reference = true;
       if (w.value == 4) dwell = true;
     }
-    if (w.letter == 'M' && (w.value == 91 || w.value == 92)) machine = true;  // Heidenhain
+    // Heidenhain's (in its L blocks; a Fanuc's M91 is the builder's own).
+    if (w.letter == 'M' && (w.value == 91 || w.value == 92) && t.rfind("L ", 0) == 0) machine = true;
   }
   if (machine || dwell) return "";
   for (const AddressWord& w : words) {

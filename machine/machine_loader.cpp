@@ -540,9 +540,10 @@ std::string whole_number_problem(const CodeTemplate& t, const Machine& m) {
 }
 
 // The axes a run of blocks sends home (G91 G28 Z0., G53 Z0.; a lathe's G28 U0. W0.): X, Y, Z.
-std::string homed_axes(const std::vector<CodeTemplate>& blocks) {
+std::string homed_axes(const std::vector<CodeTemplate>& blocks, size_t count) {
   std::string homed;
-  for (const CodeTemplate& b : blocks) {
+  for (size_t i = 0; i < count && i < blocks.size(); ++i) {
+    const CodeTemplate& b = blocks[i];
     const std::string t = control_words(b.text);
     bool home = false;
     for (double g : code_numbers(t, 'G'))
@@ -562,13 +563,13 @@ std::string homed_axes(const std::vector<CodeTemplate>& blocks) {
 // went into the part; both certified (helper-67).
 void check_fixed_blocks(Reader& r, const Machine& m) {
   const bool lathe = m.is_lathe();
-  constexpr std::string_view kAll = "XYZABCUVW";
-  // The park blocks come after the finish's: from where it sent the tool. A mill's Z at home
-  // leaves X, Y and the rotaries free to go anywhere (the table to the front); a lathe's X and
-  // Z at home, any position (G00 X200. Z100., clear of the chuck). A Z move is judged.
-  const std::string homed = homed_axes(m.finish);
-  const bool z_home = homed.find('Z') != std::string::npos, x_home = homed.find('X') != std::string::npos;
-  const std::string_view park_free = lathe ? (x_home && z_home ? kAll : "") : (z_home ? "XYABCUV" : "");
+  // The park blocks come before the finish's last block (the program end), from where the ones
+  // before it sent the tool: Z at home leaves X, Y and the rotaries free to go anywhere (a
+  // mill's table to the front, a lathe's turret out in X); a Z move is judged, back towards a
+  // lathe's chuck or down a mill's column (helper-69: G00 X0. Z-40. after G28 U0. W0.).
+  const std::string homed = homed_axes(m.finish, m.finish.empty() ? 0 : m.finish.size() - 1);
+  const bool z_home = homed.find('Z') != std::string::npos;
+  const std::string_view park_free = !z_home ? "" : lathe ? "XUC" : "XYABCUV";
   const std::string advice = "move in machine coordinates (G53 G00 Z0.) or straight home (G91 G28 Z0.)";
   if (auto p = r.sub("program"))
     for (const char* key : {"start", "safe_start", "finish", "park_blocks"}) {
@@ -577,21 +578,29 @@ void check_fixed_blocks(Reader& r, const Machine& m) {
       if (!a) continue;
       bool incremental = false;
       for (const toml::node& e : *a)
-        if (const auto* text = e.as_string())
-          if (const std::string why = part_position_in(**text, lathe, incremental,
-                                                       std::string_view(key) == "park_blocks" ? park_free : "");
-              !why.empty())
+        if (const auto* text = e.as_string()) {
+          std::string free(std::string_view(key) == "park_blocks" ? park_free : "");
+          // A lathe parked in front of the face (Z above 0, where lathes put the part's face):
+          // G00 X200. Z100. after G28 U0. W0.
+          if (lathe && !free.empty()) {
+            const std::vector<double> z = code_numbers(control_words(**text), 'Z');
+            if (!z.empty() && std::all_of(z.begin(), z.end(), [](double v) { return v > 0; }) &&
+                control_words(**text).find("Z-") == std::string::npos)
+              free += 'Z';
+          }
+          if (const std::string why = part_position_in(**text, lathe, incremental, free); !why.empty())
             p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; " + advice);
+        }
     }
-  // A lathe's tool change position (G00 X250. Z200. T0101) is where lathes change tools: the
-  // retract guard (backends/lathe_retract.cpp) judges the way there from inside the part.
+  // (A lathe's tool change at a position in the part's coordinates, G00 X250. Z200. T0101, is
+  // refused too: clpc cannot know it is clear of the part, G00 X0. Z-40. was certified
+  // (helper-69); G30 U0. W0., the control's second reference point, is the tool change
+  // position made for it.)
   if (auto codes = r.sub("codes"))
     for (auto [code, key] : {std::pair{&m.codes.safe_retract, "safe_retract"}, std::pair{&m.codes.tool_change, "tool_change"},
                              std::pair{&m.codes.tool_preselect, "tool_preselect"}}) {
       bool incremental = false;
-      const bool lathe_change = lathe && std::string_view(key) != "tool_preselect";
-      if (const std::string why = part_position_in(code->text, lathe, incremental, lathe_change ? kAll : "");
-          !why.empty())
+      if (const std::string why = part_position_in(code->text, lathe, incremental); !why.empty())
         if (const toml::node* n = codes->find(key))
           codes->error(*n, key, why + ": it runs wherever the tool stands, so it must clear the part whatever it is; " +
                                     advice);
@@ -1099,7 +1108,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
       if (m.program_number >= most)
         p->error(*n, "number", std::to_string(m.program_number) + " has more digits than format.O's " +
                                    std::to_string(m.format('O').digits) + ": the control would read another program "
-                                   "number, or refuse it");
+                                   "number, or refuse it (give format.O more digits where the control takes them)");
     }
   // Feeds: each kind in its own format. Defaults from format.F, with at least the decimals a
   // feed per revolution (4 in inches, 3 in mm) and a tap's feed (per revolution 6 and 4, per

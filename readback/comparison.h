@@ -441,6 +441,7 @@ class Comparison : public ProgramSink {
   bool cl_dwell_known_ = true;  // false: a dwell in revolutions with no rpm to time it by
   SourceLoc cl_dwell_first_, cl_dwell_loc_;  // the first and last DELAY summed
   bool dwell_in_cut_ = false;   // a G04 summed stands before a feed move
+  bool insert_dwell_ = false;   // the CL asks for a dwell through INSERT/G04: longer than its DELAYs is its own
   int dwell_line_ = 0;          // the G-code line to name: the last G04's move, else the first consumed
   double dwell_consumed_ = 0;   // every dwell consumed so far, G04 or a cycle's (the rest came after the last move)
   int cl_spindle_code_ = 0;  // the M code (3, 4) the machine writes for the CL's direction; 0: not known

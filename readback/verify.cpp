@@ -67,10 +67,11 @@ void Comparison::operation(const ir::Operation& op) {
             if (moves_axes_by_itself(op.str(x.text))) cut_from_point_ = false;
             // INSERT/G04 P1000: the CL asks for a dwell in the control's own words (shops put one
             // at a hole's bottom through INSERT in Mastercam, PowerMill, hyperMILL). Its time is
-            // the control's reading of the block, not judged here (helper-66: refused as a dwell
-            // the CL has no DELAY for).
-            for (double g : code_numbers(op.str(x.text), 'G'))
-              if (g == 4) cl_dwell_known_ = false;
+            // the control's reading of the block: the program may dwell longer than the CL's
+            // DELAYs there, never shorter (helper-66: refused as a dwell the CL has no DELAY for;
+            // helper-69: a DELAY beside it cut short passed).
+            for (double g : code_numbers(control_words(op.str(x.text)), 'G'))
+              if (g == 4) insert_dwell_ = true;
           } else if constexpr (std::is_same_v<T, ir::SetFrame>) {
             frame_ = x.frame;
           } else if constexpr (std::is_same_v<T, ir::CutterComp>) {
@@ -245,10 +246,11 @@ void Comparison::dwell_ok() {
   if (cycle_on_ || groove_ || thread_on_ || rough_) return;
   if (prog_dwell_ == 0 && cl_dwell_ == 0 && cl_dwell_known_) {  // (almost every point)
     dwell_line_ = 0;
+    insert_dwell_ = false;
     return;
   }
   const double slack = dwell_slack_;
-  const bool shorter = prog_dwell_ < cl_dwell_ - slack, longer = prog_dwell_ > cl_dwell_ + slack;
+  const bool shorter = prog_dwell_ < cl_dwell_ - slack, longer = !insert_dwell_ && prog_dwell_ > cl_dwell_ + slack;
   if (cl_dwell_known_ && (shorter || (longer && dwell_in_cut_))) {
     std::string cl = "the CL has no DELAY here";
     if (cl_dwell_ > 0)
@@ -261,6 +263,7 @@ void Comparison::dwell_ok() {
   cl_dwell_ = prog_dwell_ = 0;
   cl_dwell_known_ = true;
   dwell_in_cut_ = false;
+  insert_dwell_ = false;
   dwell_line_ = 0;
 }
 

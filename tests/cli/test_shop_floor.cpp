@@ -269,10 +269,19 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
   for (const char* ok : {"[\"M05\", \"G91\", \"G28 Z0.\", \"G90\", \"M30\"]", "[\"G28 U0 V0 W0\"]", "[\"G0 SUPA Z0 D0\"]",
                          "[\"G153 Z0\"]", "[\"L Z-0.5 R0 FMAX M91\"]"})
     EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.program]\nfinish = " + std::string(ok) + "\n"), "") << ok;
-  // A lathe changes tools at a position of its own; its G28 goes through its intermediate point.
-  EXPECT_EQ(load_error("[t]\ninherits = \"fanuc-lathe\"\n[t.codes]\ntool_change = \"G00 X250. Z200. T{tool:2}{offset:2}\"\n"
+  // A lathe's tool change at a position in the part's coordinates is refused as a mill's: G00
+  // X0. Z-40. was certified (helper-69); G30 U0. W0. is the control's tool change position.
+  EXPECT_THAT(load_error("[t]\ninherits = \"fanuc-lathe\"\n[t.codes]\ntool_change = \"G00 X0. Z-40. T{tool:2}{offset:2}\"\n"),
+              HasSubstr("t.codes.tool_change: 'G00 X0. Z-40. T{tool:2}{offset:2}' moves X to a position in the part's"));
+  EXPECT_EQ(load_error("[t]\ninherits = \"fanuc-lathe\"\n[t.codes]\ntool_change = \"G30 U0. W0. T{tool:2}{offset:2}\"\n"
                        "safe_retract = \"G00 U0 W0\"\n"),
             "");
+  // A park after the finish's blocks but its last (M30 with them: helper-69), and not back in Z.
+  EXPECT_THAT(load_error("[p]\ninherits = \"fanuc-mill\"\n[p.program]\nfinish = [\"M05\", \"G91 G28 Z0. M30\"]\n"
+                         "park_blocks = [\"G90 G00 X0. Y0.\"]\n"),
+              HasSubstr("p.program.park_blocks: 'G90 G00 X0. Y0.' moves X"));
+  EXPECT_THAT(load_error("[p]\ninherits = \"fanuc-lathe\"\n[p.program]\npark_blocks = [\"G00 X0. Z-40.\"]\n"),
+              HasSubstr("p.program.park_blocks: 'G00 X0. Z-40.' moves Z"));
 }
 
 // spindle_cw = "M04" ran every right-hand cutter backwards, certified: verify holds a program

@@ -430,6 +430,20 @@ TEST(CamSystems, ADwellInAnInsertIsTheClsOwn) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("\nN60 G43 H01 Z10.\nG04 P1000\nN70 G94 G01 X0. Y0. Z-1. F200.\n"));
   EXPECT_TRUE(verifies(cl, machine("fanuc-mill")));
+  // A DELAY beside it is still held: never shorter (helper-69: G04 P2000 made P20 passed).
+  const std::string both = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,10\nGOTO/0,0,-1\n"
+                           "DELAY/2\nINSERT/G04 P500\nGOTO/10,0,-1\nFINI\n";
+  Compiled b = compile_text(both, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(b.ok) << b.diags;
+  ASSERT_THAT(b.output, HasSubstr("G04 P2000\n"));
+  TempDir t;
+  write_file(t.path("part.cl"), both);
+  std::string cut_short = b.output;
+  cut_short.replace(cut_short.find("G04 P2000\n"), 10, "G04 P20\n");
+  write_file(t.path("part.nc"), cut_short);
+  RunResult r = run_clpc("verify '" + t.path("part.cl") + "' -t fanuc-mill --program '" + t.path("part.nc") + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("the program dwells 0.520 s before this move, the CL's DELAY (line 8) is 2.000 s"));
 }
 
 // G93's F is one over the block's minutes, given by the CL for one move. A move the program
