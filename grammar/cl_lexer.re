@@ -670,8 +670,15 @@ std::string Lexer::motion_word_in_line(bool prose) const {
   while (e < lim_ && *e != '\n' && *e != '\0') ++e;
   std::string_view text(reinterpret_cast<const char*>(tok_), size_t(e - tok_));
   if (size_t c = text.find("$$"); c != std::string_view::npos) text = text.substr(0, c);
-  // "(CHECK FEDRAT/ BEFORE RUN)": the parentheses hold a note.
-  if (prose && !text.empty() && text[0] == '(') text = text.substr(std::min(text.size(), text.find(')') + 1));
+  // "(CHECK FEDRAT/ BEFORE RUN)", "(OP 2 (SEE SHEET 2) COOLNT/FLOOD)": the parentheses hold a note.
+  if (prose && !text.empty() && text[0] == '(') {
+    size_t i = 0;
+    for (int depth = 0; i < text.size(); ++i) {
+      if (text[i] == '(') ++depth;
+      if (text[i] == ')' && --depth == 0) break;
+    }
+    text = text.substr(std::min(text.size(), i + 1));
+  }
   if (const size_t at = record_inside(text); at != std::string_view::npos) {
     std::string name(text.substr(at, text.find_first_of("/ \t", at) - at));
     for (char& c : name) c = char(std::toupper(static_cast<unsigned char>(c)));
@@ -1121,10 +1128,10 @@ Lexer::Symbol Lexer::lex_run() {
     bool more_after_a_comma = false;
     for (const unsigned char* q = e; q < lim_ && *q != '\n'; ++q) {
       if (q + 1 < lim_ && q[0] == '$' && q[1] == '$') break;
-      if (*q == ',') {
+      if (*q == ',') {  // (a number after it: a word, CIRCLE/0.0 0.0 0.5 ... 1.0,CCLW, is CAMWorks')
         const unsigned char* n = q + 1;
-        while (n < lim_ && (is_ws(*n) || *n == '\r')) ++n;
-        if (n < lim_ && *n != '\n' && !(n + 1 < lim_ && n[0] == '$' && n[1] == '$')) more_after_a_comma = true;
+        while (n < lim_ && is_ws(*n)) ++n;
+        if (n < lim_ && ((*n >= '0' && *n <= '9') || *n == '-' || *n == '+' || *n == '.')) more_after_a_comma = true;
       }
     }
     const unsigned char* second = first_end;
@@ -1148,8 +1155,8 @@ Lexer::Symbol Lexer::lex_run() {
     if (at != std::string_view::npos) {
       name = std::string(run.substr(at, run.find_first_of("/ \t", at) - at)) + "/";
     } else if (const size_t blank = run.find_last_of(" \t"); blank != std::string_view::npos) {
-      const std::string_view last = run.substr(blank + 1);
-      if (iequals(last, "RAPID") || iequals(last, "GOHOME")) at = blank + 1, name = std::string(last);
+      const std::string_view last = run.substr(blank + 1);  // (in capitals: "Face then rapid" is a name)
+      if (last == "RAPID" || last == "GOHOME") at = blank + 1, name = std::string(last);
     }
     if (at != std::string_view::npos)
       return hard_error_token(loc_of(tok_ + at), "'" + name + "' inside a parameter: a record of its own on this line "

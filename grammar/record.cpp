@@ -1,5 +1,6 @@
 #include "grammar/record.h"
 
+#include <algorithm>
 #include <cctype>
 
 namespace clpc {
@@ -70,8 +71,7 @@ bool carries_nothing_to_cut(MajorId id) {
 }
 
 bool moves_or_changes_the_cut(std::string_view name) {
-  static constexpr std::string_view kMore[] = {"LOAD",   "SELECT", "COOLNT", "GOLFT",  "GORGT", "GOBACK", "GOUP",
-                                               "GODOWN", "CALSUB", "COPY",   "TRACUT", "ROTABL", "ROTATE", "THREAD"};
+  static constexpr std::string_view kMore[] = {"COOLNT", "GOLFT", "GORGT", "GOBACK", "GOUP", "GODOWN"};
   for (std::string_view g : kGluable)
     if (iequals(name, g)) return true;
   for (std::string_view g : kMore)
@@ -88,7 +88,13 @@ size_t record_inside(std::string_view text) {
     // A name's own letters before it ("MY_GOTO/", "D10/R2", "1/2") make it no record; a blank,
     // APT's ';' statement separator or a label's ')' before it do not.
     if (start > 0 && (std::isalnum(static_cast<unsigned char>(text[start - 1])) || text[start - 1] == '_')) continue;
-    if (start < end && moves_or_changes_the_cut(text.substr(start, end - start))) return start;
+    // In capitals, as CAM systems write records ("copy/paste", "load/unload" are words of a
+    // note); NX's tool change LOAD/TOOL, not LOAD/UNLOAD (helper-69).
+    const std::string_view name = text.substr(start, end - start);
+    if (name.empty() || std::any_of(name.begin(), name.end(), [](char c) { return c >= 'a' && c <= 'z'; })) continue;
+    size_t after = slash + 1;
+    while (after < text.size() && (text[after] == ' ' || text[after] == '\t')) ++after;
+    if (moves_or_changes_the_cut(name) || (name == "LOAD" && text.substr(after, 4) == "TOOL")) return start;
   }
   return std::string_view::npos;
 }

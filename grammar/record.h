@@ -31,12 +31,13 @@ std::string_view glued_record(std::string_view word);
 bool carries_nothing_to_cut(MajorId id);
 
 // Whether a record of this name moves the tool or changes how it cuts (GOTO, CIRCLE, RAPID,
-// FEDRAT, SPINDL, LOADTL, LOAD, UNITS, CUTCOM, COOLNT, ...): one skipped loses motion.
+// FEDRAT, SPINDL, LOADTL, UNITS, CUTCOM, COOLNT, ...): one skipped loses motion. (Records named
+// by common words, THREAD, COPY, SELECT, ROTATE, stand in tool names and notes: not these.)
 bool moves_or_changes_the_cut(std::string_view name);
 
-// Where such a record starts, as "NAME/", inside a text: a parameter ("31 GOTO/10" in
-// PAINT/COLOR,31 GOTO/10,0,10: a line end missing), or a line skipped as no record. The offset
-// of its name, or npos. Reading past it would lose the record.
+// Where such a record starts, as "NAME/" in capitals (or NX's "LOAD/TOOL"), inside a text: a
+// parameter ("31 GOTO/10" in PAINT/COLOR,31 GOTO/10,0,10: a line end missing), or a line
+// skipped as no record. The offset of its name, or npos. Reading past it would lose the record.
 size_t record_inside(std::string_view text);
 
 // ASCII case-insensitive equality (CL words are upper case by convention, not by rule).

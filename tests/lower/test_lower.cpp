@@ -133,8 +133,13 @@ TEST(Lower, ARecordInsideAnothersParametersIsRefused) {
   EXPECT_EQ(err("INTOL/0.01 RAPID\n"), "1:12: 'RAPID' inside a parameter: a record of its own on this line (a line end "
                                         "missing?); read as a parameter, it would be lost");
   EXPECT_THAT(err("INTOL/0.01 GOHOME\n"), HasSubstr("1:12: 'GOHOME' inside a parameter"));
-  // A slash inside a name is no record: LOADTL/1,EM 1/2 FLAT, TOOL PATH/D10/R2.
+  // A slash inside a name is no record: LOADTL/1,EM 1/2 FLAT, TOOL PATH/D10/R2. Nor are common
+  // words and records' names in small letters, in names and notes (helper-69).
   EXPECT_EQ(err("LOADTL/1,EM 1/2 FLAT\nPAINT/COLOR,D10/R2\nPAINT/TOOL,MY_GOTO/2\n"), "");
+  EXPECT_EQ(err("; copy/paste of op 3, check before run\n* Part must be rotated/flipped; load/unload by hand\n"
+                "# THREAD/MILL OPERATION FOLLOWS\n(OP 2 (SEE SHEET 2) COOLNT/FLOOD)\nOPFEATSTART/Face then rapid\n"
+                "TOOL PATH/THREAD_MILL,TOOL,M8 THREAD/MILL\nPAINT/COLOR,186 LOAD/UNLOAD\nEND-OF-PATH\n"),
+            "");
 }
 
 // SPINDL/RPM,1200,CW: the direction words' plain spellings, from generic posts (helper-66).
@@ -161,6 +166,7 @@ TEST(Lower, NumbersApartByBlanksAmongCommasAreRefused) {
             "sequence number beside the record, or a comma missing? which is meant is not known");
   EXPECT_THAT(err("GOTO/1 2,3\n"), HasSubstr("1:8: numbers apart by blanks ('1 2')"));
   EXPECT_EQ(err("GOTO/1.0 2.0 3.0\nGOTO/1.0 0.0 0.5,\nGOTO/1 2 3 $$ x, y\n"), "");
+  EXPECT_EQ(err("GOTO/1,0,0.5\nCIRCLE/0.0 0.0 0.5 0.0 0.0 1.0 1.0,COUNTERCLOCKWISE\nGOTO/0,1,0.5\n"), "");  // CAMWorks' sense word
 }
 
 // A printed CL listing's numbered lines gave fifty errors, each "found '8'" (helper-66): one
