@@ -52,6 +52,7 @@ class ProgramWriter : public Backend {
   virtual void write_mode(const ir::MachineMode& m, SourceLoc loc);
   virtual void write_stop(const ir::Stop& s, SourceLoc loc);
   virtual void retract_for_stop(SourceLoc loc) {}
+  virtual void before_offset_change(SourceLoc loc) {}  // another work offset (fixture) is selected
   // A raw block that may have moved the axes was written (`z_home`: it took Z alone to its home).
   virtual void after_raw_motion(bool /*z_home*/) {}
   // Ends a run of canned-cycle holes (G80) if one is active.
@@ -160,6 +161,12 @@ class ProgramWriter : public Backend {
   bool comp_pending_set_ = false;
   bool comp_on_ = false;  // G41/G42 written and no G40 since
   bool moved_since_off_ = false;  // a move written since the last CUTCOM/OFF
+  SourceLoc comp_loc_;  // the CUTCOM written last (on or off)
+  // The last move was a cut that may have left the tool against the wall it cut (a mill's feed
+  // other than straight up its axis, an arc): a G40 with no move of its own here is taken on
+  // the retract after it, and pulls the tool by its radius onto the contour.
+  bool left_in_cut_ = false;
+  void check_comp_end_in_cut();  // before such a G40
   ir::CutterComp comp_now_;  // the compensation written last
   int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once

@@ -65,6 +65,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
 void MillBackend::retract(SourceLoc loc) {
   blocks({m_.codes.safe_retract}, loc);
   at_safe_height_ = true;
+  left_in_cut_ = false;
 }
 
 void MillBackend::moved() {
@@ -202,6 +203,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     need_length_offset_ = false;
     pos_ = mv.point;
     moved();
+    left_in_cut_ = false;
     return;
   }
 
@@ -272,6 +274,11 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     }
   }
   e_.end();
+  // Clear of the wall after a rapid (the CAM system's rapids are in the air) or a feed straight
+  // up the tool axis (the retract).
+  const ir::Vec3 step = mv.point - pos_;
+  const double up = step.dot(mv.axis);
+  left_in_cut_ = !rapid && !(up > 0 && (step - up * mv.axis).norm() <= 1e-6 * std::max(1.0, up));
   pos_ = mv.point;
   moved();
 }
@@ -538,6 +545,7 @@ void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc
   feed_word(loc);
   e_.end();
   pos_ = a.end;
+  left_in_cut_ = true;
   (void)op;
 }
 
@@ -619,9 +627,25 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
                "feed-clamped");
   }
   double ret = m_.cycles.return_initial ? std::max(h.initial, c.clearance) : c.clearance;
-  bool same = cycle_active_ && cycle_.code == want.code && e_.as_written('Z', cycle_.bottom) == e_.as_written('Z', want.bottom) &&
+  bool same = cycle_active_ && !need_work_offset_ && cycle_.code == want.code && e_.as_written('Z', cycle_.bottom) == e_.as_written('Z', want.bottom) &&
               e_.as_written('R', cycle_.r) == e_.as_written('R', want.r) && cycle_.peck == want.peck &&
               cycle_.dwell == want.dwell && cycle_.feed == want.feed;
+  if (at_safe_height_ && tool_ >= 0) {
+    // From the post's retract (another fixture's offset, a stop): over the hole, then down to
+    // where the CL starts the cycle, its G98 level. From up there the cycle went down at the
+    // home height's XY, and returned up there.
+    if (cycle_active_) cancel_cycle(loc);
+    same = false;
+    position_across(e_.round('X', o.x()), e_.round('Y', o.y()), false, [] {}, loc);
+    e_.begin(loc);
+    if (need_length_offset_) {
+      e_.code(m_.codes.length_offset, TemplateVars().with(Var::Offset, length_offset_).with(Var::Tool, tool_));
+      need_length_offset_ = false;
+    }
+    e_.word('Z', o.z() + h.initial * k_);
+    e_.end();
+    at_safe_height_ = false;
+  }
   if (!same) {
     if (cycle_active_) cancel_cycle(loc);
     if (tap && !k.rigid_tap.empty()) {
@@ -675,6 +699,7 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
   e_.set_last('Z', o.z() + ret * k_);
   pos_ = h.point + h.axis * ret;
   moved();
+  left_in_cut_ = false;
 }
 
 }  // namespace clpc

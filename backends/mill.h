@@ -73,6 +73,14 @@ class MillBackend : public ProgramWriter {
   void retract_for_stop(SourceLoc loc) override {
     if (!at_safe_height_ && tool_ >= 0) retract(loc);
   }
+  // Another fixture: up to the safe height in the old offset first, the cycle cancelled. Its
+  // XY and Z in the new offset came in one rapid at the height the tool was at, or a cycle's
+  // holes stayed in the old offset (helper-70: both certified).
+  void before_offset_change(SourceLoc loc) override {
+    cancel_cycle(loc);
+    end_pending_comp();
+    retract_for_stop(loc);
+  }
 };
 
 }  // namespace clpc

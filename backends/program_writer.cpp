@@ -63,6 +63,7 @@ void ProgramWriter::end() {
   // Compensation still on (a CUTCOM/OFF with no move after it, or none at all) is cancelled
   // before the finish's moves: the retract and park are no compensated path.
   if (comp_on_) {
+    check_comp_end_in_cut();
     e_.begin({});
     e_.code(m_.codes.comp_off);
     e_.end();
@@ -331,6 +332,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             return;
           }
           if (x.index != work_offset_) {
+            if ((work_offset_ > 0 ? work_offset_ : m_.offsets.default_index) != x.index) before_offset_change(loc);
             need_work_offset_ = true;
             e_.forget_linear();  // the same X Y Z is another place in another offset
           }
@@ -925,6 +927,7 @@ void ProgramWriter::comp_code() {
 void ProgramWriter::end_pending_comp() {
   // (One that cancels nothing stays for the next move, as the CL's CUTCOM/OFF asks.)
   if (!comp_pending_set_ || comp_pending_.side != ir::CompSide::Off || !comp_on_) return;
+  check_comp_end_in_cut();
   e_.begin({});
   e_.code(m_.codes.comp_off);
   e_.end();
@@ -967,7 +970,22 @@ void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   }
   comp_pending_ = c;
   comp_pending_set_ = true;
+  comp_loc_ = loc;
   if (c.side == ir::CompSide::Off) moved_since_off_ = false;
+}
+
+void ProgramWriter::check_comp_end_in_cut() {
+  // Fanuc, Haas: a G40 in a block with no move ends the offset on the next move; here that is
+  // the post's own (the finish's Z home, a tool change's retract), which goes from the offset
+  // point to the contour point, into the wall by the radius, at the cut's depth (helper-67:
+  // certified). Said where the CL's compensation ends or is left on.
+  if (!left_in_cut_) return;
+  left_in_cut_ = false;
+  const bool off = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off;
+  d_.error(comp_loc_, std::string(off ? "CUTCOM/OFF with no move after it" : "cutter compensation left on to the end") +
+                          ", where the tool last cut: the control ends G41/G42 on the next move, the post's retract, "
+                          "which pulls the tool by its radius onto the contour, into the wall; end it on a move "
+                          "across and away from the wall (a lead-out), or after a retract straight up the tool axis");
 }
 
 }  // namespace clpc

@@ -469,11 +469,45 @@ TEST(CamSystems, AnInverseTimeFeedIsNotCopiedOntoTheBlocksOfASplitMove) {
 TEST(CamSystems, CompensationStillOnAtTheEndIsCancelledBeforeTheFinish) {
   for (const char* off : {"CUTCOM/OFF\n", ""}) {
     const std::string cl = std::string("UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nGOTO/0,-10,-1\n"
-                                       "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\n") + off + "FINI\n";
+                                       "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\nGOTO/20,0,10\n") + off + "FINI\n";
     Compiled c = compile_text(cl, machine("fanuc-mill"));
     ASSERT_TRUE(c.ok) << c.diags;
-    EXPECT_THAT(c.output, HasSubstr("N70 G41 D1 Y0.\nN80 X20.\nN90 G40\nN100 M05\nN110 G91 G28 Z0.\n")) << off;
+    EXPECT_THAT(c.output, HasSubstr("N70 G41 D1 Y0.\nN80 X20.\nN90 Z10.\nN100 G40\nN110 M05\nN120 G91 G28 Z0.\n")) << off;
     verifies(cl, machine("fanuc-mill"));
+  }
+}
+
+// ... but not where the tool last cut: the G40 alone is taken on the finish's Z home, which goes
+// from the offset point to the contour's, into the wall by the radius, at the cut's depth
+// (helper-67: certified). Nor before a tool change, nor after an arc or a ramp out.
+TEST(CamSystems, CompensationEndedWithNoMoveWhereTheToolCutIsRefused) {
+  const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,-10,20\nFEDRAT/MMPM,200\nGOTO/0,-10,-1\n"
+                           "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\n";
+  const std::string still_on = "part.cls:8:1: error: cutter compensation left on to the end, where the tool last cut: the control "
+                               "ends G41/G42 on the next move, the post's retract, which pulls the tool by its radius onto "
+                               "the contour, into the wall; end it on a move across and away from the wall (a lead-out), "
+                               "or after a retract straight up the tool axis\n";
+  const std::string off_at_11 = "part.cls:11:1: error: CUTCOM/OFF with no move after it, where the tool last cut: the control "
+                               "ends G41/G42 on the next move, the post's retract, which pulls the tool by its radius onto "
+                               "the contour, into the wall; end it on a move across and away from the wall (a lead-out), "
+                               "or after a retract straight up the tool axis\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {head + "FINI\n", still_on},
+      {head + "GOTO/30,0,5\nFINI\n", still_on},  // ramped out, not straight up
+      {head + "CIRCLE/20,10,-1,0,0,1,10\nGOTO/30,10,-1\nFINI\n", still_on},
+      {head + "CUTCOM/OFF\nFINI\n", off_at_11},
+      {head + "CUTCOM/OFF\nLOADTL/2\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/50,50,20\nFINI\n", off_at_11},
+  };
+  for (const auto& [cl, error] : cases)
+    for (const char* name : {"fanuc-mill", "haas-umc750"}) {
+      Compiled c = compile_text(cl, machine(name));
+      EXPECT_FALSE(c.ok) << name << "\n" << cl;
+      EXPECT_EQ(messages(c.diags), error) << name << "\n" << cl;
+    }
+  // A lead-out across carries the G40; a rapid out leaves the tool in the air.
+  for (const char* out : {"CUTCOM/OFF\nGOTO/30,0,-1\nFINI\n", "RAPID\nGOTO/20,0,20\nFINI\n"}) {
+    Compiled c = compile_text(head + out, machine("fanuc-mill"));
+    EXPECT_TRUE(c.ok) << out << c.diags;
   }
 }
 
@@ -956,7 +990,7 @@ TEST(CamSystems, CyclesAndCompensationAfterAnArcInAnotherPlaneAreInG17) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("G18 G03 X0. Z15. K0. I-10.\nN100 G00 Z20.\nN110 G17 G98 G81 X0. Y0. Z-12. R3. F100.\n"));
   verifies(drill, machine("fanuc-mill"));
-  const std::string comp = head + "CUTCOM/LEFT,1\nGOTO/10,0,15\nGOTO/10,10,15\nCUTCOM/OFF\nFINI\n";
+  const std::string comp = head + "CUTCOM/LEFT,1\nGOTO/10,0,15\nGOTO/10,10,15\nCUTCOM/OFF\nGOTO/10,10,25\nFINI\n";
   Compiled k = compile_text(comp, machine("fanuc-mill"));
   ASSERT_TRUE(k.ok) << k.diags;
   EXPECT_THAT(k.output, HasSubstr("N110 G17 G41 D1 G01 X10. Z15.\n"));

@@ -423,9 +423,9 @@ TEST(OffsetTable, AFrameWithoutSetAfterASetsFrameSelectsTheDefaultRegisterAgain)
   Compiled c = compile_text(head + b, machine("fanuc-mill"));
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N50 G55 G00 X10. Y0.\n"));
-  // The rapid to the next frame rises first (rapid-split: the tool stands where the last
-  // frame's cut left it, another register moves no axis), then crosses.
-  EXPECT_THAT(c.output, HasSubstr("N80 G54 G00 X110. Y60. Z20.\nN90 X210. Y0.\n"));
+  // Another register: the post's retract in the old one first (helper-70), then the rapid to
+  // the next frame, which rises first (rapid-split), then crosses.
+  EXPECT_THAT(c.output, HasSubstr("N80 G91 G28 Z0.\nN90 G90 G54 G00 X110. Y60.\nN100 Z20.\nN110 X210. Y0.\n"));
   for (const char* m : {"fanuc-mill", "haas-umc750"}) {
     Compiled v = verify_text(head + b, machine(m));
     EXPECT_TRUE(v.ok) << m << v.diags;
@@ -468,7 +468,8 @@ TEST(OffsetTable, SetWithoutFrameSelectsItsRegister) {
   EXPECT_THAT(c.output, HasSubstr("(WORK OFFSETS - SET ON THE MACHINE)\n(G56 = SET/56 BASE FRAME LINE 3 ORIGIN X0 Y0 Z0)\n"
                                   "(G54.1 P1 = SET/101 BASE FRAME LINE 9 ORIGIN X0 Y0 Z0)\n"));
   EXPECT_THAT(c.output, HasSubstr("N50 G56 G00 X1. Y2.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N80 G54.1 P1 X6. Y2. Z3.\n"));  // another offset: every axis again
+  // Another offset: up in the old one, over the point and down in the new one.
+  EXPECT_THAT(c.output, HasSubstr("N80 G91 G28 Z0.\nN90 G90 G54.1 P1 G00 X6. Y2.\nN100 G94 G01 Z3. F100.\n"));
 }
 
 // The first rapid in another frame (NX's MSYS of the next operation, 100 across and 50 down)
@@ -484,7 +485,9 @@ TEST(OffsetTable, TheFirstRapidInAnotherFrameIsSplitToo) {
   Compiled per_frame = compile_text(cl, machine("my-mill", "[my-mill]\ninherits = \"fanuc-mill\"\n[my-mill.offsets]\nper_frame = true\n"),
                                     {.certify = true});
   ASSERT_TRUE(per_frame.ok) << per_frame.diags;
-  EXPECT_THAT(per_frame.output, HasSubstr("N90 S3000 M03\nN100 G55 X0. Y0. Z70.\nN110 Z20.\nN120 G01 Z0.\n"));
+  // Another register: up in the old one first (helper-70), then across and down in the new one.
+  EXPECT_THAT(per_frame.output, HasSubstr("N90 G91 G28 Z0.\nN100 S3000 M03\nN110 G90 G55 G00 X0. Y0.\nN120 Z70.\nN130 Z20.\n"
+                                          "N140 G94 G01 Z0. F100.\n"));
 }
 
 // SET pairs with the frame record next to it, with no motion between. In an APT file with no
@@ -500,7 +503,7 @@ TEST(OffsetTable, ASetAfterAFramesCutsIsTheNextFrames) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("(G55 = SET/55 CAMERA LINE 14 ORIGIN X100 Y0 Z0)\n"));
   EXPECT_THAT(c.output, HasSubstr("N50 G54 G00 X10. Y0.\n"));
-  EXPECT_THAT(c.output, HasSubstr("N100 G55 X10. Y0. Z20.\nN110 G01 Z0.\n"));
+  EXPECT_THAT(c.output, HasSubstr("N100 G91 G28 Z0.\nN110 G90 G55 G00 X10. Y0.\nN120 Z20.\nN130 G94 G01 Z0. F100.\n"));
   // Right after its frame record, before the cuts, it is that frame's.
   std::string before = cl;
   before.erase(before.find("SET/55\n"), 7);
@@ -569,4 +572,30 @@ TEST(OffsetTable, ASetThatTakesTheDefaultRegisterFromThePartFrameIsRefused) {
   other.replace(other.find("SET/54"), 6, "SET/55");
   Compiled ok = compile_text(other, machine("fanuc-mill"), {.certify = true});
   EXPECT_TRUE(ok.ok) << ok.diags;
+}
+
+// Another work offset (the next fixture) between holes of a cycle: the holes after it were
+// written as the cycle's modal X Y, in the old offset, so fixture 1's holes were drilled twice
+// and fixture 2 got none (helper-70: certified, both origins alike in the CL). And a rapid to
+// the next fixture crossed in one dog-leg at the old Z. Now: the cycle ends, the tool goes up
+// in the old offset, then over the point and down to the cycle's start in the new one.
+TEST(OffsetTable, AnotherFixtureIsReachedFromTheRetractAndItsHolesInItsOffset) {
+  const std::string cl = "UNITS/MM\nSET/54\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50\n"
+                         "CYCLE/DRILL,DEPTH,10,MMPM,100,CLEAR,3\nGOTO/0,0,0\nGOTO/10,0,0\nSET/55\nGOTO/0,0,0\nGOTO/10,0,0\n"
+                         "CYCLE/OFF\nRAPID\nGOTO/10,0,50\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N70 G94 G98 G81 X0. Y0. Z-10. R3. F100.\nN80 X10.\nN90 G80\nN100 G91 G28 Z0.\n"
+                                  "N110 G90 G55 G00 X0. Y0.\nN120 Z50.\nN130 G94 G98 G81 X0. Y0. Z-10. R3. F100.\nN140 X10.\n"
+                                  "N150 G80\nN160 M05\n"));
+  Compiled h = compile_text(cl, machine("haas-umc750"), {.certify = true});
+  ASSERT_TRUE(h.ok) << h.diags;
+  EXPECT_THAT(h.output, HasSubstr("N60 G80\nN65 G53 G00 Z0.\nN70 G55 G00 X0. Y0.\nN75 Z1.9685\n"
+                                  "N80 G94 G98 G81 X0. Y0. Z-0.3937 R0.1181 F3.94\n"));
+  const std::string moves = "UNITS/MM\nSET/54\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,50\nFEDRAT/MMPM,300\n"
+                            "GOTO/0,0,-2\nGOTO/50,0,-2\nRAPID\nGOTO/50,0,50\nSET/55\nRAPID\nGOTO/10,10,50\nFEDRAT/MMPM,300\n"
+                            "GOTO/10,10,-2\nFINI\n";
+  Compiled m = compile_text(moves, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(m.ok) << m.diags;
+  EXPECT_THAT(m.output, HasSubstr("N90 G00 Z50.\nN100 G91 G28 Z0.\nN110 G90 G55 G00 X10. Y10.\nN120 Z50.\n"));
 }

@@ -96,7 +96,7 @@ TEST(RapidSplit, NotAfterAToolChangeNorWithCutterCompensationOn) {
   // A FEDRAT before the next cut gives the feed after it.
   Compiled lead_in = compile_text(
       "UNITS/MM\nLOAD/TOOL,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,30\nCUTCOM/LEFT,1\nRAPID\nGOTO/0,-10,-5\n"
-      "FEDRAT/MMPM,200\nGOTO/50,-10,-5\n",
+      "FEDRAT/MMPM,200\nGOTO/50,-10,-5\nGOTO/50,-10,20\n",
       machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(lead_in.ok) << lead_in.diags;
   EXPECT_THAT(lead_in.output, HasSubstr("G41 D1 G94 G01 Y-10. Z-5. F10000.\nN80 X50. F200.\n"));
