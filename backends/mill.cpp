@@ -599,7 +599,9 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
       d_.error(loc, "tapping needs the spindle speed (SPINDL/RPM) to set the feed: F = pitch x S");
       return;
     }
-    want.feed = m_.cycles.tap_per_rev ? c.pitch * k_ : c.pitch * k_ * spindle_rpm_;
+    // F from the S as written: a tap at S333.4 was fed for it at S333 (Creo writes speeds with
+    // fractions), 0.1 % off its pitch, and refused by verify (helper-71).
+    want.feed = m_.cycles.tap_per_rev ? c.pitch * k_ : c.pitch * k_ * e_.as_written('S', spindle_rpm_);
   } else if (c.feed > 0) {
     want.feed = c.feed * k_;
   } else if (feed_known_) {
@@ -679,7 +681,7 @@ void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceL
     if (c.kind == ir::CycleKind::FineBore) e_.word('Q', c.shift * k_);
     if (want.dwell > 0)
       e_.code(k.cycle_dwell_word, TemplateVars().with(Var::Seconds, want.dwell).with(Var::Milliseconds, want.dwell * 1000));
-    if (tap ? !write_tap_feed(want.feed, c.pitch * k_, spindle_rpm_, c.depth * k_, loc)
+    if (tap ? !write_tap_feed(want.feed, c.pitch * k_, e_.as_written('S', spindle_rpm_), c.depth * k_, loc)
             : !write_feed(want.feed, mode, c.feed > 0 || !feed_loc_.valid() ? loc : feed_loc_))
       return;
     e_.end();

@@ -375,7 +375,11 @@ void Comparison::spindle_ok(const TipSegment& s) {
   }
   // The speed: a mill's S is the CL's rpm, rounded to S's increment. S5000 made S500 or S50000,
   // and a drill's S0, passed (helper-49).
-  if (cut && cl_spindle_ && s.raw.spindle && cl_rpm_ > 0 && !m_.is_lathe()) {
+  // (A cycle's way out of a hole, a tap's feed out, is the hole's, at its speed: a SPINDL between
+  // two holes was read as the speed for the last one's way out, and a right program refused;
+  // helper-67, helper-70.)
+  const bool out_of_hole = s.raw.from_cycle && s.raw.end.z() > s.raw.start.z();
+  if (cut && cl_spindle_ && s.raw.spindle && cl_rpm_ > 0 && !m_.is_lathe() && !out_of_hole) {
     const double slack = 0.5 * std::abs(dequantize(1, m_.format('S'))) + 1e-9 * cl_rpm_;
     if (std::abs(s.raw.rpm - cl_rpm_) > slack) {
       if (!speed_said_)

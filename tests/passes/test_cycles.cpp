@@ -389,3 +389,33 @@ TEST(Cycles, AToolOverTheFirstHoleBelowItsRPlaneRisesToItFirst) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N60 G43 H01 Z0.\nN70 Z2.\nN80 G94 G98 G81 X10. Y10. Z-5. R2. F100.\nN90 X30.\nN100 G80\n"));
 }
+
+// A tap's F is the pitch times the S as written: at SPINDL 333.4 (Creo writes speeds with
+// fractions) it was F416.75 at S333, 0.1 % off the pitch, and the certificate refused it
+// (helper-71). A SPINDL between the holes of a tap cycle was read by verify as the speed of the
+// last hole's way out, and the right program refused (helper-67, helper-70); a wrong S on the
+// next hole is still caught.
+TEST(Cycles, ATapIsFedForItsSpeedAsWrittenAndMayChangeSpeedBetweenHoles) {
+  const std::string frac = "UNITS/MM\nLOADTL/1\nSPINDL/333.4,RPM,CLW\nRAPID\nGOTO/10,10,50\n"
+                           "CYCLE/TAP,FEDTO,10,PITCH,1.25,RAPTO,5\nGOTO/10,10,0\nCYCLE/OFF\nFINI\n";
+  Compiled c = compile_text(frac, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("M29 S333\nN80 G94 G98 G84 X10. Y10. Z-10. R5. F416.25\n"));
+  const std::string change = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,50\n"
+                             "CYCLE/TAP,DEPTH,10,PITCH,1.5,CLEAR,5\nGOTO/0,0,0\nGOTO/10,0,0\nSPINDL/RPM,300,CLW\n"
+                             "GOTO/20,0,0\nCYCLE/OFF\nFINI\n";
+  for (const char* name : {"fanuc-mill", "haas-umc750"}) {
+    Compiled t = compile_text(change, machine(name), {.certify = true});
+    EXPECT_TRUE(t.ok) << name << t.diags;
+  }
+  Compiled t = compile_text(change, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(t.ok) << t.diags;
+  EXPECT_THAT(t.output, HasSubstr("N100 G80\nN110 S300 M03\nN120 M29 S300\nN130 G98 G84 X20. Y0. Z-10. R5. F450.\n"));
+  std::string wrong = t.output;
+  wrong.replace(wrong.find("N110 S300"), 9, "N110 S500");
+  wrong.replace(wrong.find("M29 S300"), 8, "M29 S500");
+  wrong.replace(wrong.find("F450."), 5, "F750.");
+  Compiled v = verify_text(change, machine("fanuc-mill"), wrong);
+  EXPECT_FALSE(v.ok);
+  EXPECT_THAT(v.diags, HasSubstr(":10:1: error: the program cuts here at S500, the CL's spindle speed is 300 rpm [G-code line 19]"));
+}
