@@ -286,19 +286,24 @@ std::vector<AddressWord> address_words(const std::string& t) {
 std::string part_position_in(std::string_view block, bool lathe, bool& incremental, std::string_view free_axes) {
   const std::string t = control_words(block);
   const std::vector<AddressWord> words = address_words(t);
-  bool machine = t.find("SUPA") != std::string::npos, reference = false, dwell = false;
+  bool machine = t.find("SUPA") != std::string::npos, reference = false, dwell = false, g53 = false;
   for (const AddressWord& w : words) {
     if (!w.known) continue;
     if (w.letter == 'G') {
       if (w.value == 91) incremental = true;
       if (w.value == 90) incremental = false;
-      if (w.value == 53 || w.value == 153) machine = true;  // Fanuc, Siemens
+      if (w.value == 53 || w.value == 153) machine = g53 = true;  // Fanuc, Siemens
       if (w.value == 28 || w.value == 30) reference = true;
       if (w.value == 4) dwell = true;
     }
     // Heidenhain's (in its L blocks; a Fanuc's M91 is the builder's own).
     if (w.letter == 'M' && (w.value == 91 || w.value == 92) && t.rfind("L ", 0) == 0) machine = true;
   }
+  // A Fanuc ignores G53 in G91 (machine coordinates are absolute only): "G91 G53 Z0." moved
+  // nothing, and the tool change after it came with the tool in the part (helper-71: certified).
+  if (g53 && incremental && !axis_words(t).empty())
+    return "'" + std::string(block) + "' gives machine coordinates (G53) in G91, where the control ignores them (the "
+           "tool stays where it is)";
   if (machine || dwell) return "";
   for (const AddressWord& w : words) {
     if (std::string_view("XYZABCUVW").find(w.letter) == std::string_view::npos) continue;

@@ -448,6 +448,12 @@ class Interp {
       hole(a, new_cycle, target, line);
       return;
     }
+    if (g53 && !absolute_ && any_axis) {
+      // A Fanuc ignores G53 in G91 (machine coordinates are absolute only): nothing moves.
+      problem(line, "G53 in G91: the control ignores machine coordinates in incremental mode, so the tool does not "
+                    "move; G90 G53");
+      return;
+    }
     if (g53) {
       // Machine coordinates: where that is in the work frame is unknown to the reader.
       for (int i = 0; i < 3; ++i)

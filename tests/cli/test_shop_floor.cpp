@@ -247,7 +247,13 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
                         "part's coordinates (X0): a fixed block must clear the part"));
   EXPECT_THAT(load_error("[g]\ninherits = \"fanuc-mill\"\n[g.codes]\nsafe_retract = \"G91 G28 Z-5.\"\n"),
               HasSubstr("'G91 G28 Z-5.' goes home through an intermediate point away from where the tool is"));
-  for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G28 G91 Z0. Y0.", "M05"})
+  // A Fanuc ignores G53 in G91: "G91 G53 Z0." moved nothing, and the tool change after it came
+  // with the tool in the part (helper-71: certified).
+  for (const char* g91 : {"G91 G53 Z0.", "G53 G91 G00 Z0."})
+    EXPECT_THAT(load_error("[g]\ninherits = \"fanuc-mill\"\n[g.codes]\nsafe_retract = \"" + std::string(g91) + "\"\n"),
+                HasSubstr("g.codes.safe_retract: '" + std::string(g91) + "' gives machine coordinates (G53) in G91, where "
+                          "the control ignores them (the tool stays where it is): it runs wherever the tool stands"));
+  for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G90 G53 Z0.", "G28 G91 Z0. Y0.", "M05"})
     EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.codes]\nsafe_retract = \"" + std::string(ok) + "\"\n"), "")
         << ok;
   EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.codes]\nsafe_retract = \"G28 X0. Z0.\"\n"),

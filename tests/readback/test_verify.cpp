@@ -696,6 +696,11 @@ TEST(Verify, ARapidThatLeavesACutFails) {
   EXPECT_THAT(first_error(up.diags), HasSubstr("part.cl:8:1: error: the program leaves the CL's cut from (0.0000, 0.0000, -2.0000) to "
                                               "(50.0000, 0.0000, -2.0000) at rapid traverse (G00), in machine coordinates: that "
                                               "cut is not made"));
+  // G53 in G91 is ignored by the control: read so, not as a move up (helper-71).
+  Compiled g91 = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N76 G91 G53 Z0.\nN77 G90\nN80 X50.\n"));
+  EXPECT_FALSE(g91.ok);
+  EXPECT_THAT(g91.diags, HasSubstr("G53 in G91: the control ignores machine coordinates in incremental mode, so the tool does "
+                                   "not move; G90 G53"));
 }
 
 // An operation whose first move is a cut from where the last one left the tool, at another
