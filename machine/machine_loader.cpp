@@ -623,6 +623,26 @@ void check_spindle_codes(Reader& r, const Machine& m) {
                                     key + " says: every cutter would run backwards");
 }
 
+// A mill's G41/G42 takes the cutter's radius from the D it names: with none the control uses
+// the D in force, D00 (radius 0) after a reset or power-up, and the contour was cut on the
+// tool's centre, the radius into the wall (helper-71: certified). (A lathe's T word selects its
+// nose radius.)
+void check_comp_codes(Reader& r, const Machine& m) {
+  auto codes = r.sub("codes");
+  if (!codes || m.is_lathe()) return;
+  // (Siemens selects the edge, its length and radius, with the tool: T{tool} M06 D{offset}.)
+  const std::string& change = m.codes.tool_change.text;
+  for (size_t d = change.find_first_of("Dd"); d != std::string::npos; d = change.find_first_of("Dd", d + 1))
+    if (d + 1 < change.size() && (change[d + 1] == '{' || std::isdigit(static_cast<unsigned char>(change[d + 1])))) return;
+  for (auto [code, key] : {std::pair{&m.codes.comp_left, "comp_left"}, std::pair{&m.codes.comp_right, "comp_right"}})
+    if (!code->empty() && !code->uses(Var::Register))
+      if (const toml::node* n = codes->find(key))
+        codes->error(*n, key, "'" + code->text + "' names no radius register: a mill's control takes the one in "
+                                  "force, D00 (radius 0) after a reset, and cuts on the tool's centre; write " +
+                                  (std::string(key) == "comp_left" ? "\"G41 D{register}\"" : "\"G42 D{register}\"") +
+                                  " (or select it with the tool: tool_change = \"T{tool} M06 D{offset}\")");
+}
+
 // The same, for options that need a code (read after [NAME.codes]).
 void check_job_codes(Reader& r, const Machine& m) {
   // Inverse time with no G93 to write it: every move that turns a rotary would be an error,
@@ -1100,6 +1120,7 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
   check_job_codes(r, m);
   check_fixed_blocks(r, m);
   check_spindle_codes(r, m);
+  check_comp_codes(r, m);
   // O12345 where format.O has 4 digits: another program's number to a control, or an alarm.
   if (auto p = r.sub("program"))
     if (const toml::node* n = p->find("number"); n && m.format('O').digits > 0 && m.format('O').digits < 9) {

@@ -253,6 +253,14 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
     EXPECT_THAT(load_error("[g]\ninherits = \"fanuc-mill\"\n[g.codes]\nsafe_retract = \"" + std::string(g91) + "\"\n"),
                 HasSubstr("g.codes.safe_retract: '" + std::string(g91) + "' gives machine coordinates (G53) in G91, where "
                           "the control ignores them (the tool stays where it is): it runs wherever the tool stands"));
+  // A mill's G41 with no D takes the D in force, D00 after a reset: the cut on the tool's
+  // centre (helper-71: certified). Siemens selects it with the tool (D{offset}).
+  EXPECT_EQ(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41\"\n"),
+            "shop.toml:4:13: error: c.codes.comp_left: 'G41' names no radius register: a mill's control takes the one in "
+            "force, D00 (radius 0) after a reset, and cuts on the tool's centre; write \"G41 D{register}\" (or select it "
+            "with the tool: tool_change = \"T{tool} M06 D{offset}\")\n 4 | comp_left = \"G41\"\n   |             ^\n");
+  EXPECT_EQ(load_error("[s]\ninherits = \"fanuc-mill\"\n[s.codes]\ncomp_left = \"G41\"\ncomp_right = \"G42\"\n"
+                       "tool_change = \"T{tool} M06 D{offset}\"\n"), "");
   for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G90 G53 Z0.", "G28 G91 Z0. Y0.", "M05"})
     EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.codes]\nsafe_retract = \"" + std::string(ok) + "\"\n"), "")
         << ok;
