@@ -877,11 +877,17 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                                    " decimals " + k + "1 would be written " + k + "1" +
                                    std::string(size_t(f.decimals), '0') + ", which the control reads as that number: "
                                    "say decimals = 0");
-      if (std::string_view("XYZUVWIJKRABC").find(k[0]) != std::string_view::npos &&
+      // (Q too: a peck, a bore's shift; and a lathe's P, a groove's peck: G83 Q5 pecked 0.005 mm,
+      // helper-71.)
+      if ((std::string_view("XYZUVWIJKRABCQ").find(k[0]) != std::string_view::npos || (k[0] == 'P' && m.is_lathe())) &&
           m.formats[size_t(k[0] - 'A')].point == AddressFormat::Point::IfFraction)
         c.error(key->source(), s->key_path(k) + ".point: \"if-fraction\" writes a whole " + k + " without its point (" +
                                    k + "50), which a control reads in least input increments (0.050 mm, 0.0050 in) "
-                                   "unless it is set for calculator-type input: say point = \"always\"");
+                                   "unless it is set for calculator-type input: say " +
+                                   (m.is_lathe() && (k[0] == 'P' || k[0] == 'Q')
+                                        ? std::string("point = \"never\" in the axes' decimals (a lathe's cycles take P "
+                                                      "and Q without a point)")
+                                        : std::string("point = \"always\"")));
       // Numbers without a point are counted in the control's one least input increment: two
       // axes written so with other decimals (X in 0.001, Y in 0.0001) put one 10 times off.
       const AddressFormat& mine = m.formats[size_t(k[0] - 'A')];
@@ -1186,6 +1192,18 @@ Machine build_machine(Ctx& c, const std::string& name, Reader::Layers layers, co
                                  : std::string(k) == "tap"      ? m.feeds.tap
                                                                 : m.feeds.inverse_time;
         if (const toml::node* n = s->find(k); n && no_point_with_decimals(g)) s->error(*n, k, "the feed" + why(g));
+      }
+    // A feed per revolution or a lead written whole without its point (F1 for 1 mm/rev) is read
+    // in the control's increments, 0.0001 mm/rev: a tap fed so breaks (helper-71: certified).
+    if (auto s = r.sub("feeds"))
+      for (const char* k : {"per_rev", "lead", "tap"}) {
+        if (std::string(k) == "tap" && !m.cycles.tap_per_rev) continue;
+        const AddressFormat& g = std::string(k) == "per_rev" ? m.feeds.per_rev
+                                 : std::string(k) == "lead"  ? m.feeds.lead
+                                                             : m.feeds.tap;
+        if (const toml::node* n = s->find(k); n && g.point == AddressFormat::Point::IfFraction)
+          s->error(*n, k, "\"if-fraction\" writes a whole feed per revolution or lead without its point (F1 for 1 a "
+                          "turn), which the control reads in its least increments (0.0001 a turn): say point = \"always\"");
       }
   }
   r.finish();

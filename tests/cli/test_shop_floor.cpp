@@ -170,6 +170,21 @@ TEST(ShopFloor, APositionWrittenWithoutItsPointWhenWholeIsRefused) {
             "control reads in least input increments (0.050 mm, 0.0050 in) unless it is set for calculator-type input: "
             "say point = \"always\"\n 4 | Y = { point = \"if-fraction\" }\n   | ^\n");
   EXPECT_EQ(load_error("[iff]\ninherits = \"fanuc-mill\"\n[iff.format]\nF = { point = \"if-fraction\" }\n"), "");
+  // A peck or a lathe's P/Q, a feed per revolution, a lead, a tap fed per revolution: G83 Q5
+  // pecked 0.005 mm and a rigid tap's F1 fed 0.001 mm a turn (helper-71: certified).
+  EXPECT_THAT(load_error("[q]\ninherits = \"fanuc-mill\"\n[q.format]\nQ = { decimals = 3, point = \"if-fraction\" }\n"),
+              HasSubstr("q.format.Q.point: \"if-fraction\" writes a whole Q without its point (Q50)"));
+  EXPECT_THAT(load_error("[t]\ninherits = \"fanuc-mill\"\n[t.cycles]\ntap_feed = \"per-rev\"\n[t.feeds]\n"
+                         "tap = { decimals = 3, point = \"if-fraction\" }\n"),
+              HasSubstr("shop.toml:6:7: error: t.feeds.tap: \"if-fraction\" writes a whole feed per revolution or lead "
+                        "without its point (F1 for 1 a turn), which the control reads in its least increments"));
+  EXPECT_EQ(load_error("[t]\ninherits = \"fanuc-mill\"\n[t.feeds]\ntap = { decimals = 0, point = \"if-fraction\" }\n"), "");
+  for (const char* k : {"lead", "per_rev"})
+    EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.feeds]\n" + std::string(k) +
+                           " = { decimals = 4, point = \"if-fraction\" }\n"),
+                HasSubstr("l.feeds." + std::string(k) + ": \"if-fraction\" writes a whole feed per revolution"));
+  EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.format]\nP = { decimals = 3, point = \"if-fraction\" }\n"),
+              HasSubstr("say point = \"never\" in the axes' decimals (a lathe's cycles take P and Q without a point)"));
   // So is one in whole units without a point: Y20 is 0.020 mm (helper-65).
   EXPECT_THAT(load_error("[d0]\ninherits = \"fanuc-mill\"\n[d0.format]\nY = { decimals = 0, point = \"never\" }\n"),
               HasSubstr("shop.toml:4:1: error: d0.format.Y: written without a point in whole units (Y20), which a control "
