@@ -428,6 +428,10 @@ void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
   e_.end();
   if (dir != ir::SpindleDir::Off) write_spindle(ir::Spindle{rpm, ir::SpindleMode::Rpm, dir, 0}, loc);
   if (coolant != ir::CoolantKind::Off) write_coolant(ir::Coolant{coolant}, loc);
+  // The length offset again with the next setup's first Z: an operator who turned the part may
+  // have pressed RESET (a Fanuc set so cancels G43), or restarts at this setup's blocks; the
+  // tool came down a whole tool length lower than the CL's point (helper-67, helper-70).
+  if (tool_ >= 0 && !m_.is_lathe() && !m_.codes.length_offset.empty()) need_length_offset_ = true;
 }
 
 void ProgramWriter::write_rotary_index(const ir::RotaryIndex& r, SourceLoc loc) {

@@ -263,7 +263,9 @@ TEST(CamSystems, TiltedFrameOnThreeAndFiveAxes) {
   EXPECT_THAT(three.output, HasSubstr("(G54 = MSYS LINE 3 ORIGIN X0 Y0 Z0)\n(G55 = MSYS LINE 12 ORIGIN X50 Y0 Z0)\n"));
   EXPECT_THAT(three.output,
               HasSubstr("(OP2)\n(SETUP 2: TURN THE PART SO THE FRAME OF LINE 12 HAS Z UP, REGISTER 2)\nN90 G91 G28 Z0.\nN100 M05\nN110 M00\nN120 S1000 M03\nN130 G90 G55 G00 X0. Y0.\n"
-                        "N140 Z10.\nN150 G94 G01 Z0. F100.\nN160 X20.\n"));
+                        "N140 G43 H01 Z10.\nN150 G94 G01 Z0. F100.\nN160 X20.\n"));
+  // (G43 H again after the stop: the operator may have pressed RESET, or restart here; the tool
+  // came down a tool length low; helper-67, helper-70.)
   verifies(cl, machine("fanuc-mill"));
   // Without a retract the part was turned under the tool (helper-67: certified).
   Compiled no_retract = compile_text(cl, machine("nr", "[nr]\ninherits = \"fanuc-mill\"\n[nr.codes]\nsafe_retract = \"\"\n"));
