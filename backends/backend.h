@@ -183,6 +183,7 @@ class ProgramWriter : public Backend {
   SourceLoc cl_stopped_spindle_at_;    // the CL's SPINDL/OFF that stopped it, until a spindle starts
   bool spindle_stop_refused_ = false;  // a cut after it was refused: no warning for each move after
   bool spindle_restore_ = false;
+  bool spindle_restore_before_move_ = false;  // restored before the next move, a rapid too (a lathe's index)
   bool spindle_restore_warn_ = false;  // the restore follows a tool change: the new tool runs at the last one's speed
   ir::CoolantKind coolant_after_ = ir::CoolantKind::Off;
   size_t tool_change_at_ = 0;       // where in info_->tool_changes the last change was

@@ -179,8 +179,8 @@ void ProgramWriter::control_stopped(bool coolant_too, bool tool_change) {
 void ProgramWriter::restore_after_stop(SourceLoc loc, bool cut) {
   // The spindle before the first cut, not before the rapids to it: the CL may start it there
   // (FFCAM writes the SPINDL after the approach), at the new tool's speed.
-  if (spindle_restore_ && cut) {
-    spindle_restore_ = false;
+  if (spindle_restore_ && (cut || spindle_restore_before_move_)) {
+    spindle_restore_ = spindle_restore_before_move_ = false;
     if (spindle_restore_warn_)
       d_.warning(loc, "the spindle is started again for T" + std::to_string(tool_) + " as the CL left it running (" +
                           num_text(spindle_on_->speed) + (spindle_on_->mode == ir::SpindleMode::Rpm ? " rpm" : " m/min") +

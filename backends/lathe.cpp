@@ -24,7 +24,8 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   if (t.tool == tool_ && offset == length_offset_) return;
   end_drill_speed(loc);
   if (!tool_changer_for(t, loc)) return;
-  if (tool_ >= 0) {
+  const bool had_tool = tool_ >= 0;
+  if (had_tool) {
     clear_to_retract(loc, "the tool change finds the tool");  // judged on the side the last tool worked
     blocks({m_.codes.safe_retract}, loc);
   }
@@ -42,6 +43,14 @@ void LatheBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   motion_ = Motion::None;
   e_.forget_linear();
   feed_written_ = false;
+  // The index leaves the spindle and coolant running, but each tool's blocks say them again: a
+  // restart at this tool (the operator searches to its T word) found the spindle stopped, and
+  // G98 fed the insert into a still bar (helper-70: certified). Said before the tool's first
+  // move, unless the CL gives its own SPINDL and COOLNT first.
+  if (had_tool) {
+    control_stopped(true, false);
+    spindle_restore_before_move_ = spindle_restore_;
+  }
   after_tool_change(t.tool, loc);
 }
 

@@ -166,7 +166,7 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
           if (coolant_restore_ && coolant_ == ir::CoolantKind::Off) coolant_ = coolant_after_;
           coolant_restore_ = false;
         } else if constexpr (std::is_same_v<T, ir::Spindle>) {
-          spindle_restore_ = false;  // the CL says what it wants
+          spindle_restore_ = spindle_restore_before_move_ = false;  // the CL says what it wants
           if (x.dir == ir::SpindleDir::Off && tool_turned_) cl_stopped_spindle_at_ = loc;
           if (x.dir != ir::SpindleDir::Off) cl_stopped_spindle_at_ = {}, spindle_stop_refused_ = false, tool_turned_ = true;
           if (x.dir == ir::SpindleDir::Off) spindle_on_.reset();

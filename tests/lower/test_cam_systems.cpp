@@ -1520,3 +1520,19 @@ TEST(CamSystems, AToolNamedByANumberIsNamedAndNumberedSo) {
                                  "using T12 [-Wtool-by-name]"));
   EXPECT_THAT(c.output, HasSubstr(" T12 M06 (T12 D=10. CR=0. - 12)\n"));
 }
+
+// A lathe's turret index leaves the spindle and coolant running, but each tool's blocks say
+// them again before its first move: a restart at T0505 (the operator searches to the T word)
+// found the spindle stopped and fed the insert into a still bar (helper-70: certified). A
+// SPINDL of the CL's right after the index is the one written, once.
+TEST(CamSystems, ALathesToolSaysItsSpindleAndCoolantAgain) {
+  const std::string head = "UNITS/MM\nTURRET/1\nSPINDL/RPM,1000,CLW\nCOOLNT/FLOOD\nRAPID\nGOTO/26,0,2\nFEDRAT/MMPR,0.2\n"
+                           "GOTO/26,0,-30\nGOTO/30,0,-30\nRAPID\nGOTO/60,0,5\nTURRET/5\n";
+  const std::string tail = "RAPID\nGOTO/20,0,-1\nFEDRAT/MMPR,0.1\nGOTO/0,0,-1\nRAPID\nGOTO/60,0,5\nFINI\n";
+  Compiled c = compile_text(head + tail, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("N110 T0505 (T5)\nN120 G97 S1000 M03\nN130 M08\nN140 G00 X40. Z-1.\n"));
+  Compiled own = compile_text(head + "SPINDL/RPM,1500,CLW\n" + tail, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(own.ok) << own.diags;
+  EXPECT_THAT(own.output, HasSubstr("N110 T0505 (T5)\nN120 G97 S1500 M03\nN130 M08\nN140 G00 X40. Z-1.\n"));
+}
