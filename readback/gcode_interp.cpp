@@ -112,6 +112,16 @@ class Interp {
     if (!l.empty() && l.front() == '#' && l.find('=') != std::string_view::npos) [[unlikely]]
       return true;
     size_t i = 0;
+    // '/' before a block: the operator's Block Delete switch may skip it. A stop written so
+    // (an optional stop's other form, a routine shop edit) is read as run; anything else would
+    // give two programs, one of them not checked (helper-70: "/M01" refused as a character).
+    bool skippable = false;
+    while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
+    if (i < l.size() && l[i] == '/') {
+      skippable = true;
+      ++i;
+    }
+    const size_t first_word = words.size();
     while (i < l.size()) {
       char c = l[i];
       if (c == ' ' || c == '\t' || c == '\r') { ++i; continue; }
@@ -152,6 +162,14 @@ class Interp {
       w.value = convert(letter, w.raw, point);
       words.push_back(w);
     }
+    if (skippable)
+      for (size_t k = first_word; k < words.size(); ++k)
+        if (words[k].letter != 'N' && !(words[k].letter == 'M' && (words[k].raw == 0 || words[k].raw == 1))) {
+          problem(line, std::string("a block the Block Delete switch may skip ('/') holds ") + words[k].letter +
+                            num_text(words[k].raw) + ": the program runs two ways, and only one could be checked; "
+                                                     "only a stop (M00, M01) may be written so");
+          return false;
+        }
     return true;
   }
 

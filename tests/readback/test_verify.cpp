@@ -800,3 +800,19 @@ TEST(Verify, AWorkOffsetTheClDoesNotSetFails) {
   EXPECT_THAT(moved.diags, HasSubstr("G10 sets work offset register 1, which the operator sets up: the CL gives it no value, so "
                                      "the part's zero would move"));
 }
+
+// '/' before a block: the operator's Block Delete switch may skip it. A stop so written is a
+// routine shop edit, read as run; a block that moves or changes a state would make two
+// programs, one unchecked, and is refused (helper-70: "/M01" was an unexpected character).
+TEST(Verify, ABlockDeleteStopIsReadAndOtherSkippableBlocksAreRefused) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,100\n"
+                         "GOTO/0,0,-2\nGOTO/50,0,-2\nRAPID\nGOTO/50,0,10\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-mill"));
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n/M01\n")).ok);
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n / N85 M00\n")).ok);
+  Compiled moved = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n/G00 Z10.\n"));
+  EXPECT_FALSE(moved.ok);
+  EXPECT_THAT(moved.diags, HasSubstr("a block the Block Delete switch may skip ('/') holds G0: the program runs two ways, "
+                                     "and only one could be checked; only a stop (M00, M01) may be written so"));
+}
