@@ -43,7 +43,8 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
                       m_.codes.tool_change.text + ") selects none: tool " + std::to_string(t.tool) +
                       " would cut at tool " + std::to_string(tool_) + "'s length; give codes.length_offset (G43 "
                       "H{offset}), or {offset} in codes.tool_change where the control applies the length with it");
-  if (tool_ >= 0) retract(loc);
+  const bool had_tool = tool_ >= 0;
+  if (had_tool) retract(loc);
   before_tool_change(loc);
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
@@ -58,7 +59,10 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   motion_ = Motion::None;
   e_.forget_linear();
   feed_written_ = false;
-  control_stopped(false, true);  // M06 stops the spindle
+  // M06 stops the spindle. After another tool's, the coolant is said again too (before the
+  // tool's first move), so that each tool's blocks hold it: a restart at this tool's T word ran
+  // the tool dry (helper-70).
+  control_stopped(had_tool, true);
   after_tool_change(t.tool, loc);
 }
 

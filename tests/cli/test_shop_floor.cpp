@@ -537,8 +537,8 @@ TEST(JobOptions, PreselectTheNextTool) {
   RunResult r = post(kThreeTools, "-t fanuc-mill --set program.preselect=true");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("N30 T1 M06 (T1)\nN40 T2\nN50 S3000 M03\n"));
-  EXPECT_THAT(r.out, HasSubstr("N110 T2 M06 (T2)\nN120 T3\nN130 S4000 M03\n"));
-  EXPECT_THAT(r.out, HasSubstr("N180 T3 M06 (T3)\nN190 S4000 M03\n"));  // the last tool: nothing to preselect
+  EXPECT_THAT(r.out, HasSubstr("N110 T2 M06 (T2)\nN120 T3\nN130 S4000 M03\nN140 M08\n"));
+  EXPECT_THAT(r.out, HasSubstr("N190 T3 M06 (T3)\nN200 S4000 M03\nN210 M08\n"));  // the last tool: nothing to preselect
   RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.preselect=true");
   EXPECT_EQ(lathe.status, 1);
   EXPECT_EQ(lathe.err, "--set:1:21: error: fanuc-lathe.program.preselect: a lathe's turret indexes the tool it cuts with: there "
@@ -565,13 +565,13 @@ TEST(JobOptions, SmoothingOnTheHaasAndTheFanuc) {
   RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.smoothing=finish --set program.smoothing_tolerance=0.0005");
   EXPECT_EQ(haas.status, 0) << haas.err;
   EXPECT_THAT(haas.out, HasSubstr("N15 G00 G17 G40 G49 G80 G90\nN20 G187 P3 E0.0005\nN25 T1 M06 (T1)\n"));
-  EXPECT_THAT(haas.out, HasSubstr("N125 G187\nN130 M05\n"));
+  EXPECT_THAT(haas.out, HasSubstr("N135 G187\nN140 M05\n"));
   RunResult own = post(kThreeTools, "-t haas-umc750 --set program.smoothing=rough");  // the control's tolerance
   EXPECT_THAT(own.out, HasSubstr("N20 G187 P1\n"));
   RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.smoothing=medium");
   EXPECT_EQ(fanuc.status, 0) << fanuc.err;
   EXPECT_THAT(fanuc.out, HasSubstr("N20 G00 G17 G40 G49 G80 G90\nN30 G05.1 Q1\n"));
-  EXPECT_THAT(fanuc.out, HasSubstr("N220 G05.1 Q0\nN230 M05\n"));
+  EXPECT_THAT(fanuc.out, HasSubstr("N240 G05.1 Q0\nN250 M05\n"));
   RunResult tol = post(kThreeTools, "-t fanuc-mill --set program.smoothing=medium --set program.smoothing_tolerance=0.01");
   EXPECT_EQ(tol.status, 1);
   EXPECT_EQ(tol.err,
@@ -598,9 +598,9 @@ TEST(JobOptions, SpindleSpeedLimit) {
 TEST(JobOptions, ParkAtTheEnd) {
   RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.park=true");
   EXPECT_EQ(haas.status, 0) << haas.err;
-  EXPECT_THAT(haas.out, HasSubstr("N130 G53 G00 Z0.\nN135 G53 G00 Y0.\nN140 G28 G91 B0. C0.\nN145 G90\nN150 M30\n%\n"));
+  EXPECT_THAT(haas.out, HasSubstr("N140 G53 G00 Z0.\nN145 G53 G00 Y0.\nN150 G28 G91 B0. C0.\nN155 G90\nN160 M30\n%\n"));
   RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.park=true");
-  EXPECT_THAT(fanuc.out, HasSubstr("N230 G91 G28 Z0.\nN240 G90\nN250 G91 G28 Y0.\nN260 G90\nN270 M30\n"));
+  EXPECT_THAT(fanuc.out, HasSubstr("N250 G91 G28 Z0.\nN260 G90\nN270 G91 G28 Y0.\nN280 G90\nN290 M30\n"));
   RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.park=true");
   EXPECT_EQ(lathe.status, 1);
   EXPECT_THAT(lathe.err, StartsWith("--set:1:16: error: fanuc-lathe.program.park: machine 'fanuc-lathe' has no park_blocks to "
