@@ -63,6 +63,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // tool's first move), so that each tool's blocks hold it: a restart at this tool's T word ran
   // the tool dry (helper-70).
   control_stopped(had_tool, true);
+  if (had_tool) restate_rotaries(loc);
   after_tool_change(t.tool, loc);
 }
 
@@ -360,6 +361,21 @@ void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc l
 }
 
 // The rotaries unclamped and turned in a rapid of their own (`modal`: only the words that change).
+// After another tool's change the rotaries are said where they stand, unclamped and clamped
+// again as they were: an operator who restarts at this tool's T word (the table homed after a
+// broken tool) had the next 3+2 face cut at B0, or a five-axis entry made untilted; no axis
+// moves in a run from the start (helper-70).
+void MillBackend::restate_rotaries(SourceLoc loc) {
+  const auto& r = m_.kinematics.rotaries;
+  if (r.empty()) return;
+  std::array<double, 2> angles{0, 0};
+  for (size_t i = 0; i < r.size() && i < angles.size(); ++i)
+    if (!e_.last(r[i].name[0], angles[i])) return;  // never written: nothing to restate
+  const bool was_clamped = clamped_;
+  turn_rotaries(angles, false, loc);
+  if (was_clamped) clamp(loc);
+}
+
 void MillBackend::turn_rotaries(const std::array<double, 2>& angles, bool modal, SourceLoc loc) {
   unclamp(loc);
   e_.begin(loc);

@@ -20,6 +20,7 @@ class MillBackend : public ProgramWriter {
   void rotary_words(const std::array<double, 2>& a, bool modal);
   void unclamp(SourceLoc loc);
   void turn_rotaries(const std::array<double, 2>& angles, bool modal, SourceLoc loc);
+  void restate_rotaries(SourceLoc loc);
   void clamp(SourceLoc loc);
   void inverse_time_words(const ir::Move& m, SourceLoc loc);
 

@@ -565,7 +565,7 @@ TEST(JobOptions, SmoothingOnTheHaasAndTheFanuc) {
   RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.smoothing=finish --set program.smoothing_tolerance=0.0005");
   EXPECT_EQ(haas.status, 0) << haas.err;
   EXPECT_THAT(haas.out, HasSubstr("N15 G00 G17 G40 G49 G80 G90\nN20 G187 P3 E0.0005\nN25 T1 M06 (T1)\n"));
-  EXPECT_THAT(haas.out, HasSubstr("N135 G187\nN140 M05\n"));
+  EXPECT_THAT(haas.out, HasSubstr("N165 G187\nN170 M05\n"));
   RunResult own = post(kThreeTools, "-t haas-umc750 --set program.smoothing=rough");  // the control's tolerance
   EXPECT_THAT(own.out, HasSubstr("N20 G187 P1\n"));
   RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.smoothing=medium");
@@ -598,7 +598,7 @@ TEST(JobOptions, SpindleSpeedLimit) {
 TEST(JobOptions, ParkAtTheEnd) {
   RunResult haas = post(kThreeTools, "-t haas-umc750 --set program.park=true");
   EXPECT_EQ(haas.status, 0) << haas.err;
-  EXPECT_THAT(haas.out, HasSubstr("N140 G53 G00 Z0.\nN145 G53 G00 Y0.\nN150 G28 G91 B0. C0.\nN155 G90\nN160 M30\n%\n"));
+  EXPECT_THAT(haas.out, HasSubstr("N170 G53 G00 Z0.\nN175 G53 G00 Y0.\nN180 G28 G91 B0. C0.\nN185 G90\nN190 M30\n%\n"));
   RunResult fanuc = post(kThreeTools, "-t fanuc-mill --set program.park=true");
   EXPECT_THAT(fanuc.out, HasSubstr("N250 G91 G28 Z0.\nN260 G90\nN270 G91 G28 Y0.\nN280 G90\nN290 M30\n"));
   RunResult lathe = post(kLatheFile, "-t fanuc-lathe --set program.park=true");

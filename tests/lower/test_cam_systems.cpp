@@ -1507,7 +1507,7 @@ TEST(CamSystems, EachLoadBeginsAnOperationInAFileWithNone) {
   Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N50 G94 G98 G84 X-1.1811 Y-1.1811 Z-0.3937 R0.1969 F11.811\nN55 G80\n"));
-  EXPECT_THAT(c.output, HasSubstr("N75 G54 G00 G234 H04\n"));
+  EXPECT_THAT(c.output, HasSubstr("N65 T4 M06 (T4)\nN70 M11 M13\nN75 G00 B0. C0.\nN80 M10 M12\nN85 S6000 M03\nN90 G54 G00 G234 H04\n"));
 }
 
 // Names are names: NX's TOOL PATH naming a tool 12 gave it no name, and its cuts were refused

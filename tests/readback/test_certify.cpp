@@ -302,13 +302,13 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   Result x = certified_compile(t.path("ops.cls"), t.path("ops.nc"), machine("haas-umc750"));
   ASSERT_TRUE(x.r.ok) << x.diags;
   const std::string nc = read_file(t.path("ops.nc"));
-  EXPECT_THAT(nc, HasSubstr("N115 G00 Z1.9685\nN120 X2.9207 Y1.0294\nN125 G255\n"));  // up first: rapid-split
+  EXPECT_THAT(nc, HasSubstr("N120 G00 Z1.9685\nN125 X2.9207 Y1.0294\nN130 G255\n"));  // up first: rapid-split
   // The new tool goes straight to its operation's first point.
-  EXPECT_THAT(nc, HasSubstr("N145 G54 G00 G234 H05\nN150 M11 M13\nN155 G00 X1.5748 Y1.1811 B27.815 C52.195\n"));
+  EXPECT_THAT(nc, HasSubstr("N165 G54 G00 G234 H05\nN170 M11 M13\nN175 G00 X1.5748 Y1.1811 B27.815 C52.195\n"));
   // The program as it was written before: the next tool's first block at the retract point.
   std::string was = nc;
-  const std::string at = "N150 M11 M13\n";
-  was.insert(was.find(at) + at.size(), "N152 G94 G01 X2.7596 Y1.4052 Z1.9685 C52.195 F49.48\n");
+  const std::string at = "N170 M11 M13\n";
+  was.insert(was.find(at) + at.size(), "N172 G94 G01 X2.7596 Y1.4052 Z1.9685 C52.195 F49.48\n");
   write_file(t.path("was.nc"), was);
   RunResult r = run_clpc("verify " + t.path("ops.cls") + " --program " + t.path("was.nc") + " -t haas-umc750");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
