@@ -167,6 +167,8 @@ class ProgramWriter : public Backend {
   // the retract after it, and pulls the tool by its radius onto the contour.
   bool left_in_cut_ = false;
   void check_comp_end_in_cut();  // before such a G40
+  void end_comp_before_retract(SourceLoc loc, const std::string& what);
+  bool sets_distance_mode(const CodeTemplate& t) const;  // holds codes.absolute or codes.incremental
   ir::CutterComp comp_now_;  // the compensation written last
   int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once

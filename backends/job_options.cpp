@@ -133,6 +133,7 @@ void ProgramWriter::before_tool_change(SourceLoc loc) {
 void ProgramWriter::optional_stop_between_operations(SourceLoc loc) {
   stop_pending_ = false;
   cancel_cycle(loc);
+  end_comp_before_retract(loc, "an optional stop between operations");
   retract_for_stop(loc);
   e_.begin(loc);
   e_.code(m_.codes.optional_stop);

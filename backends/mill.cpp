@@ -63,7 +63,7 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   // tool's first move), so that each tool's blocks hold it: a restart at this tool's T word ran
   // the tool dry (helper-70).
   control_stopped(had_tool, true);
-  if (had_tool) restate_rotaries(loc);
+  rotaries_unsaid_ = had_tool && m_.kinematics.has_rotaries();
   after_tool_change(t.tool, loc);
 }
 
@@ -151,6 +151,7 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
     pos_ = mv.point;
     return;
   }
+  say_rotaries(loc);
   if (!check_axis(mv.axis, loc)) return;
   if (mv.kind == ir::MoveKind::Feed && !tool_loaded_for_cut(loc)) return;
   if (m_.kinematics.has_rotaries() && !mv.has_rotary) {
@@ -281,9 +282,12 @@ void MillBackend::write_move(const ir::Move& mv, SourceLoc loc) {
   e_.end();
   // Clear of the wall after a rapid (the CAM system's rapids are in the air) or a feed straight
   // up the tool axis (the retract).
+  // (Within an increment of the axes: a CL's 4-decimal point after an intersection is a few
+  // 1e-5 off its arc's end; helper-72.)
   const ir::Vec3 step = mv.point - pos_;
   const double up = step.dot(mv.axis);
-  left_in_cut_ = !rapid && !(up > 0 && (step - up * mv.axis).norm() <= 1e-6 * std::max(1.0, up));
+  const double increment = std::abs(dequantize(1, m_.format('X'))) / k_;
+  left_in_cut_ = !rapid && !(up > 0 && (step - up * mv.axis).norm() <= increment);
   pos_ = mv.point;
   moved();
 }
@@ -351,31 +355,34 @@ void MillBackend::write_rotary_position(const ir::RotaryPosition& r, SourceLoc l
     char l = m_.kinematics.rotaries[i].name[0];
     if (e_.differs(l, r.rotary[i])) moves = true;
   }
-  if (moves) {
+  if (moves || rotaries_unsaid_) {
     // Turning the table for the next orientation with the tool down at the part is how
     // fixtures get hit: retract first (a rotation within a path, clamp = false, has its own).
-    if (r.clamp && !at_safe_height_ && tool_ >= 0) retract(loc);
-    turn_rotaries(r.rotary, true, loc);
+    if (moves && r.clamp && !at_safe_height_ && tool_ >= 0) retract(loc);
+    turn_rotaries(r.rotary, !rotaries_unsaid_, loc);
+    rotaries_unsaid_ = false;
   }
   if (r.clamp) clamp(loc);
 }
 
-// The rotaries unclamped and turned in a rapid of their own (`modal`: only the words that change).
-// After another tool's change the rotaries are said where they stand, unclamped and clamped
-// again as they were: an operator who restarts at this tool's T word (the table homed after a
-// broken tool) had the next 3+2 face cut at B0, or a five-axis entry made untilted; no axis
-// moves in a run from the start (helper-70).
-void MillBackend::restate_rotaries(SourceLoc loc) {
+// After another tool's change every rotary is said again with the first block that turns one
+// (the next 3+2 position), or where it stands, unclamped and clamped again as it was, before
+// the tool's first mode or move: an operator who restarts at this tool's T word (the table
+// homed after a broken tool) had the next 3+2 face cut at B0, or a five-axis entry made
+// untilted; no axis moves in a run from the start (helper-70).
+void MillBackend::say_rotaries(SourceLoc loc) {
+  if (!rotaries_unsaid_) return;
+  rotaries_unsaid_ = false;
   const auto& r = m_.kinematics.rotaries;
-  if (r.empty()) return;
   std::array<double, 2> angles{0, 0};
   for (size_t i = 0; i < r.size() && i < angles.size(); ++i)
-    if (!e_.last(r[i].name[0], angles[i])) return;  // never written: nothing to restate
+    if (!e_.last(r[i].name[0], angles[i])) return;  // never written: nothing to say
   const bool was_clamped = clamped_;
   turn_rotaries(angles, false, loc);
   if (was_clamped) clamp(loc);
 }
 
+// The rotaries unclamped and turned in a rapid of their own (`modal`: only the words that change).
 void MillBackend::turn_rotaries(const std::array<double, 2>& angles, bool modal, SourceLoc loc) {
   unclamp(loc);
   e_.begin(loc);
@@ -386,6 +393,7 @@ void MillBackend::turn_rotaries(const std::array<double, 2>& angles, bool modal,
 }
 
 void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
+  say_rotaries(loc);
   const Codes& k = m_.codes;
   switch (m.kind) {
     case ir::ModeKind::TcpOn:
@@ -460,6 +468,7 @@ void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
 }
 
 void MillBackend::write_arc(const ir::Operation& op, const ir::Arc& a, SourceLoc loc) {
+  say_rotaries(loc);
   if (!check_axis(a.tool_axis, loc)) return;
   if (!tool_loaded_for_cut(loc)) return;
   warn_spindle_stopped(loc, "arc");
@@ -579,6 +588,7 @@ void MillBackend::cancel_cycle(SourceLoc loc) {
 }
 
 void MillBackend::write_hole(const ir::Operation& op, const ir::Hole& h, SourceLoc loc) {
+  say_rotaries(loc);
   const ir::CycleSpec& c = op.cycles.at(h.spec);
   if (!check_axis(h.axis, loc)) return;
   if (!tool_loaded_for_cut(loc)) return;

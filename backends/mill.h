@@ -20,7 +20,8 @@ class MillBackend : public ProgramWriter {
   void rotary_words(const std::array<double, 2>& a, bool modal);
   void unclamp(SourceLoc loc);
   void turn_rotaries(const std::array<double, 2>& angles, bool modal, SourceLoc loc);
-  void restate_rotaries(SourceLoc loc);
+  void say_rotaries(SourceLoc loc);
+  bool rotaries_unsaid_ = false;  // after another tool's change: the next rotary block says every rotary
   void clamp(SourceLoc loc);
   void inverse_time_words(const ir::Move& m, SourceLoc loc);
 
@@ -79,8 +80,9 @@ class MillBackend : public ProgramWriter {
   // holes stayed in the old offset (helper-70: both certified).
   void before_offset_change(SourceLoc loc) override {
     cancel_cycle(loc);
-    end_pending_comp();
-    retract_for_stop(loc);
+    if (at_safe_height_ || tool_ < 0) return;
+    end_comp_before_retract(loc, "another work offset (the next fixture)");
+    retract(loc);
   }
 };
 

@@ -90,12 +90,32 @@ void ProgramWriter::end() {
 }
 
 void ProgramWriter::blocks(const std::vector<CodeTemplate>& list, SourceLoc loc) {
+  // A list of fixed blocks was checked when the machine loaded as the control reads it from
+  // G90; one of the post's own left G91 (G91 G28 Z0. before a tool change) and a finish's
+  // "G53 G00 Z0." ran in G91, where a Fanuc ignores it (helper-72). G90 first, unless the list
+  // says its mode before its first axis word.
+  if (incremental_ && !m_.codes.absolute.empty())
+    for (const CodeTemplate& t : list) {
+      if (sets_distance_mode(t)) break;
+      if (axis_words(t.text).empty()) continue;
+      e_.begin(loc);
+      absolute_code();
+      e_.end();
+      break;
+    }
   for (const CodeTemplate& t : list) {
     e_.begin(loc);
     e_.code(t);
     e_.end();
     after_template(t);
   }
+}
+
+bool ProgramWriter::sets_distance_mode(const CodeTemplate& t) const {
+  for (const CodeTemplate::Word& w : t.words)
+    if (w.size() == 1 && w[0].var < 0 && (w[0].literal == m_.codes.incremental.text || w[0].literal == m_.codes.absolute.text))
+      return true;
+  return false;
 }
 
 // A template may change modal state clpc does not model word by word (a G-code, a move in
@@ -178,10 +198,14 @@ void ProgramWriter::visit(const ir::Operation& op, const ir::Instr& in) {
             spindle_stop_refused_ = false;
           }
         }
-        if constexpr (std::is_same_v<T, ir::ToolChange> || std::is_same_v<T, ir::Hole> ||
-                      std::is_same_v<T, ir::RotaryPosition> || std::is_same_v<T, ir::RotaryIndex> ||
-                      std::is_same_v<T, ir::MachineMode> || std::is_same_v<T, ir::Groove> ||
-                      std::is_same_v<T, ir::ThreadCycle>)
+        // (A load of the tool in the spindle with its own offset, NX's at every operation,
+        // changes nothing: the CL's moves after it carry the G40; helper-72.)
+        if constexpr (std::is_same_v<T, ir::ToolChange>) {
+          if (x.tool != tool_ || (x.length_offset > 0 ? x.length_offset : x.tool) != length_offset_) end_pending_comp();
+        }
+        if constexpr (std::is_same_v<T, ir::Hole> || std::is_same_v<T, ir::RotaryPosition> ||
+                      std::is_same_v<T, ir::RotaryIndex> || std::is_same_v<T, ir::MachineMode> ||
+                      std::is_same_v<T, ir::Groove> || std::is_same_v<T, ir::ThreadCycle>)
           end_pending_comp();
         if constexpr (std::is_same_v<T, ir::Hole>) {
           write_hole(op, x, loc);
@@ -420,6 +444,7 @@ void ProgramWriter::write_stop(const ir::Stop& s, SourceLoc loc) {
   const ir::SpindleDir dir = spindle_;
   const double rpm = spindle_rpm_;
   const ir::CoolantKind coolant = coolant_;
+  end_comp_before_retract(loc, "a setup stop");
   retract_for_stop(loc);
   if (dir != ir::SpindleDir::Off) write_spindle(ir::Spindle{0, ir::SpindleMode::Rpm, ir::SpindleDir::Off, 0}, loc);
   if (coolant != ir::CoolantKind::Off) write_coolant(ir::Coolant{ir::CoolantKind::Off}, loc);
@@ -978,6 +1003,27 @@ void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
   if (c.side == ir::CompSide::Off) moved_since_off_ = false;
 }
 
+// Before a retract of the post's own in mid-program (the next fixture, a setup stop): G41/G42
+// ended first, in a block of its own, where the tool last went up or rapided; the control takes
+// it on the retract, up there. Where the tool last cut, or with the CL's compensation still on
+// (it would run on into the next fixture or setup), an error: the G40 was written on the
+// retract's way, and the tool pulled into the wall (helper-72: certified).
+void ProgramWriter::end_comp_before_retract(SourceLoc loc, const std::string& what) {
+  if (!comp_on_) return;
+  const bool off = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off;
+  if (!off || left_in_cut_)
+    d_.error(loc, what + " with cutter compensation " + (off ? "ended by a CUTCOM/OFF (line " : "on (CUTCOM at line ") +
+                      std::to_string(comp_loc_.line) + ")" + (off ? " with no move after it, where the tool last cut" : "") +
+                      ": the post retracts first, and the control would end G41/G42 on that retract, pulling the tool "
+                      "by its radius toward the contour; end compensation before it (CUTCOM/OFF, then a move across and "
+                      "away from the wall, or straight up the tool axis)");
+  left_in_cut_ = false;
+  e_.begin(loc);
+  e_.code(m_.codes.comp_off);
+  e_.end();
+  comp_on_ = comp_pending_set_ = false;
+}
+
 void ProgramWriter::check_comp_end_in_cut() {
   // Fanuc, Haas: a G40 in a block with no move ends the offset on the next move; here that is
   // the post's own (the finish's Z home, a tool change's retract), which goes from the offset
@@ -987,9 +1033,10 @@ void ProgramWriter::check_comp_end_in_cut() {
   left_in_cut_ = false;
   const bool off = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off;
   d_.error(comp_loc_, std::string(off ? "CUTCOM/OFF with no move after it" : "cutter compensation left on to the end") +
-                          ", where the tool last cut: the control ends G41/G42 on the next move, the post's retract, "
-                          "which pulls the tool by its radius onto the contour, into the wall; end it on a move "
-                          "across and away from the wall (a lead-out), or after a retract straight up the tool axis");
+                          ", where the tool last cut: the control ends G41/G42 on the post's next move (the retract), "
+                          "which pulls the tool by its radius onto the contour, into the wall; give a move after "
+                          "CUTCOM/OFF, across and away from the wall, or end it after a retract straight up the tool "
+                          "axis");
 }
 
 }  // namespace clpc

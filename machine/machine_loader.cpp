@@ -631,14 +631,19 @@ void check_comp_codes(Reader& r, const Machine& m) {
   auto codes = r.sub("codes");
   if (!codes || m.is_lathe()) return;
   // (Siemens selects the edge, its length and radius, with the tool: T{tool} M06 D{offset}.)
-  const std::string& change = m.codes.tool_change.text;
+  // (Its words as the control reads them: a D in a comment is none; helper-72.)
+  const std::string change = control_words(m.codes.tool_change.text);
   for (size_t d = change.find_first_of("Dd"); d != std::string::npos; d = change.find_first_of("Dd", d + 1))
     if (d + 1 < change.size() && (change[d + 1] == '{' || std::isdigit(static_cast<unsigned char>(change[d + 1])))) return;
   for (auto [code, key] : {std::pair{&m.codes.comp_left, "comp_left"}, std::pair{&m.codes.comp_right, "comp_right"}})
     if (!code->empty() && !code->uses(Var::Register))
       if (const toml::node* n = codes->find(key))
-        codes->error(*n, key, "'" + code->text + "' names no radius register: a mill's control takes the one in "
-                                  "force, D00 (radius 0) after a reset, and cuts on the tool's centre; write " +
+        codes->error(*n, key, "'" + code->text + "' " +
+                                  (code->text.find_first_of("Dd") != std::string::npos
+                                       ? "names one radius register for every tool, not the tool's ({register})"
+                                       : "names no radius register: a mill's control takes the one in force, D00 "
+                                         "(radius 0) after a reset, and cuts on the tool's centre") +
+                                  "; write " +
                                   (std::string(key) == "comp_left" ? "\"G41 D{register}\"" : "\"G42 D{register}\"") +
                                   " (or select it with the tool: tool_change = \"T{tool} M06 D{offset}\")");
 }

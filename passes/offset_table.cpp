@@ -213,8 +213,11 @@ class OffsetTablePass : public Pass {
           transform_ = false;
         }
       }
+      // (A CUTCOM belongs where it stands: the next fixture's register came before the last
+      // one's CUTCOM/OFF, and the post met it with compensation still on; helper-72.)
+      const bool comp = std::holds_alternative<ir::CutterComp>(in.op);
       out.push_back(std::move(in));
-      if (motion) setup_end_ = out.size();
+      if (motion || comp) setup_end_ = out.size();
     }
     if (op.last_chunk) {
       // The next operation decides 3+2 afresh, in the frame in force.

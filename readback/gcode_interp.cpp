@@ -115,16 +115,19 @@ class Interp {
     // '/' before a block: the operator's Block Delete switch may skip it. A stop written so
     // (an optional stop's other form, a routine shop edit) is read as run; anything else would
     // give two programs, one of them not checked (helper-70: "/M01" refused as a character).
+    // It may follow the sequence number (N85 /M01) and name a switch (/2 M01).
     bool skippable = false;
-    while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
-    if (i < l.size() && l[i] == '/') {
-      skippable = true;
-      ++i;
-    }
     const size_t first_word = words.size();
     while (i < l.size()) {
       char c = l[i];
       if (c == ' ' || c == '\t' || c == '\r') { ++i; continue; }
+      if (c == '/' && !skippable &&
+          std::all_of(words.begin() + std::ptrdiff_t(first_word), words.end(), [](const Word& w) { return w.letter == 'N'; })) {
+        skippable = true;
+        ++i;
+        while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i]))) ++i;
+        continue;
+      }
       if (c == '(') {
         size_t close = l.find(')', i);
         if (close == std::string_view::npos) {

@@ -896,3 +896,22 @@ TEST(ShopFloor, ASecondToolWithNoLengthOffsetIsRefused) {
   EXPECT_THAT(reload.diags, HasSubstr("part.cls:6:1: error: machine 'sie' has no length offset (codes.length_offset): the "
                                       "change of tool 1's offset from 1 to 2 cannot be written"));
 }
+
+// A fixed list is checked from G90 when the machine loads; one of the post's own blocks left
+// G91 (G91 G28 Z0. before the last tool change) and a finish's "G53 G00 Z0." ran in G91, where
+// a Fanuc ignores it (helper-72): G90 first. A G41 with a D of its own, or a D in a comment of
+// the tool change, is no register of the tool's.
+TEST(ShopFloor, FixedBlocksRunFromG90AndCompensationTakesTheToolsRegister) {
+  TempDir t;
+  write_file(t.path("shop.toml"), "[my]\ninherits = \"fanuc-mill\"\n[my.program]\n"
+                                  "finish = [\"M05\", \"M09\", \"G53 G00 Z0.\", \"G53 X0. Y0.\", \"M30\"]\n");
+  write_file(t.path("p.cls"), "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,10\nFEDRAT/MMPM,100\n"
+                              "GOTO/0,0,-2\nGOTO/50,0,-2\nRAPID\nGOTO/50,0,10\nLOADTL/2\nFINI\n");
+  RunResult r = run_clpc("compile " + t.path("p.cls") + " -t my --machines " + t.path("shop.toml") + " -o " + t.path("p.nc"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(read_file(t.path("p.nc")), HasSubstr("N100 G91 G28 Z0.\nN110 T2 M06 (T2)\nN120 G90\nN130 G53 G00 Z0.\n"));
+  EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41 D99\"\n"),
+              HasSubstr("c.codes.comp_left: 'G41 D99' names one radius register for every tool, not the tool's ({register})"));
+  EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41\"\ntool_change = \"T{tool} M06 (LOAD{tool})\"\n"),
+              HasSubstr("c.codes.comp_left: 'G41' names no radius register"));
+}

@@ -486,13 +486,13 @@ TEST(CamSystems, CompensationEndedWithNoMoveWhereTheToolCutIsRefused) {
   const std::string head = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,-10,20\nFEDRAT/MMPM,200\nGOTO/0,-10,-1\n"
                            "CUTCOM/LEFT\nGOTO/0,0,-1\nGOTO/20,0,-1\n";
   const std::string still_on = "part.cls:8:1: error: cutter compensation left on to the end, where the tool last cut: the control "
-                               "ends G41/G42 on the next move, the post's retract, which pulls the tool by its radius onto "
-                               "the contour, into the wall; end it on a move across and away from the wall (a lead-out), "
-                               "or after a retract straight up the tool axis\n";
+                               "ends G41/G42 on the post's next move (the retract), which pulls the tool by its radius onto "
+                               "the contour, into the wall; give a move after CUTCOM/OFF, across and away from the wall, "
+                               "or end it after a retract straight up the tool axis\n";
   const std::string off_at_11 = "part.cls:11:1: error: CUTCOM/OFF with no move after it, where the tool last cut: the control "
-                               "ends G41/G42 on the next move, the post's retract, which pulls the tool by its radius onto "
-                               "the contour, into the wall; end it on a move across and away from the wall (a lead-out), "
-                               "or after a retract straight up the tool axis\n";
+                               "ends G41/G42 on the post's next move (the retract), which pulls the tool by its radius onto "
+                               "the contour, into the wall; give a move after CUTCOM/OFF, across and away from the wall, "
+                               "or end it after a retract straight up the tool axis\n";
   const std::pair<std::string, std::string> cases[] = {
       {head + "FINI\n", still_on},
       {head + "GOTO/30,0,5\nFINI\n", still_on},  // ramped out, not straight up
@@ -1507,7 +1507,7 @@ TEST(CamSystems, EachLoadBeginsAnOperationInAFileWithNone) {
   Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N50 G94 G98 G84 X-1.1811 Y-1.1811 Z-0.3937 R0.1969 F11.811\nN55 G80\n"));
-  EXPECT_THAT(c.output, HasSubstr("N65 T4 M06 (T4)\nN70 M11 M13\nN75 G00 B0. C0.\nN80 M10 M12\nN85 S6000 M03\nN90 G54 G00 G234 H04\n"));
+  EXPECT_THAT(c.output, HasSubstr("N65 T4 M06 (T4)\nN70 S6000 M03\nN75 M11 M13\nN80 G00 B0. C0.\nN85 M10 M12\nN90 G54 G00 G234 H04\n"));
 }
 
 // Names are names: NX's TOOL PATH naming a tool 12 gave it no name, and its cuts were refused
@@ -1536,4 +1536,36 @@ TEST(CamSystems, ALathesToolSaysItsSpindleAndCoolantAgain) {
   Compiled own = compile_text(head + "SPINDL/RPM,1500,CLW\n" + tail, machine("fanuc-lathe"), {.certify = true});
   ASSERT_TRUE(own.ok) << own.diags;
   EXPECT_THAT(own.output, HasSubstr("N110 T0505 (T5)\nN120 G97 S1500 M03\nN130 M08\nN140 G00 X40. Z-1.\n"));
+}
+
+// The post's own retract in mid-program (the next fixture, a setup stop) with compensation on:
+// the fixture's register came before the CL's CUTCOM/OFF, and G91 G28 Z0. ran under G41 from
+// the wall, certified (helper-72). Compensation ended after a retract gets its G40 up there;
+// ended where the tool cut, or left on, it is an error. NX's load of the same tool at every
+// operation changes nothing (the G40 goes on the CL's next move), and a retract's point a few
+// 1e-5 off the arc's end it leaves (a CATIA GOFWD) is still straight up.
+TEST(CamSystems, ThePostsRetractInMidProgramNeverRunsUnderCompensation) {
+  const std::string cut = "UNITS/MM\nSET/54\nLOADTL/1\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/-20,0,10\nRAPID\nGOTO/-20,0,-5\n"
+                          "FEDRAT/MMPM,300\nCUTCOM/LEFT,1\nGOTO/0,0,-5\nGOTO/50,0,-5\nGOTO/60,10,-5\nCUTCOM/OFF\n";
+  const std::string next = "SET/55\nRAPID\nGOTO/-20,0,10\nRAPID\nGOTO/-20,0,-5\nGOTO/0,0,-5\nFINI\n";
+  Compiled at_wall = compile_text(cut + next, machine("fanuc-mill"));
+  EXPECT_FALSE(at_wall.ok);
+  EXPECT_THAT(messages(at_wall.diags),
+              HasSubstr("part.cls:17:1: error: another work offset (the next fixture) with cutter compensation ended by a "
+                        "CUTCOM/OFF (line 14) with no move after it, where the tool last cut: the post retracts first"));
+  Compiled up = compile_text(cut + "GOTO/60,10,10\n" + next, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(up.ok) << up.diags;
+  EXPECT_THAT(up.output, HasSubstr("N100 X60. Y10.\nN110 Z10.\nN120 G40\nN130 G91 G28 Z0.\nN140 G90 G55 G00 X-20. Y0.\n"));
+  const std::string nx = "UNITS/MM\nTOOL PATH/OP1,TOOL,EM\nLOAD/TOOL,1,ADJUST,1\nSPINDL/RPM,2000,CLW\nRAPID\n"
+                         "GOTO/-20,0,10\nRAPID\nGOTO/-20,0,-5\nFEDRAT/MMPM,300\nCUTCOM/LEFT,1\nGOTO/0,0,-5\nGOTO/50,0,-5\n"
+                         "GOTO/60,10,-5\nCUTCOM/OFF\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,EM\nLOAD/TOOL,1,ADJUST,1\nRAPID\n"
+                         "GOTO/60,10,10\nRAPID\nGOTO/-20,0,10\nEND-OF-PATH\nFINI\n";
+  Compiled reload = compile_text(nx, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(reload.ok) << reload.diags;
+  EXPECT_THAT(reload.output, HasSubstr("(OP2)\nN110 G00 Z10.\nN120 G40 X-20. Y0.\n"));
+  const std::string gofwd = "UNITS/MM\nLOADTL/1\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/-20,0,10\nRAPID\nGOTO/-20,0,-5\n"
+                            "FEDRAT/MMPM,300\nCUTCOM/LEFT,1\nGOTO/0,0,-5\nGOTO/50,0,-5\nINDIRV/1,0,0\n"
+                            "TLON,GOFWD/(CIRCLE/50,10,-5,10),ON,(LINE/57,0,-5,57,10,-5)\nGOTO/57,2.8586,10\nFINI\n";
+  Compiled arc = compile_text(gofwd, machine("fanuc-mill"), {.certify = true});
+  EXPECT_TRUE(arc.ok) << arc.diags;
 }

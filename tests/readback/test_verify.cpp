@@ -811,6 +811,7 @@ TEST(Verify, ABlockDeleteStopIsReadAndOtherSkippableBlocksAreRefused) {
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n/M01\n")).ok);
   EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n / N85 M00\n")).ok);
+  EXPECT_TRUE(verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\nN85 /M01\n/2 M01\n")).ok);
   Compiled moved = verify_text(cl, machine("fanuc-mill"), edit(c.output, "N80 X50.\n", "N80 X50.\n/G00 Z10.\n"));
   EXPECT_FALSE(moved.ok);
   EXPECT_THAT(moved.diags, HasSubstr("a block the Block Delete switch may skip ('/') holds G0: the program runs two ways, "
