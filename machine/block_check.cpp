@@ -295,6 +295,9 @@ std::string part_position_in(std::string_view block, bool lathe, bool& increment
       if (w.value == 53 || w.value == 153) machine = g53 = true;  // Fanuc, Siemens
       if (w.value == 28 || w.value == 30) reference = true;
       if (w.value == 4) dwell = true;
+      // A macro call's words are its arguments (#24 #25 #26), no positions: what the shop's
+      // macro moves is not seen here, whatever it is given (G65 P9000 loads as it is).
+      if (w.value == 65 || w.value == 66 || w.value == 66.1) return "";
     }
     // Heidenhain's (in its L blocks; a Fanuc's M91 is the builder's own).
     if (w.letter == 'M' && (w.value == 91 || w.value == 92) && t.rfind("L ", 0) == 0) machine = true;

@@ -915,3 +915,11 @@ TEST(ShopFloor, FixedBlocksRunFromG90AndCompensationTakesTheToolsRegister) {
   EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41\"\ntool_change = \"T{tool} M06 (LOAD{tool})\"\n"),
               HasSubstr("c.codes.comp_left: 'G41' names no radius register"));
 }
+
+// A macro call's words are its arguments: "G65 P9832 X0. Y0. Z100." was refused as a move to
+// the part's X0, while "G65 P9000" loaded (helper-68, helper-69).
+TEST(ShopFloor, AMacroCallInAFixedBlockIsTheShopsOwn) {
+  EXPECT_EQ(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.program]\nstart = [\"G65 P9832 X0. Y0. Z100.\"]\n"), "");
+  EXPECT_THAT(load_error("[m]\ninherits = \"fanuc-mill\"\n[m.program]\nstart = [\"G00 X0. Y0. Z100.\"]\n"),
+              HasSubstr("'G00 X0. Y0. Z100.' moves X to a position in the part's coordinates (X0)"));
+}
