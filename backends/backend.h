@@ -169,6 +169,8 @@ class ProgramWriter : public Backend {
   void check_comp_end_in_cut();  // before such a G40
   void end_comp_before_retract(SourceLoc loc, const std::string& what);
   bool sets_distance_mode(const CodeTemplate& t) const;  // holds codes.absolute or codes.incremental
+  void absolute_before(const std::vector<CodeTemplate>& list, SourceLoc loc);  // G90 before a fixed list, if needed
+  void write_block(const CodeTemplate& t, SourceLoc loc);  // one fixed block
   ir::CutterComp comp_now_;  // the compensation written last
   int comp_register_said_ = 0;  // the CUTCOM register last said not to be written (0: none), for this tool
   bool no_tool_reported_ = false;  // "cutting with no tool loaded" said once

@@ -1,6 +1,7 @@
 // The mill backend: tool changes with length offsets, work offsets, rapid/feed moves and
 // arcs in G17/G18/G19 for a machine whose spindle is along Z.
 #include "backends/mill.h"
+#include "machine/block_check.h"
 
 #include "machine/arc_center.h"
 #include "ir/arc_geometry.h"
@@ -49,6 +50,9 @@ void MillBackend::write_tool_change(const ir::ToolChange& t, SourceLoc loc) {
   const ir::ToolInfo* info = info_ ? info_->tool(t.tool) : nullptr;
   e_.begin(loc);
   length_offset_ = offset;
+  // (A tool change that moves, "G53 G00 X-500. Y0. Z0. T{tool} M06", after the retract's G91:
+  // in G90, where G53 is read; helper-74.)
+  if (!axis_words(m_.codes.tool_change.text).empty() && !sets_distance_mode(m_.codes.tool_change)) absolute_code();
   e_.code(m_.codes.tool_change, TemplateVars().with(Var::Tool, t.tool).with(Var::Offset, length_offset_));
   if (info) e_.trailing_comment(tool_comment(*info));
   e_.end(true);
@@ -393,6 +397,12 @@ void MillBackend::turn_rotaries(const std::array<double, 2>& angles, bool modal,
 }
 
 void MillBackend::write_mode(const ir::MachineMode& m, SourceLoc loc) {
+  if (m.kind == ir::ModeKind::TcpOn && rotaries_unsaid_) {
+    // Simultaneous motion next: its first move says every rotary (they are forgotten), not a
+    // turn to where they stand that it would undo (helper-73).
+    rotaries_unsaid_ = false;
+    for (const RotaryAxis& r : m_.kinematics.rotaries) e_.forget(r.name[0]);
+  }
   say_rotaries(loc);
   const Codes& k = m_.codes;
   switch (m.kind) {

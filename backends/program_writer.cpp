@@ -77,12 +77,13 @@ void ProgramWriter::end() {
   if ((coolant_ == ir::CoolantKind::Thru && !m_.codes.coolant_thru_off.empty()) ||
       (coolant_ == ir::CoolantKind::Air && !m_.codes.coolant_air_off.empty()))
     write_coolant(ir::Coolant{ir::CoolantKind::Off}, {});
+  absolute_before(m_.finish, {});
   for (size_t i = 0; i < m_.finish.size(); ++i) {
     const CodeTemplate& t = m_.finish[i];
     if (m_.park && i + 1 == m_.finish.size()) blocks(m_.park_blocks, {});
     if (spindle_ == ir::SpindleDir::Off && t.text == m_.codes.spindle_off.text) continue;
     if (coolant_ == ir::CoolantKind::Off && t.text == m_.codes.coolant_off.text) continue;
-    blocks({t}, {});
+    write_block(t, {});
   }
   if (m_.park && m_.finish.empty()) blocks(m_.park_blocks, {});
   after_finish();
@@ -90,24 +91,31 @@ void ProgramWriter::end() {
 }
 
 void ProgramWriter::blocks(const std::vector<CodeTemplate>& list, SourceLoc loc) {
-  // A list of fixed blocks was checked when the machine loaded as the control reads it from
-  // G90; one of the post's own left G91 (G91 G28 Z0. before a tool change) and a finish's
-  // "G53 G00 Z0." ran in G91, where a Fanuc ignores it (helper-72). G90 first, unless the list
-  // says its mode before its first axis word.
-  if (incremental_ && !m_.codes.absolute.empty())
-    for (const CodeTemplate& t : list) {
-      if (sets_distance_mode(t)) break;
-      if (axis_words(t.text).empty()) continue;
-      e_.begin(loc);
-      absolute_code();
-      e_.end();
-      break;
-    }
+  absolute_before(list, loc);
+  for (const CodeTemplate& t : list) write_block(t, loc);
+}
+
+void ProgramWriter::write_block(const CodeTemplate& t, SourceLoc loc) {
+  e_.begin(loc);
+  e_.code(t);
+  e_.end();
+  after_template(t);
+}
+
+// A list of fixed blocks was checked when the machine loaded as the control reads it from
+// G90; one of the post's own left G91 (G91 G28 Z0. before a tool change) and a finish's
+// "G53 G00 Z0." ran in G91, where a Fanuc ignores it (helper-72). G90 first, unless the list
+// says its mode before its first axis word. Once per list, never between its blocks: a
+// finish's "G91" then "G28 Z0." is a home from where the tool is (helper-74).
+void ProgramWriter::absolute_before(const std::vector<CodeTemplate>& list, SourceLoc loc) {
+  if (!incremental_ || m_.codes.absolute.empty()) return;
   for (const CodeTemplate& t : list) {
+    if (sets_distance_mode(t)) return;
+    if (axis_words(t.text).empty()) continue;
     e_.begin(loc);
-    e_.code(t);
+    absolute_code();
     e_.end();
-    after_template(t);
+    return;
   }
 }
 
@@ -1010,8 +1018,11 @@ void ProgramWriter::write_cutter_comp(const ir::CutterComp& c, SourceLoc loc) {
 // retract's way, and the tool pulled into the wall (helper-72: certified).
 void ProgramWriter::end_comp_before_retract(SourceLoc loc, const std::string& what) {
   if (!comp_on_) return;
+  // (Ended, or replaced by the next operation's CUTCOM/LEFT before its approach, which stays
+  // waiting for its move across: only G41/G42 in force with nothing after it is left on;
+  // helper-73.)
   const bool off = comp_pending_set_ && comp_pending_.side == ir::CompSide::Off;
-  if (!off || left_in_cut_)
+  if (!comp_pending_set_ || left_in_cut_)
     d_.error(loc, what + " with cutter compensation " + (off ? "ended by a CUTCOM/OFF (line " : "on (CUTCOM at line ") +
                       std::to_string(comp_loc_.line) + ")" + (off ? " with no move after it, where the tool last cut" : "") +
                       ": the post retracts first, and the control would end G41/G42 on that retract, pulling the tool "
@@ -1021,7 +1032,8 @@ void ProgramWriter::end_comp_before_retract(SourceLoc loc, const std::string& wh
   e_.begin(loc);
   e_.code(m_.codes.comp_off);
   e_.end();
-  comp_on_ = comp_pending_set_ = false;
+  comp_on_ = false;
+  if (off) comp_pending_set_ = false;
 }
 
 void ProgramWriter::check_comp_end_in_cut() {

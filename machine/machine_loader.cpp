@@ -561,6 +561,30 @@ std::string homed_axes(const std::vector<CodeTemplate>& blocks, size_t count) {
 // ways that clear the part whatever it is: G53, or G91 G28 Z0. "G28 Z0." as safe_retract
 // rapided from Z100 down to the part's Z0 on the way home, and "G00 X0. Y0. Z-30." in finish
 // went into the part; both certified (helper-67).
+// A mill's block that runs where the tool may still be down in the part moves Z alone, up,
+// before anything else: "G91 G28 X0. Y0. Z0." and "G53 G00 X0. Y0. Z0." start every axis at
+// once (a Fanuc's rapids are not interpolated), and "G53 G00 Y0." before Z went across at the
+// depth the tool stood; all certified (helper-74). `z_home`: Z has gone home in the list.
+std::string across_before_z_home(std::string_view block, bool& z_home) {
+  const std::string t = control_words(block);
+  if (z_home) return "";
+  for (double g : code_numbers(t, 'G'))
+    if (g == 65 || g == 66 || g == 66.1) return "";  // a macro's words are its arguments
+  std::string axes = axis_words(t);
+  std::replace(axes.begin(), axes.end(), 'W', 'Z');  // (a Mazak's W is its Z)
+  if (axes.empty()) return "";
+  if (axes.find_first_not_of('Z') == std::string::npos) {
+    z_home = true;
+    return "";
+  }
+  std::string others;
+  for (char a : axes)
+    if (a != 'Z') others += a;
+  return "'" + std::string(block) + "' moves " + others + (axes.find('Z') != std::string::npos ? " with Z" : " before Z") +
+         " while the tool may still be down in the part: it would cross at the depth it stands; send Z home in a block "
+         "of its own first (G91 G28 Z0., G53 G00 Z0.)";
+}
+
 void check_fixed_blocks(Reader& r, const Machine& m) {
   const bool lathe = m.is_lathe();
   // The park blocks come before the finish's last block (the program end), from where the ones
@@ -577,6 +601,10 @@ void check_fixed_blocks(Reader& r, const Machine& m) {
       const toml::array* a = n ? n->as_array() : nullptr;
       if (!a) continue;
       bool incremental = false;
+      // (Z first in the finish and the park; a program's start finds the tool up.)
+      // (Park blocks run only with program.park.)
+      bool z_up = lathe || std::string_view(key) == "start" || std::string_view(key) == "safe_start" ||
+                  (std::string_view(key) == "park_blocks" && (z_home || !m.park));
       for (const toml::node& e : *a)
         if (const auto* text = e.as_string()) {
           std::string free(std::string_view(key) == "park_blocks" ? park_free : "");
@@ -590,6 +618,8 @@ void check_fixed_blocks(Reader& r, const Machine& m) {
           }
           if (const std::string why = part_position_in(**text, lathe, incremental, free); !why.empty())
             p->error(e, key, why + ": a fixed block must clear the part wherever the tool stands; " + advice);
+          else if (const std::string across = across_before_z_home(**text, z_up); !across.empty())
+            p->error(e, key, across);
         }
     }
   // (A lathe's tool change at a position in the part's coordinates, G00 X250. Z200. T0101, is
@@ -600,10 +630,14 @@ void check_fixed_blocks(Reader& r, const Machine& m) {
     for (auto [code, key] : {std::pair{&m.codes.safe_retract, "safe_retract"}, std::pair{&m.codes.tool_change, "tool_change"},
                              std::pair{&m.codes.tool_preselect, "tool_preselect"}}) {
       bool incremental = false;
-      if (const std::string why = part_position_in(code->text, lathe, incremental); !why.empty())
+      bool z_up = lathe || std::string_view(key) != "safe_retract";  // (the tool change comes after it)
+      if (const std::string why = part_position_in(code->text, lathe, incremental); !why.empty()) {
         if (const toml::node* n = codes->find(key))
           codes->error(*n, key, why + ": it runs wherever the tool stands, so it must clear the part whatever it is; " +
                                     advice);
+      } else if (const std::string across = across_before_z_home(code->text, z_up); !across.empty()) {
+        if (const toml::node* n = codes->find(key)) codes->error(*n, key, across);
+      }
     }
 }
 
@@ -639,7 +673,7 @@ void check_comp_codes(Reader& r, const Machine& m) {
     if (!code->empty() && !code->uses(Var::Register))
       if (const toml::node* n = codes->find(key))
         codes->error(*n, key, "'" + code->text + "' " +
-                                  (code->text.find_first_of("Dd") != std::string::npos
+                                  (control_words(code->text).find('D') != std::string::npos
                                        ? "names one radius register for every tool, not the tool's ({register})"
                                        : "names no radius register: a mill's control takes the one in force, D00 "
                                          "(radius 0) after a reset, and cuts on the tool's centre") +

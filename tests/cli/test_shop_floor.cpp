@@ -276,7 +276,19 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
             "with the tool: tool_change = \"T{tool} M06 D{offset}\")\n 4 | comp_left = \"G41\"\n   |             ^\n");
   EXPECT_EQ(load_error("[s]\ninherits = \"fanuc-mill\"\n[s.codes]\ncomp_left = \"G41\"\ncomp_right = \"G42\"\n"
                        "tool_change = \"T{tool} M06 D{offset}\"\n"), "");
-  for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G90 G53 Z0.", "G28 G91 Z0. Y0.", "M05"})
+  // Z alone first, where the tool may be down in the part: Y or X with Z, or before it, starts
+  // across at the depth (a Fanuc's rapids are not interpolated; helper-74: certified).
+  for (const char* across : {"G28 G91 Z0. Y0.", "G91 G28 X0. Y0. Z0.", "G53 G00 X0. Y0. Z0."})
+    EXPECT_THAT(load_error("[a]\ninherits = \"fanuc-mill\"\n[a.codes]\nsafe_retract = \"" + std::string(across) + "\"\n"),
+                HasSubstr("with Z while the tool may still be down in the part: it would cross at the depth it stands; "
+                          "send Z home in a block of its own first (G91 G28 Z0., G53 G00 Z0.)"))
+        << across;
+  EXPECT_THAT(load_error("[a]\ninherits = \"fanuc-mill\"\n[a.program]\nfinish = [\"M05\", \"G53 G00 Y0.\", \"G53 G00 Z0.\", \"M30\"]\n"),
+              HasSubstr("a.program.finish: 'G53 G00 Y0.' moves Y before Z while the tool may still be down in the part"));
+  EXPECT_THAT(load_error("[a]\ninherits = \"fanuc-mill\"\n[a.program]\nfinish = [\"M05\", \"M30\"]\npark = true\n"
+                         "park_blocks = [\"G53 G00 X-500. Y0.\"]\n"),
+              HasSubstr("a.program.park_blocks: 'G53 G00 X-500. Y0.' moves XY before Z"));
+  for (const char* ok : {"G91G28Z0.", "G53 G00 Z0.", "G90 G53 Z0.", "M05"})
     EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.codes]\nsafe_retract = \"" + std::string(ok) + "\"\n"), "")
         << ok;
   EXPECT_THAT(load_error("[l]\ninherits = \"fanuc-lathe\"\n[l.codes]\nsafe_retract = \"G28 X0. Z0.\"\n"),
@@ -295,7 +307,7 @@ TEST(ShopFloor, AFixedBlockThatGoesToAPartPositionIsRefused) {
         << bad;
   EXPECT_THAT(load_error("[s]\ninherits = \"fanuc-mill\"\n[s.program]\nstart = [\"%\", \"G00 Z-50.\"]\n"),
               HasSubstr("s.program.start: 'G00 Z-50.' moves Z"));
-  for (const char* ok : {"[\"M05\", \"G91\", \"G28 Z0.\", \"G90\", \"M30\"]", "[\"G28 U0 V0 W0\"]", "[\"G0 SUPA Z0 D0\"]",
+  for (const char* ok : {"[\"M05\", \"G91\", \"G28 Z0.\", \"G90\", \"M30\"]", "[\"G28 W0\", \"G28 U0 V0\"]", "[\"G0 SUPA Z0 D0\"]",
                          "[\"G153 Z0\"]", "[\"L Z-0.5 R0 FMAX M91\"]"})
     EXPECT_EQ(load_error("[ok]\ninherits = \"fanuc-mill\"\n[ok.program]\nfinish = " + std::string(ok) + "\n"), "") << ok;
   // A lathe's tool change at a position in the part's coordinates is refused as a mill's: G00
@@ -910,6 +922,15 @@ TEST(ShopFloor, FixedBlocksRunFromG90AndCompensationTakesTheToolsRegister) {
   RunResult r = run_clpc("compile " + t.path("p.cls") + " -t my --machines " + t.path("shop.toml") + " -o " + t.path("p.nc"));
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_THAT(read_file(t.path("p.nc")), HasSubstr("N100 G91 G28 Z0.\nN110 T2 M06 (T2)\nN120 G90\nN130 G53 G00 Z0.\n"));
+  // Once before the list, never between its blocks: "G91" then "G28 Z0." is a home from where
+  // the tool is, and G90 between them sent it to the part's Z0 first (helper-74: certified).
+  write_file(t.path("list.toml"), "[my]\ninherits = \"fanuc-mill\"\n[my.program]\n"
+                                  "finish = [\"M05\", \"G91\", \"G28 Z0.\", \"G28 X0. Y0.\", \"G90\", \"M30\"]\n"
+                                  "[my.codes]\ntool_change = \"G53 G00 X-500. Y0. T{tool} M06\"\n");
+  r = run_clpc("compile " + t.path("p.cls") + " -t my --machines " + t.path("list.toml") + " -o " + t.path("l.nc"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(read_file(t.path("l.nc")), HasSubstr("N100 G91 G28 Z0.\nN110 G90 G53 G00 X-500. Y0. T2 M06 (T2)\n"
+                                                    "N120 G91\nN130 G28 Z0.\nN140 G28 X0. Y0.\nN150 G90\nN160 M30\n"));
   EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41 D99\"\n"),
               HasSubstr("c.codes.comp_left: 'G41 D99' names one radius register for every tool, not the tool's ({register})"));
   EXPECT_THAT(load_error("[c]\ninherits = \"fanuc-mill\"\n[c.codes]\ncomp_left = \"G41\"\ntool_change = \"T{tool} M06 (LOAD{tool})\"\n"),

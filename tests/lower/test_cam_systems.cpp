@@ -1507,7 +1507,7 @@ TEST(CamSystems, EachLoadBeginsAnOperationInAFileWithNone) {
   Compiled c = compile_text(cl, machine("haas-umc750"), {.certify = true});
   ASSERT_TRUE(c.ok) << c.diags;
   EXPECT_THAT(c.output, HasSubstr("N50 G94 G98 G84 X-1.1811 Y-1.1811 Z-0.3937 R0.1969 F11.811\nN55 G80\n"));
-  EXPECT_THAT(c.output, HasSubstr("N65 T4 M06 (T4)\nN70 S6000 M03\nN75 M11 M13\nN80 G00 B0. C0.\nN85 M10 M12\nN90 G54 G00 G234 H04\n"));
+  EXPECT_THAT(c.output, HasSubstr("N65 T4 M06 (T4)\nN70 S6000 M03\nN75 G54 G00 G234 H04\nN80 M11 M13\nN85 G00 X0. Y-1.9685 B0. C0.\n"));
 }
 
 // Names are names: NX's TOOL PATH naming a tool 12 gave it no name, and its cuts were refused
@@ -1568,4 +1568,16 @@ TEST(CamSystems, ThePostsRetractInMidProgramNeverRunsUnderCompensation) {
                             "TLON,GOFWD/(CIRCLE/50,10,-5,10),ON,(LINE/57,0,-5,57,10,-5)\nGOTO/57,2.8586,10\nFINI\n";
   Compiled arc = compile_text(gofwd, machine("fanuc-mill"), {.certify = true});
   EXPECT_TRUE(arc.ok) << arc.diags;
+  // The next operation's CUTCOM/LEFT before its approach waits for its move across; the last
+  // one's G40 goes before the retract (helper-73: refused as compensation left on).
+  const std::string op = "TOOL PATH/OP,TOOL,EM10\nTLDATA/MILL,10,0,50,0,0\nLOAD/TOOL,1\n";
+  const std::string next_op = "UNITS/MM\n" + op + "SET/54\nMSYS/0,0,0,1,0,0,0,1,0\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,300\n"
+                              "RAPID\nGOTO/-20,-20,10\nGOTO/-20,-20,-5\nCUTCOM/LEFT,1\nGOTO/0,-10,-5\nGOTO/50,-10,-5\n"
+                              "CUTCOM/OFF\nGOTO/50,-10,10\nEND-OF-PATH\n" + op + "SET/55\nMSYS/200,0,0,1,0,0,0,1,0\n"
+                              "CUTCOM/LEFT,1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,300\nRAPID\nGOTO/-20,-20,10\n"
+                              "GOTO/-20,-20,-8\nGOTO/0,-10,-8\nGOTO/50,-10,-8\nCUTCOM/OFF\nGOTO/60,-20,-8\nGOTO/60,-20,10\n"
+                              "END-OF-PATH\nFINI\n";
+  Compiled k = compile_text(next_op, machine("fanuc-mill"), {.certify = true});
+  ASSERT_TRUE(k.ok) << k.diags;
+  EXPECT_THAT(k.output, HasSubstr("N100 Z10.\n(OP)\nN110 G40\nN120 G91 G28 Z0.\nN130 S3000 M03\nN140 G90 G55 G00 X-20. Y-20.\n"));
 }

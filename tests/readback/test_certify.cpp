@@ -304,11 +304,11 @@ TEST(Certify, ANearerBlockEndAfterAToolChangeIsNotThisPointsOwn) {
   const std::string nc = read_file(t.path("ops.nc"));
   EXPECT_THAT(nc, HasSubstr("N120 G00 Z1.9685\nN125 X2.9207 Y1.0294\nN130 G255\n"));  // up first: rapid-split
   // The new tool goes straight to its operation's first point.
-  EXPECT_THAT(nc, HasSubstr("N165 G54 G00 G234 H05\nN170 M11 M13\nN175 G00 X1.5748 Y1.1811 B27.815 C52.195\n"));
+  EXPECT_THAT(nc, HasSubstr("N150 G54 G00 G234 H05\nN155 M11 M13\nN160 G00 X1.5748 Y1.1811 B27.815 C52.195\n"));
   // The program as it was written before: the next tool's first block at the retract point.
   std::string was = nc;
-  const std::string at = "N170 M11 M13\n";
-  was.insert(was.find(at) + at.size(), "N172 G94 G01 X2.7596 Y1.4052 Z1.9685 C52.195 F49.48\n");
+  const std::string at = "N155 M11 M13\n";
+  was.insert(was.find(at) + at.size(), "N157 G94 G01 X2.7596 Y1.4052 Z1.9685 C52.195 F49.48\n");
   write_file(t.path("was.nc"), was);
   RunResult r = run_clpc("verify " + t.path("ops.cls") + " --program " + t.path("was.nc") + " -t haas-umc750");
   EXPECT_EQ(r.status, 0) << r.out << r.err;
