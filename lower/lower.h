@@ -209,6 +209,7 @@ class Lowerer : public RecordSink {
   std::optional<SourceLoc> zero_feed_at_;
   bool section_feed_ = false;  // the open CYCLE, groove, roughing or THREAD gives its own feed
   bool spindle_running_ = false;  // the last SPINDL turned the spindle on
+  bool stopped_by_change_ = false;  // the last tool change found the spindle running (the post starts it again)
   double pending_max_rpm_ = 0;    // SPINDL/MAXRPM,n alone: the clamp for surface speeds after it
   // The last FEDRAT's mode and unit (factor to program units), which a FEDRAT without a unit
   // word keeps, and where it was given.

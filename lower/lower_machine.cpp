@@ -87,6 +87,7 @@ void Lowerer::lower_tool_change(const Record& r) {
 // its own (a mill's M06 stops it), and CUTCOM/ON has no side of its own to resume (the last
 // tool's register would be another tool's diameter).
 void Lowerer::forget_the_last_tools_state() {
+  stopped_by_change_ = spindle_running_;
   spindle_running_ = false;
   last_comp_.reset();
 }
@@ -168,7 +169,7 @@ void Lowerer::lower_spindle(const Record& r) {
   ensure_operation(r.loc);
   if (off) {
     s.dir = ir::SpindleDir::Off;
-    spindle_running_ = false;
+    spindle_running_ = stopped_by_change_ = false;
     push(r.loc, s);
     return;
   }
@@ -179,7 +180,13 @@ void Lowerer::lower_spindle(const Record& r) {
     pending_max_rpm_ = s.max_rpm;
     if (last_spindle_ && last_spindle_->mode == ir::SpindleMode::SurfaceSpeed && last_spindle_->max_rpm != s.max_rpm) {
       last_spindle_->max_rpm = s.max_rpm;
-      if (spindle_running_) push(r.loc, *last_spindle_);
+      // (Also where the tool change stopped it, or a lathe's index left it running: the post
+      // starts it again for the new tool with the clamp it had, and the CL's lower one was lost,
+      // SPINDL/MAXRPM,1500 written G50 S2500; helper-73.)
+      if (spindle_running_ || stopped_by_change_) {
+        spindle_running_ = true;
+        push(r.loc, *last_spindle_);
+      }
     }
     return;
   }

@@ -571,15 +571,17 @@ TEST(CamSystems, ASpindleClampOfItsOwnHoldsForTheSurfaceSpeedsAfterIt) {
   EXPECT_EQ(messages(above.diags), "part.cls:3:1: warning: MAXRPM 4000 is above machine 'fanuc-lathe''s spindle limit: "
                                    "clamped at 3000 rpm [-Wspindle-clamp]\n");
   EXPECT_THAT(above.output, HasSubstr("\nN40 G50 S3000\n"));
-  // After a tool change the clamp waits for the new tool's SPINDL (the last tool's speed is
-  // not restarted); SPINDL/ON,MAXRPM,n restarts with the new clamp.
+  // After a tool change a clamp alone clamps the last tool's surface speed, which the post
+  // starts again for the new tool (a lathe's index leaves it running; helper-73), until the new
+  // tool's SPINDL; SPINDL/ON,MAXRPM,n restarts with the new clamp.
   Compiled changed = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,2000\nFEDRAT/0.2,MMPR\nRAPID\n"
                                   "GOTO/40,0,2\nLOADTL/2\nSPINDL/MAXRPM,1500\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,5\n"
                                   "SPINDL/OFF\nSPINDL/SMM,180,CLW\nSPINDL/OFF\nSPINDL/ON,MAXRPM,1200\nGOTO/40,0,6\nFINI\n",
                                   machine("fanuc-lathe"));
   ASSERT_TRUE(changed.ok) << changed.diags;
-  EXPECT_THAT(changed.output, HasSubstr("\nN80 T0202 (T2)\nN90 G97 S800 M03\nN100 G00 X80. Z5.\nN110 M05\nN120 G50 S1500\n"
-                                        "N130 G96 S180 M03\nN140 M05\nN150 G50 S1200\nN160 G96 S180 M03\n"));
+  EXPECT_THAT(changed.output, HasSubstr("\nN80 T0202 (T2)\nN90 G50 S1500\nN100 G96 S200 M03\nN110 G97 S800 M03\nN120 G00 X80. Z5.\n"
+                                        "N130 M05\nN140 G50 S1500\nN150 G96 S180 M03\nN160 M05\nN170 G50 S1200\n"
+                                        "N180 G96 S180 M03\n"));
   Compiled negative = compile_text("UNITS/MM\nLOADTL/1\nSPINDL/MAXRPM,-3\nFINI\n", machine("fanuc-lathe"));
   EXPECT_FALSE(negative.ok);
   EXPECT_THAT(negative.diags, HasSubstr("part.cls:3:15: error: SPINDL: MAXRPM must not be negative, found -3"));
@@ -1580,4 +1582,17 @@ TEST(CamSystems, ThePostsRetractInMidProgramNeverRunsUnderCompensation) {
   Compiled k = compile_text(next_op, machine("fanuc-mill"), {.certify = true});
   ASSERT_TRUE(k.ok) << k.diags;
   EXPECT_THAT(k.output, HasSubstr("N100 Z10.\n(OP)\nN110 G40\nN120 G91 G28 Z0.\nN130 S3000 M03\nN140 G90 G55 G00 X-20. Y-20.\n"));
+}
+
+// SPINDL/MAXRPM alone after a tool change clamps the surface speed the post starts again for
+// the new tool: it was dropped, and the lathe's T2 ran to the last tool's G50 S2500 where the
+// CL asked 1500 (helper-73).
+TEST(CamSystems, AClampAloneAfterAToolChangeClampsTheSpeedStartedAgain) {
+  const std::string cl = "UNITS/MM\nLOADTL/1\nSPINDL/SMM,200,MAXRPM,2500,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/30,0,2\n"
+                         "GOTO/30,0,-20\nGOTO/35,0,-20\nRAPID\nGOTO/50,0,20\nLOADTL/2\nSPINDL/MAXRPM,1500\nRAPID\n"
+                         "GOTO/20,0,2\nGOTO/20,0,-20\nGOTO/25,0,-20\nRAPID\nGOTO/50,0,20\nFINI\n";
+  Compiled c = compile_text(cl, machine("fanuc-lathe"), {.certify = true});
+  ASSERT_TRUE(c.ok) << c.diags;
+  EXPECT_THAT(c.output, HasSubstr("(T2)\nN120 G50 S1500\nN130 G96 S200 M03\n"));
+  EXPECT_EQ(c.output.find("G50 S2500", c.output.find("T0202")), std::string::npos) << "T1's clamp only";
 }
