@@ -39,7 +39,10 @@ uint32_t CodeTemplate::vars_used() const {
 
 char CodeTemplate::letter(const Word& w) {
   if (w.empty() || w[0].var >= 0 || w[0].literal.empty()) return 0;
-  return char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+  // (An address is a letter: a comment's "(LOAD{tool})" has none, and its '(' indexed the
+  // formats out of bounds; UBSan, helper-72's test.)
+  const char c = char(std::toupper(static_cast<unsigned char>(w[0].literal[0])));
+  return c >= 'A' && c <= 'Z' ? c : 0;
 }
 
 bool CodeTemplate::has_g_code() const {

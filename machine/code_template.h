@@ -47,7 +47,7 @@ struct CodeTemplate {
   // True if any literal word starts with G (the block may change modal state).
   bool has_g_code() const;
   // The address a word is written in, in capitals (G43 Z{offset}: 'Z'); 0 when the word starts
-  // with a placeholder.
+  // with a placeholder or with no letter (a comment).
   static char letter(const Word& w);
 };
 
